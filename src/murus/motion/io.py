@@ -1,0 +1,702 @@
+"""Readers and writers of acceleration records.
+
+Formats, chosen by content (then extension) unless ``format`` is given:
+
+``at2``
+    PEER NGA flat file: 3 text lines (title; event, date, station, component; units line
+    "ACCELERATION TIME SERIES IN UNITS OF G"), a line "NPTS= n, DT= dt SEC" (or the older
+    "n dt NPTS, DT"), then the values, several per line.
+``esm``
+    ESM / ITACA ASCII (Engineering Strong-Motion database, Luzi et al. 2016): ``KEY: value``
+    header lines (``SAMPLING_INTERVAL_S``, ``NDATA``, ``UNITS``, ``DATA_TYPE`` ...) followed by
+    one value per line.
+``cosmos``
+    COSMOS Strong-Motion Data Format (v1.20) processed (V2) file: 14 text header lines, an
+    integer header, a real header (value 62 is the sampling interval in ms), comment lines and
+    a data block "N acceleration pts, approx T secs, units=cm/sec2 (04), Format=(...)". The first
+    acceleration block is read.
+``csv`` / text
+    One or more columns separated by commas, semicolons or blanks. Two columns are time [s] and
+    acceleration, three add the vertical acceleration, one column is acceleration at a step ``dt``.
+    ``#`` lines are comments; ``# dt: ...``, ``# units: ...``, ``# npts: ...``, ``# name: ...``
+    comment lines are read as a header (that is what :func:`write` produces). A first line of
+    column names is skipped.
+
+Units: g, m/s2 and cm/s2 (gal). A value in g is converted with ``murus.G`` = 9.81 m/s² (the
+constant used everywhere in murus, so that a record written in g and read back is unchanged;
+note that PEER and COSMOS use g = 9.80665 m/s² for their own conversions, a 0.03 % difference).
+
+Every error is a :class:`MotionFormatError` (a ``ValueError``) whose message is one line that
+names the file and, where it applies, the line number: ``record.csv line 12: 'abc' is not a
+number``. A record is refused rather than guessed: NaN or infinite values, text in a number field,
+a declared number of points different from the data, a missing or non-positive step, a time
+column that does not increase. The last data line is always read and dt is never rounded.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import tempfile
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from murus import G
+from murus.motion.core import GroundMotion
+
+__all__ = ["MotionFormatError", "read", "write", "detect_format", "UNITS", "FORMATS"]
+
+#: conversion factors to m/s²
+UNITS = {
+    "g": G,
+    "m/s2": 1.0,
+    "cm/s2": 0.01,
+}
+_UNIT_ALIASES = {
+    "g": "g", "g0": "g", "gravity": "g",
+    "m/s2": "m/s2", "m/s^2": "m/s2", "m/s**2": "m/s2", "m/s/s": "m/s2", "m/sec2": "m/s2",
+    "m/sec/sec": "m/s2", "mps2": "m/s2",
+    "cm/s2": "cm/s2", "cm/s^2": "cm/s2", "cm/s**2": "cm/s2", "cm/s/s": "cm/s2", "gal": "cm/s2",
+    "cm/sec2": "cm/s2", "cm/sec/sec": "cm/s2", "cm/sec^2": "cm/s2", "cmps2": "cm/s2",
+}
+FORMATS = ("at2", "esm", "cosmos", "csv")
+
+_NUM_RE = re.compile(r"^[+-]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][+-]?\d+)?$")
+_MAX_ABS = 1e6  # m/s²; 100 000 g: anything larger is a corrupt file
+
+
+class MotionFormatError(ValueError):
+    """A record file that cannot be read; the message names the file and line."""
+
+
+def _short(tok: str) -> str:
+    tok = tok.replace("\n", " ").replace("\r", " ")
+    return repr(tok if len(tok) <= 24 else tok[:21] + "...")
+
+
+def normalize_units(units: str, where: str = "") -> str:
+    """Canonical unit name ('g', 'm/s2' or 'cm/s2') of a unit string; MotionFormatError if
+    unknown."""
+    key = str(units).strip().lower().replace(" ", "")
+    if key in _UNIT_ALIASES:
+        return _UNIT_ALIASES[key]
+    prefix = f"{where}: " if where else ""
+    raise MotionFormatError(
+        f"{prefix}unknown acceleration units {_short(str(units))} (use g, m/s2 or cm/s2)"
+    )
+
+
+class _Src:
+    """Decoded text of a file with helpers that raise one-line errors naming file and line."""
+
+    def __init__(self, path: Path, text: str):
+        self.path = path
+        self.name = path.name
+        self.lines = text.splitlines()
+
+    def err(self, lineno: int | None, msg: str) -> MotionFormatError:
+        where = self.name if lineno is None else f"{self.name} line {lineno}"
+        return MotionFormatError(f"{where}: {msg}")
+
+    def num(self, tok: str, lineno: int) -> float:
+        if not _NUM_RE.match(tok):
+            low = tok.lower().lstrip("+-")
+            if low in ("nan", "inf", "infinity"):
+                raise self.err(lineno, f"{_short(tok)} is not a finite number")
+            raise self.err(lineno, f"{_short(tok)} is not a number")
+        x = float(tok.replace("d", "e").replace("D", "e"))
+        if not math.isfinite(x):
+            raise self.err(lineno, f"{_short(tok)} is not a finite number")
+        return x
+
+    def values(self, start: int, stop: int | None = None) -> tuple[np.ndarray, list[int]]:
+        """All numbers on lines[start:stop] (0-based); blank lines skipped. Returns the values
+        and, for each value, its 1-based line number."""
+        out: list[float] = []
+        where: list[int] = []
+        stop = len(self.lines) if stop is None else stop
+        for i in range(start, stop):
+            toks = self.lines[i].replace(",", " ").split()
+            for tok in toks:
+                out.append(self.num(tok, i + 1))
+                where.append(i + 1)
+        return np.asarray(out, dtype=np.float64), where
+
+
+def _read_text(path: Path) -> str:
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise MotionFormatError(f"{path.name}: no such file") from None
+    except IsADirectoryError:
+        raise MotionFormatError(f"{path.name}: is a directory, not a record file") from None
+    except OSError as exc:
+        raise MotionFormatError(f"{path.name}: cannot read ({exc.strerror})") from None
+    if b"\x00" in raw:
+        raise MotionFormatError(f"{path.name}: binary file (NUL bytes), not a text record")
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return raw.decode("latin-1")
+
+
+_ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.\-()]*):(.*)$")
+
+
+def detect_format(path, text: str | None = None) -> str:
+    """Format name ('at2', 'esm', 'cosmos' or 'csv') from the content, then the extension."""
+    path = Path(path)
+    if text is None:
+        text = _read_text(path)
+    lines = text.splitlines()
+    head = [ln for ln in lines[:20]]
+    first = next((ln for ln in head if ln.strip()), "")
+    low = first.lower()
+    if "peer" in low and "record" in low:
+        return "at2"
+    if any("integer-header values follow" in ln.lower() for ln in lines[:40]):
+        return "cosmos"
+    if _ESM_KEY.match(first.strip()) and any(
+        ln.startswith("SAMPLING_INTERVAL_S") for ln in lines[:120]
+    ):
+        return "esm"
+    ext = path.suffix.lower()
+    if ext == ".at2":
+        return "at2"
+    if ext in (".v2", ".smc", ".cosmos"):
+        return "cosmos"
+    if ext == ".asc" and _ESM_KEY.match(first.strip()):
+        return "esm"
+    return "csv"
+
+
+# ----------------------------------------------------------------------------------- readers
+
+
+def _check_units(src: _Src, declared: str, given: str | None, lineno: int | None) -> str:
+    if given is not None and normalize_units(given) != declared:
+        raise src.err(
+            lineno, f"file declares units {declared!r} but units={given!r} was given"
+        )
+    return declared
+
+
+def _check_dt(src: _Src, dt: float, lineno: int | None) -> float:
+    if not (math.isfinite(dt) and dt > 0):
+        raise src.err(lineno, f"time step dt = {dt!r} is not positive")
+    return dt
+
+
+_AT2_NEW = re.compile(
+    r"NPTS\s*=\s*([^\s,]+)\s*,?\s*DT\s*=\s*([^\s,]+)", re.IGNORECASE
+)
+_AT2_OLD = re.compile(r"^\s*(\S+)\s+(\S+)\s+NPTS\s*,\s*DT", re.IGNORECASE)
+
+
+def _read_at2(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotion:
+    lines = src.lines
+    if len(lines) < 4:
+        raise src.err(None, "PEER AT2 file has fewer than 4 header lines")
+    unit_line = lines[2].upper()
+    if "ACCEL" not in unit_line:
+        raise src.err(3, "PEER AT2 line 3 does not declare an acceleration time series")
+    m = re.search(r"UNITS?\s+OF\s+([A-Z/\^0-9*]+)", unit_line)
+    if m is None:
+        raise src.err(3, "PEER AT2 units not found (expected 'IN UNITS OF G')")
+    declared = normalize_units(m.group(1), f"{src.name} line 3")
+    uname = _check_units(src, declared, units, 3)
+    mm = _AT2_NEW.search(lines[3]) or _AT2_OLD.search(lines[3])
+    if mm is None:
+        raise src.err(4, "expected 'NPTS= n, DT= dt SEC'")
+    ntok, dtok = mm.group(1), mm.group(2)
+    if not re.fullmatch(r"\d+", ntok):
+        raise src.err(4, f"NPTS {_short(ntok)} is not a whole number")
+    npts = int(ntok)
+    dt = _check_dt(src, src.num(dtok, 4), 4)
+    if dt_arg is not None and not math.isclose(dt_arg, dt, rel_tol=1e-9):
+        raise src.err(4, f"file declares DT = {dt!r} s but dt={dt_arg!r} was given")
+    vals, where = src.values(4)
+    if vals.size != npts:
+        last = where[-1] if where else 4
+        raise src.err(last, f"header declares NPTS = {npts} but the file has {vals.size} values")
+    if npts < 2:
+        raise src.err(4, f"NPTS = {npts}: a record needs at least 2 points")
+    info = lines[1].strip()
+    parts = [p.strip() for p in info.split(",")]
+    meta = {"format": "at2", "source_file": str(src.path), "units_in": uname, "title": info}
+    if len(parts) >= 4:  # NGA-West2: event, date, station, component
+        meta["event"] = parts[0]
+        if parts[1]:
+            meta["date"] = parts[1]
+        meta["station"] = ", ".join(parts[2:-1])
+        meta["component"] = parts[-1]
+    elif len(parts) == 3:  # NGA (2005): event date, station, component
+        meta["event"], meta["station"], meta["component"] = parts
+    return _make(src, vals * UNITS[uname], dt, meta)
+
+
+_ESM_UNITS_KEYS = ("UNITS",)
+
+
+def _read_esm(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotion:
+    hdr: dict[str, tuple[str, int]] = {}
+    i = 0
+    lines = src.lines
+    while i < len(lines):
+        s = lines[i].strip()
+        m = _ESM_KEY.match(s)
+        if m is None:
+            if s == "":
+                i += 1
+                continue
+            break
+        hdr[m.group(1)] = (m.group(2).strip(), i + 1)
+        i += 1
+    data_start = i
+
+    def need(key):
+        if key not in hdr or hdr[key][0] == "":
+            raise src.err(None, f"ESM header key {key} is missing or empty")
+        return hdr[key]
+
+    dtype_ = hdr.get("DATA_TYPE", ("ACCELERATION", 0))
+    if "ACC" not in dtype_[0].upper():
+        raise src.err(dtype_[1], f"DATA_TYPE {_short(dtype_[0])} is not ACCELERATION")
+    sdt, ldt = need("SAMPLING_INTERVAL_S")
+    dt = _check_dt(src, src.num(sdt, ldt), ldt)
+    if dt_arg is not None and not math.isclose(dt_arg, dt, rel_tol=1e-9):
+        raise src.err(ldt, f"file declares SAMPLING_INTERVAL_S = {dt!r} but dt={dt_arg!r}")
+    sn, ln = need("NDATA")
+    if not re.fullmatch(r"\d+", sn):
+        raise src.err(ln, f"NDATA {_short(sn)} is not a whole number")
+    npts = int(sn)
+    su, lu = need("UNITS")
+    uname = _check_units(src, normalize_units(su, f"{src.name} line {lu}"), units, lu)
+    vals, where = src.values(data_start)
+    if vals.size != npts:
+        last = where[-1] if where else ln
+        raise src.err(last, f"header declares NDATA = {npts} but the file has {vals.size} values")
+    if npts < 2:
+        raise src.err(ln, f"NDATA = {npts}: a record needs at least 2 points")
+
+    def g(key):
+        return hdr.get(key, ("", 0))[0]
+
+    meta = {
+        "format": "esm",
+        "source_file": str(src.path),
+        "units_in": uname,
+        "event": g("EVENT_NAME"),
+        "event_id": g("EVENT_ID"),
+        "date": g("EVENT_DATE_YYYYMMDD"),
+        "network": g("NETWORK"),
+        "station": g("STATION_CODE"),
+        "station_name": g("STATION_NAME"),
+        "component": g("STREAM"),
+    }
+    for key in ("MAGNITUDE_W", "MAGNITUDE_L"):
+        v = g(key)
+        if v and _NUM_RE.match(v):
+            meta["magnitude"] = float(v)
+            break
+    acc = vals * UNITS[uname]
+    # consistency of the declared PGA (ESM writes it rounded): warn, the data are authoritative
+    for key, (val, lno) in hdr.items():
+        if key.startswith("PGA_") and _NUM_RE.match(val):
+            ukey = key[4:]
+            try:
+                fac = UNITS[normalize_units(ukey)]
+            except MotionFormatError:
+                continue
+            declared_pga = abs(float(val)) * fac
+            actual = float(np.max(np.abs(acc)))
+            if not math.isclose(declared_pga, actual, rel_tol=1e-3, abs_tol=1e-6):
+                warnings.warn(
+                    f"{src.name} line {lno}: declared {key} = {val} differs from the data "
+                    f"({actual / fac:.6g})",
+                    stacklevel=3,
+                )
+    return _make(src, acc, dt, meta)
+
+
+_FORTRAN_FMT = re.compile(r"\(\s*(\d*)\s*([FEIDGfeidg])\s*(\d+)(?:\.\d+)?\s*\)")
+
+
+def _fixed_width_values(src: _Src, start: int, nlines: int, count: int, fmt: str | None,
+                        what: str) -> tuple[np.ndarray, int]:
+    """Read ``count`` values from ``nlines`` lines; fixed width when a Fortran format is given,
+    else blank separated. Returns the values and the index of the next line."""
+    width = None
+    if fmt:
+        m = _FORTRAN_FMT.search(fmt)
+        if m:
+            width = int(m.group(3))
+    out: list[float] = []
+    end = start + nlines
+    if end > len(src.lines):
+        raise src.err(len(src.lines), f"file ends inside the {what}")
+    for i in range(start, end):
+        line = src.lines[i].rstrip()
+        if width:
+            toks = [line[k:k + width].strip() for k in range(0, len(line), width)]
+            toks = [t for t in toks if t]
+        else:
+            toks = line.split()
+        for t in toks:
+            out.append(src.num(t, i + 1))
+    if len(out) != count:
+        raise src.err(end, f"{what} declares {count} values but has {len(out)}")
+    return np.asarray(out), end
+
+
+def _is_text_line(line: str) -> bool:
+    """True for a line with letters other than exponent markers (end of a numeric block)."""
+    return re.search(r"[a-ce-zA-CE-Z]", line) is not None
+
+
+_COSMOS_COUNT = re.compile(r"^\s*(\d+)\s+(.*)$")
+
+
+def _read_cosmos(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotion:
+    lines = src.lines
+    # locate the integer header line (normally line 14, after 13 text lines)
+    k = next(
+        (i for i, ln in enumerate(lines[:60]) if "integer-header values follow" in ln.lower()),
+        None,
+    )
+    if k is None:
+        raise src.err(None, "COSMOS integer header line not found")
+
+    def block_line(i, what):
+        if i >= len(lines):
+            raise src.err(len(lines), f"file ends before the {what}")
+        ln = lines[i]
+        m = _COSMOS_COUNT.match(ln)
+        if m is None:
+            raise src.err(i + 1, f"expected the {what} line, got {_short(ln.strip())}")
+        nl = re.search(r"on\s+(\d+)\s+lines", ln, re.IGNORECASE)
+        fm = re.search(r"format\s*=\s*(\([^)]*\))", ln, re.IGNORECASE)
+        return int(m.group(1)), (int(nl.group(1)) if nl else None), (fm.group(1) if fm else None)
+
+    nint, nl_int, fmt_int = block_line(k, "integer header")
+    if nl_int is None:
+        raise src.err(k + 1, "integer header line does not give its number of lines")
+    _ints, i = _fixed_width_values(src, k + 1, nl_int, nint, fmt_int, "integer header")
+    nreal, nl_real, fmt_real = block_line(i, "real header")
+    if "real-header" not in lines[i].lower() or nl_real is None:
+        raise src.err(i + 1, "expected 'Real-header values follow on N lines'")
+    reals, i = _fixed_width_values(src, i + 1, nl_real, nreal, fmt_real, "real header")
+    ncom, _, _ = block_line(i, "comment count")
+    if "comment" not in lines[i].lower():
+        raise src.err(i + 1, "expected 'N Comment line(s) follow'")
+    i = i + 1 + ncom
+    if i >= len(lines):
+        raise src.err(len(lines), "file ends before the data block")
+    data_hdr = lines[i]
+    npts, _, fmt_data = block_line(i, "data header")
+    low = data_hdr.lower()
+    if "acc" not in low:
+        raise src.err(i + 1, "first data block is not acceleration")
+    um = re.search(r"units\s*=\s*([^\s(,]+)", data_hdr, re.IGNORECASE)
+    if um is None:
+        raise src.err(i + 1, "data header does not declare units")
+    uname = _check_units(src, normalize_units(um.group(1), f"{src.name} line {i + 1}"), units,
+                         i + 1)
+    if len(reals) < 62:
+        raise src.err(k + 1, "real header has fewer than 62 values (no sampling interval)")
+    dt_ms = float(reals[61])
+    dt = _check_dt(src, dt_ms / 1000.0, None)
+    if dt_arg is not None and not math.isclose(dt_arg, dt, rel_tol=1e-9):
+        raise src.err(None, f"file declares dt = {dt!r} s but dt={dt_arg!r} was given")
+    # data lines run until the 'End-of-data' line (or the next block / end of file)
+    j = i + 1
+    stop = j
+    while stop < len(lines) and not _is_text_line(lines[stop]):
+        stop += 1
+    width = None
+    if fmt_data:
+        fm = _FORTRAN_FMT.search(fmt_data)
+        width = int(fm.group(3)) if fm else None
+    vals: list[float] = []
+    for r in range(j, stop):
+        line = lines[r].rstrip()
+        if width:
+            toks = [line[q:q + width].strip() for q in range(0, len(line), width)]
+        else:
+            toks = line.split()
+        vals.extend(src.num(t, r + 1) for t in toks if t)
+    if len(vals) != npts:
+        raise src.err(max(stop, j), f"data header declares {npts} points but has {len(vals)}")
+    if npts < 2:
+        raise src.err(i + 1, "a record needs at least 2 points")
+    meta = {
+        "format": "cosmos",
+        "source_file": str(src.path),
+        "units_in": uname,
+        "title": lines[0].strip(),
+        "event": lines[1].strip() if len(lines) > 1 else "",
+        "station": lines[4][28:34].strip() if len(lines) > 4 else "",
+    }
+    return _make(src, np.asarray(vals) * UNITS[uname], dt, meta)
+
+
+_CSV_HDR = re.compile(r"^#\s*([A-Za-z_][A-Za-z0-9_ ]*?)\s*[:=]\s*(.*?)\s*$")
+_SPLIT = re.compile(r"[,;\s]+")
+
+
+def _read_csv(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotion:
+    hdr: dict[str, tuple[str, int]] = {}
+    rows: list[list[float]] = []
+    rowline: list[int] = []
+    ncol = None
+    seen_data = False
+    names_line = None
+    for i, line in enumerate(src.lines):
+        s = line.strip()
+        if not s:
+            continue
+        if s.startswith("#") or s.startswith("%"):
+            m = _CSV_HDR.match(s.replace("%", "#", 1))
+            if m and not seen_data:
+                hdr[m.group(1).strip().lower()] = (m.group(2), i + 1)
+            continue
+        toks = [t for t in _SPLIT.split(s) if t]
+        if not seen_data and names_line is None and not any(_NUM_RE.match(t) for t in toks):
+            names_line = (toks, i + 1)  # column names
+            continue
+        vals = [src.num(t, i + 1) for t in toks]
+        if ncol is None:
+            ncol = len(vals)
+            if ncol > 3:
+                raise src.err(i + 1, f"{ncol} columns: expected 1 (acc), 2 (time, acc) or 3 "
+                                     "(time, acc, acc_v)")
+        elif len(vals) != ncol:
+            raise src.err(i + 1, f"{len(vals)} columns where the first data line has {ncol}")
+        seen_data = True
+        rows.append(vals)
+        rowline.append(i + 1)
+    if not rows:
+        raise src.err(None, "no data lines")
+    # units
+    if "units" in hdr:
+        declared = normalize_units(hdr["units"][0], f"{src.name} line {hdr['units'][1]}")
+        uname = _check_units(src, declared, units, hdr["units"][1])
+    elif units is not None:
+        uname = normalize_units(units, src.name)
+    else:
+        raise src.err(None, "units not declared: pass units='g', 'm/s2' or 'cm/s2' (or add a "
+                            "'# units: ...' line)")
+    fac = UNITS[uname]
+    data = np.asarray(rows, dtype=np.float64)
+    n = data.shape[0]
+    if "npts" in hdr:
+        tok, lno = hdr["npts"]
+        if not re.fullmatch(r"\d+", tok):
+            raise src.err(lno, f"npts {_short(tok)} is not a whole number")
+        if int(tok) != n:
+            raise src.err(rowline[-1], f"header declares npts = {tok} but the file has {n} rows")
+    dt_hdr = None
+    if "dt" in hdr:
+        tok, lno = hdr["dt"]
+        tok = tok.split()[0] if tok.split() else tok
+        dt_hdr = _check_dt(src, src.num(tok, lno), lno)
+        if dt_arg is not None and not math.isclose(dt_arg, dt_hdr, rel_tol=1e-9):
+            raise src.err(lno, f"file declares dt = {dt_hdr!r} s but dt={dt_arg!r} was given")
+    meta = {"format": "csv", "source_file": str(src.path), "units_in": uname}
+    for key in ("name", "event", "station", "component"):
+        if key in hdr:
+            meta[key] = hdr[key][0]
+    if n < 2:
+        raise src.err(rowline[0], "a record needs at least 2 points")
+    if ncol == 1:
+        dt = dt_hdr if dt_hdr is not None else dt_arg
+        if dt is None:
+            raise src.err(None, "one-column file without a time step: pass dt=... (or add a "
+                                "'# dt: ...' line)")
+        return _make(src, data[:, 0] * fac, _check_dt(src, float(dt), None), meta)
+    t = data[:, 0]
+    steps = np.diff(t)
+    bad = np.nonzero(~(steps > 0))[0]
+    if bad.size:
+        r = int(bad[0]) + 1
+        raise src.err(rowline[r], f"time {t[r]!r} s does not increase (previous {t[r - 1]!r} s)")
+    acc = data[:, 1] * fac
+    acc_v = data[:, 2] * fac if ncol == 3 else None
+    span_dt = float((t[-1] - t[0]) / (n - 1))
+    uniform = np.max(np.abs(steps - span_dt)) <= 1e-6 * span_dt
+    if uniform:
+        dt = dt_hdr if dt_hdr is not None else span_dt
+        if dt_hdr is not None and not math.isclose(dt_hdr, span_dt, rel_tol=1e-6):
+            raise src.err(hdr["dt"][1], f"dt = {dt_hdr!r} s disagrees with the time column "
+                                        f"({span_dt!r} s)")
+        if dt_arg is not None and not math.isclose(dt_arg, span_dt, rel_tol=1e-6):
+            raise src.err(None, f"dt={dt_arg!r} was given but the time column has a step of "
+                                f"{span_dt!r} s")
+        if t[0] != 0.0:
+            meta["t0"] = float(t[0])
+        return _make(src, acc, float(dt), meta, acc_v)
+    # non-uniform: resample with a warning
+    dt = dt_arg if dt_arg is not None else (dt_hdr if dt_hdr is not None else float(
+        np.median(steps)))
+    dt = _check_dt(src, float(dt), None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        gm = GroundMotion.from_samples(t, acc, acc_v, name=src.path.stem, meta=meta, dt=dt)
+    warnings.warn(
+        f"{src.name}: non-uniform time step ({steps.min():g} to {steps.max():g} s); resampled "
+        f"to dt = {dt:g} s by linear interpolation",
+        stacklevel=3,
+    )
+    return _check_range(src, gm)
+
+
+def _check_range(src: _Src, gm: GroundMotion) -> GroundMotion:
+    for arr in (gm.acc, gm.acc_v):
+        if arr is not None and (
+            not np.all(np.isfinite(arr)) or np.max(np.abs(arr)) > _MAX_ABS
+        ):
+            raise src.err(None, f"acceleration exceeds {_MAX_ABS:g} m/s² (wrong units or "
+                                "corrupt file)")
+    return gm
+
+
+def _make(src: _Src, acc, dt, meta, acc_v=None) -> GroundMotion:
+    name = meta.get("name") or src.path.stem
+    try:
+        gm = GroundMotion(dt=dt, acc=acc, acc_v=acc_v, name=name, meta=meta)
+    except ValueError as exc:
+        raise src.err(None, str(exc)) from None
+    return _check_range(src, gm)
+
+
+_READERS = {"at2": _read_at2, "esm": _read_esm, "cosmos": _read_cosmos, "csv": _read_csv}
+
+
+def read(path, units: str | None = None, dt: float | None = None, scale: float = 1.0,
+         format: str | None = None) -> GroundMotion:
+    """Read an acceleration record into a :class:`GroundMotion` (m/s²).
+
+    Parameters
+    ----------
+    path : str or Path
+        Record file (AT2, ESM ASCII, COSMOS V2, CSV/text; see the module docstring).
+    units : {"g", "m/s2", "cm/s2"}, optional
+        Units of a CSV/text file that does not declare them; for the other formats, a check
+        against the declared units.
+    dt : float, optional
+        Time step [s] of a one-column file; for the other formats a check against the file.
+    scale : float
+        Factor applied after conversion to m/s².
+    format : {"at2", "esm", "cosmos", "csv"}, optional
+        Skip detection.
+
+    Raises
+    ------
+    MotionFormatError
+        One-line message naming the file and line.
+    """
+    path = Path(path)
+    text = _read_text(path)
+    fmt = detect_format(path, text) if format is None else format.lower()
+    if fmt not in _READERS:
+        raise MotionFormatError(f"{path.name}: unknown format {format!r} (use {FORMATS})")
+    if dt is not None:
+        dt = float(dt)
+        if not (math.isfinite(dt) and dt > 0):
+            raise MotionFormatError(f"{path.name}: dt={dt!r} must be a positive number")
+    if units is not None:
+        normalize_units(units, path.name)
+    src = _Src(path, text)
+    gm = _READERS[fmt](src, units, dt)
+    if scale != 1.0:
+        gm = gm.scaled(scale)
+    return gm
+
+
+# ----------------------------------------------------------------------------------- writers
+
+
+def _atomic_write(path: Path, text: str) -> None:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _clean(s) -> str:
+    return str(s).replace("\n", " ").replace("\r", " ")
+
+
+def format_csv(motion: GroundMotion, units: str = "m/s2") -> str:
+    """CSV text: commented header (name, dt, units, npts, metadata) then time, acc[, acc_v]."""
+    uname = normalize_units(units)
+    fac = UNITS[uname]
+    out = [
+        "# murus ground motion",
+        f"# name: {_clean(motion.name)}",
+        f"# dt: {motion.dt!r}",
+        f"# units: {uname}",
+        f"# npts: {motion.npts}",
+    ]
+    for key in ("event", "station", "component"):
+        if motion.meta.get(key):
+            out.append(f"# {key}: {_clean(motion.meta[key])}")
+    cols = "time,acc" + (",acc_v" if motion.acc_v is not None else "")
+    out.append(cols)
+    t = motion.time
+    a = motion.acc / fac
+    if motion.acc_v is None:
+        out.extend(f"{ti!r},{ai!r}" for ti, ai in zip(t.tolist(), a.tolist(), strict=True))
+    else:
+        av = motion.acc_v / fac
+        out.extend(
+            f"{ti!r},{ai!r},{vi!r}"
+            for ti, ai, vi in zip(t.tolist(), a.tolist(), av.tolist(), strict=True)
+        )
+    return "\n".join(out) + "\n"
+
+
+def format_at2(motion: GroundMotion) -> str:
+    """PEER AT2 text (units of g with g = murus.G, 10 significant digits, 5 values a line)."""
+    title = "PEER NGA STRONG MOTION DATABASE RECORD (written by murus)"
+    ev = _clean(motion.meta.get("event", motion.name or "record")).replace(",", ";")
+    st = _clean(motion.meta.get("station", "")).replace(",", ";")
+    comp = _clean(motion.meta.get("component", "")).replace(",", ";")
+    lines = [
+        title,
+        f"{ev}, , {st}, {comp}",
+        "ACCELERATION TIME SERIES IN UNITS OF G",
+        f"NPTS= {motion.npts}, DT= {motion.dt!r} SEC",
+    ]
+    a = motion.acc / G
+    for k in range(0, a.size, 5):
+        lines.append("".join(f"{x:17.9E}" for x in a[k:k + 5]))
+    return "\n".join(lines) + "\n"
+
+
+def write(motion: GroundMotion, path, format: str | None = None, units: str = "m/s2") -> Path:
+    """Write ``motion`` to ``path`` (CSV with a commented header, or PEER AT2 in g).
+
+    The format follows ``format`` or the extension (.at2 -> AT2, anything else -> CSV). The
+    file is written to a temporary name and renamed, so nothing is left half-written.
+    """
+    path = Path(path)
+    fmt = (format or ("at2" if path.suffix.lower() == ".at2" else "csv")).lower()
+    if fmt == "at2":
+        text = format_at2(motion)
+    elif fmt == "csv":
+        text = format_csv(motion, units)
+    else:
+        raise ValueError(f"cannot write format {fmt!r} (use 'csv' or 'at2')")
+    _atomic_write(path, text)
+    return path

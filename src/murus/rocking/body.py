@@ -1,0 +1,232 @@
+"""Rigid bodies that rock on their base.
+
+Geometry and sign convention
+----------------------------
+The body is a rectangle of width ``b`` (in the plane of rocking) and height ``h``, standing on a
+rigid base with its two bottom corners O (right, pivot ``+1``) and O' (left, pivot ``-1``).  Its
+mass is the sum of a uniform rectangle of density ``rho`` and thickness ``t`` (out of plane) and of
+an optional lumped mass ``m_top`` at mid-top (seed 000 §3.1: 5 t on the tested walls).
+
+- ``theta > 0`` is a clockwise rotation about O (seed 000 §3.1.1, seed 002 Figure 1).
+- ``R`` is the distance from a corner to the centre of gravity G and ``alpha`` the angle between
+  ``R`` and the vertical: ``tan(alpha) = (b/2) / z_G`` (seed 000 eq. 2; its "tan(B/2H)" is a typo
+  for ``alpha = arctan(B / 2H)``, see REFERENCE.md).
+- ``I_O`` is the moment of inertia about a corner (seed 000 eq. 4 for the top mass, ``m R^2``;
+  ``4/3 m R^2`` for a uniform rectangle, seed 002 Table 1).
+- ``p = sqrt(m g R / I_O)`` is the frequency parameter (seed 002 §2).
+
+All quantities in SI units: m, kg, kg m², rad, rad/s.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from murus import G
+
+
+class BodyError(ValueError):
+    """A body definition that is not physical (one-line message naming the parameter)."""
+
+
+def _positive(name: str, value: float) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise BodyError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v <= 0.0:
+        raise BodyError(f"{name} must be a positive finite number, got {value!r}")
+    return v
+
+
+def _non_negative(name: str, value: float) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise BodyError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0.0:
+        raise BodyError(f"{name} must be a non-negative finite number, got {value!r}")
+    return v
+
+
+@dataclass(frozen=True)
+class RigidBlock:
+    """A rectangular rigid wall or block, with self-weight and/or a lumped mass at mid-top.
+
+    Parameters
+    ----------
+    width:
+        ``b`` [m], dimension in the plane of rocking (the wall thickness ``s`` of seed 002, the
+        wall length ``B`` of seed 000).
+    height:
+        ``h`` [m].
+    thickness:
+        Out-of-plane dimension [m] (1.0 for the unit-length walls of seed 002).
+    density:
+        Mass density of the uniform rectangle [kg/m³]; 0 for a massless wall carrying only
+        ``top_mass`` (seed 000: self-weight neglected).  Seed 002 uses 21 kN/m³, i.e.
+        ``21000 / 9.81 = 2140.7`` kg/m³.
+    top_mass:
+        Lumped mass at mid-top [kg] (seed 000: 5000 kg).
+    name:
+        Label used in reports.
+
+    Examples
+    --------
+    >>> blk = RigidBlock(width=0.3, height=3.0, density=21000 / 9.81)   # seed 002 block1
+    >>> round(blk.mass), round(blk.R, 3), round(blk.I_O)
+    (1927, 1.508, 5838)
+    """
+
+    width: float
+    height: float
+    thickness: float = 1.0
+    density: float = 0.0
+    top_mass: float = 0.0
+    name: str = field(default="block", compare=False)
+
+    #: Declared parameters and their validity limits (GUIDE §3).
+    PARAMS = {
+        "width": ("m", "> 0"),
+        "height": ("m", "> 0"),
+        "thickness": ("m", "> 0"),
+        "density": ("kg/m3", ">= 0"),
+        "top_mass": ("kg", ">= 0"),
+    }
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "width", _positive("width", self.width))
+        object.__setattr__(self, "height", _positive("height", self.height))
+        object.__setattr__(self, "thickness", _positive("thickness", self.thickness))
+        object.__setattr__(self, "density", _non_negative("density", self.density))
+        object.__setattr__(self, "top_mass", _non_negative("top_mass", self.top_mass))
+        if self.mass <= 0.0:
+            raise BodyError("the body has no mass: give a positive density or top_mass")
+
+    # -- masses -----------------------------------------------------------------------------
+    @property
+    def body_mass(self) -> float:
+        """Mass of the uniform rectangle [kg]."""
+        return self.density * self.width * self.height * self.thickness
+
+    @property
+    def mass(self) -> float:
+        """Total mass ``m`` [kg]."""
+        return self.body_mass + self.top_mass
+
+    @property
+    def weight(self) -> float:
+        """Weight ``m g`` [N] with ``g = murus.G``."""
+        return self.mass * G
+
+    # -- geometry about a corner -------------------------------------------------------------
+    @property
+    def z_G(self) -> float:
+        """Height of the centre of gravity above the base [m]."""
+        return (self.body_mass * 0.5 * self.height + self.top_mass * self.height) / self.mass
+
+    @property
+    def R(self) -> float:
+        """Distance from a base corner to the centre of gravity [m] (seed 000 eq. 2)."""
+        return math.hypot(self.z_G, 0.5 * self.width)
+
+    @property
+    def alpha(self) -> float:
+        """Slenderness angle [rad]: ``arctan((b/2) / z_G)``."""
+        return math.atan2(0.5 * self.width, self.z_G)
+
+    @property
+    def I_O(self) -> float:
+        """Moment of inertia about a base corner [kg m²] (seed 000 eq. 4, seed 002 Table 1).
+
+        Uniform rectangle: ``m_b (b² + h²) / 3``; top mass: ``m_top (h² + b²/4)``.
+        """
+        rect = self.body_mass * (self.width**2 + self.height**2) / 3.0
+        top = self.top_mass * (self.height**2 + 0.25 * self.width**2)
+        return rect + top
+
+    @property
+    def p(self) -> float:
+        """Frequency parameter ``p = sqrt(m g R / I_O)`` [rad/s] (seed 002 §2)."""
+        return math.sqrt(self.mass * G * self.R / self.I_O)
+
+    @property
+    def slenderness(self) -> float:
+        """``lambda = h / b`` [-] (seed 002 §3)."""
+        return self.height / self.width
+
+    @property
+    def uplift_acceleration(self) -> float:
+        """Static uplift threshold ``g tan(alpha)`` [m/s²] (seed 000 eq. 9)."""
+        return G * math.tan(self.alpha)
+
+    def housner_restitution(self) -> float:
+        """Housner's coefficient of restitution for this body [-].
+
+        Conservation of angular momentum about the new pivot at impact gives
+        ``e = 1 - 2 m R² sin²(alpha) / I_O`` (seed 000 eq. 10), which is ``cos 2 alpha`` for the
+        top mass alone and ``1 - 3/2 sin²(alpha)`` for a uniform rectangle (seed 002 §4.3).
+        """
+        return 1.0 - 2.0 * self.mass * self.R**2 * math.sin(self.alpha) ** 2 / self.I_O
+
+    def describe(self) -> dict:
+        """The derived quantities as a plain dictionary (SI units)."""
+        return {
+            "name": self.name,
+            "width": self.width,
+            "height": self.height,
+            "thickness": self.thickness,
+            "density": self.density,
+            "top_mass": self.top_mass,
+            "mass": self.mass,
+            "z_G": self.z_G,
+            "R": self.R,
+            "alpha": self.alpha,
+            "I_O": self.I_O,
+            "p": self.p,
+            "housner_e": self.housner_restitution(),
+        }
+
+
+#: Unit weight used by seed 002 for all blocks [N/m³].
+SEED002_UNIT_WEIGHT = 21000.0
+
+
+def seed002_block(label: str) -> RigidBlock:
+    """One of the six unit-length blocks of seed 002 Table 1 (``block1`` ... ``block6``).
+
+    Thickness ``s`` and slenderness ``lambda`` from the table, unit weight 21 kN/m³.
+    """
+    table = {
+        "block1": (10, 0.3),
+        "block2": (10, 0.6),
+        "block3": (10, 0.9),
+        "block4": (13, 0.3),
+        "block5": (13, 0.6),
+        "block6": (13, 0.9),
+    }
+    if label not in table:
+        raise BodyError(f"unknown seed 002 block {label!r}; expected one of {sorted(table)}")
+    lam, s = table[label]
+    return RigidBlock(
+        width=s, height=lam * s, thickness=1.0, density=SEED002_UNIT_WEIGHT / G, name=label
+    )
+
+
+def seed000_wall(kind: str, self_weight: bool = False, density: float = 0.0) -> RigidBlock:
+    """A wall of seed 000 §1.2: ``"short"`` (0.72 m) or ``"long"`` (2.10 m), 1.80 m high,
+    0.138 m thick, with 5 t at mid-top; its self-weight is neglected unless ``self_weight``."""
+    widths = {"short": 0.72, "long": 2.10}
+    if kind not in widths:
+        raise BodyError(f"unknown seed 000 wall {kind!r}; expected 'short' or 'long'")
+    if self_weight and density <= 0.0:
+        raise BodyError("self_weight=True needs the masonry density")
+    return RigidBlock(
+        width=widths[kind],
+        height=1.80,
+        thickness=0.138,
+        density=density if self_weight else 0.0,
+        top_mass=5000.0,
+        name=f"seed000-{kind}",
+    )

@@ -1,0 +1,825 @@
+"""Numerical kernels of the rigid-block rocking engine (numba, no I/O, no Python objects).
+
+State machine shared by both integrators
+----------------------------------------
+The active pivot ``s`` is part of the state: ``0`` at rest, ``+1`` rocking about the right corner O
+(``theta >= 0``), ``-1`` about the left corner O' (``theta <= 0``); overturning ends the run. The
+pivot is never ``sign(theta)``, which is undefined at ``theta = 0``.
+
+- rest -> rocking: when the moment about a corner at ``theta = 0``, ``theta' = 0`` turns the body
+  away from the base (seed 000 eq. 9: ``m a_g H > m g B/2`` for the top-mass wall), in the direction
+  of that moment; the instant is located inside the step by root finding;
+- rocking -> impact: ``theta`` crosses zero; the instant is located inside the step, the angular
+  velocity is multiplied by the coefficient of restitution and the pivot switches to ``-s``;
+- impact -> rest: when the velocity after the impact is below ``rest_tol * p * alpha`` and the
+  ground cannot lift the body: this ends the Zeno cascade of ever smaller impacts;
+- rocking -> overturned: ``|theta|`` reaches ``pi/2``.
+
+Equation of motion (seed 000 eq. 5, seed 002 eq. 1), a sum of moment terms about the active
+pivot, ``I_O theta'' = M_gravity + M_ground (+ further terms)``::
+
+    M_gravity = -m (g + a_v) R sin(s alpha - theta)
+    M_ground  = +m a_g R cos(s alpha - theta)
+
+Sign convention: ``theta > 0`` clockwise; a positive ``a_g`` drives a positive rotation (seed 002
+eq. 1, where the ground term stands on the right-hand side with a plus sign); ``a_v`` is positive
+upward, so that it adds to gravity. The linearised option replaces ``sin x`` by ``x`` and
+``cos x`` by 1 (the equation of the closed-form overturning solutions).
+
+New moment terms (ties, spring beds, dampers) are added in :func:`moment` with their parameters in
+new slots of ``P``; the integrators never change.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+# ---- layout of the model parameter vector P ----------------------------------------------
+P_I = 0  # moment of inertia about the pivot [kg m2]
+P_M = 1  # mass [kg]
+P_R = 2  # corner to centre of gravity [m]
+P_ALPHA = 3  # slenderness angle [rad]
+P_G = 4  # gravity [m/s2]
+P_LINEAR = 5  # 1.0: linearised equation
+P_E_KIND = 6  # restitution law code (0: constant)
+P_E = 7  # restitution value for the constant law
+P_REST_TOL = 8  # rest threshold, relative to p * alpha
+P_SIZE = 16
+
+# ---- layout of the excitation vector X ---------------------------------------------------
+X_KIND = 0  # 0: sampled record (piecewise linear), 1: harmonic pulse
+X_DT = 1  # record time step [s]
+X_T0 = 2  # pulse start [s]
+X_AMP = 3  # pulse amplitude [m/s2]
+X_OMEGA = 4  # pulse circular frequency [rad/s]
+X_PHASE = 5  # pulse phase [rad]: a = A sin(omega (t - t0) + phase)
+X_DUR = 6  # pulse duration [s]
+X_PIECE = 7  # pulse subdivision for the scan of uplift at rest [s]
+X_SIZE = 8
+
+# ---- layout of the summary vector ---------------------------------------------------------
+S_THETA_MAX = 0  # max |theta| [rad]
+S_THETA_AT_MAX = 1  # signed theta at the max [rad]
+S_T_THETA_MAX = 2  # time of the max [s]
+S_N_IMPACTS = 3
+S_T_UPLIFT = 4  # first uplift [s] (nan: never)
+S_OVERTURNED = 5  # 1.0 if overturned
+S_T_OVERTURN = 6  # [s] (nan)
+S_T_EXCEED_ALPHA = 7  # first |theta| > alpha [s] (nan)
+S_E_DISSIPATED = 8  # energy lost at impacts [J]
+S_N_UPLIFTS = 9
+S_STATUS = 10  # 0 ok, 1 step size underflow, 2 step budget exhausted
+S_N_STEPS = 11
+S_T_FINAL = 12
+S_THETA_POS = 13  # max theta [rad]
+S_THETA_NEG = 14  # min theta [rad]
+S_N_PEAKS = 15
+S_SIZE = 16
+
+# ---- law memory (state carried by history-dependent laws of later issues) ----------------
+MEM_HALF_MAX = 0  # max |theta| since the last impact
+MEM_ABS_MAX = 1  # max |theta| so far
+MEM_SIZE = 4
+
+HALF_PI = 0.5 * math.pi
+
+
+# ======================================================================== excitation ======
+@njit(cache=True)
+def ground(t, tm, X, ag, av):
+    """Ground acceleration (horizontal, vertical) [m/s2] at time ``t`` in the segment that
+    contains ``tm`` (so that a discontinuous input takes the value of that segment)."""
+    if X[X_KIND] == 0.0:
+        dt = X[X_DT]
+        n = ag.shape[0]
+        k = int(math.floor(tm / dt))
+        if k < 0 or k >= n - 1:
+            return 0.0, 0.0
+        u = t / dt - k
+        h = ag[k] + u * (ag[k + 1] - ag[k])
+        v = 0.0
+        if av.shape[0] == n:
+            v = av[k] + u * (av[k + 1] - av[k])
+        return h, v
+    t0 = X[X_T0]
+    if tm < t0 or tm > t0 + X[X_DUR]:
+        return 0.0, 0.0
+    return X[X_AMP] * math.sin(X[X_OMEGA] * (t - t0) + X[X_PHASE]), 0.0
+
+
+@njit(cache=True)
+def segment_end(t, X, n, t_end):
+    """The next breakpoint of the input strictly after ``t`` (or ``t_end``)."""
+    eps = 1e-12 * (1.0 + abs(t))
+    if X[X_KIND] == 0.0:
+        dt = X[X_DT]
+        k = int(math.floor(t / dt))
+        cand = (k + 1) * dt
+        if cand <= t + eps:
+            cand = (k + 2) * dt
+        if cand > (n - 1) * dt + eps:
+            cand = t_end
+        return min(cand, t_end)
+    t0 = X[X_T0]
+    t1 = t0 + X[X_DUR]
+    if t < t0 - eps:
+        return min(t0, t_end)
+    if t < t1 - eps:
+        piece = X[X_PIECE]
+        k = int(math.floor((t - t0) / piece))
+        cand = t0 + (k + 1) * piece
+        if cand <= t + eps:
+            cand = t0 + (k + 2) * piece
+        return min(cand, t1, t_end)
+    return t_end
+
+
+# ======================================================================= moment terms =====
+@njit(cache=True)
+def moment(th, om, s, ag, av, P):
+    """Total moment about the active pivot ``s`` [N m] (seed 000 eq. 5, seed 002 eq. 1)."""
+    m = P[P_M]
+    R = P[P_R]
+    a = P[P_ALPHA]
+    geff = P[P_G] + av
+    x = s * a - th
+    if P[P_LINEAR] != 0.0:
+        return -m * geff * R * x + m * ag * R
+    return -m * geff * R * math.sin(x) + m * ag * R * math.cos(x)
+
+
+@njit(cache=True)
+def accel(th, om, s, t, tm, X, ag, av, P):
+    """Angular acceleration [rad/s2]."""
+    gh, gv = ground(t, tm, X, ag, av)
+    return moment(th, om, s, gh, gv, P) / P[P_I]
+
+
+@njit(cache=True)
+def lift_direction(t, tm, X, ag, av, P):
+    """Pivot about which the ground lifts the body at rest at time ``t`` (0: none)."""
+    gh, gv = ground(t, tm, X, ag, av)
+    if moment(0.0, 0.0, 1.0, gh, gv, P) > 0.0:
+        return 1.0
+    if -moment(0.0, 0.0, -1.0, gh, gv, P) > 0.0:
+        return -1.0
+    return 0.0
+
+
+@njit(cache=True)
+def lift_margin(t, tm, s, X, ag, av, P):
+    """``s * M(theta=0)`` about pivot ``s``: positive when the ground lifts the body."""
+    gh, gv = ground(t, tm, X, ag, av)
+    return s * moment(0.0, 0.0, s, gh, gv, P)
+
+
+@njit(cache=True)
+def locate_uplift(ta, tb, tm, X, ag, av, P):
+    """First instant in ``(ta, tb]`` where the ground lifts the body, by the Illinois method on
+    the lift margin (exact in two iterations for a piecewise-linear record). Returns
+    ``(time, pivot)`` or ``(tb, 0)`` when there is none."""
+    best_t = tb
+    best_s = 0.0
+    for si in range(2):
+        s = 1.0 if si == 0 else -1.0
+        fb = lift_margin(tb, tm, s, X, ag, av, P)
+        if fb <= 0.0:
+            continue
+        a = ta
+        fa = lift_margin(ta, tm, s, X, ag, av, P)
+        b = tb
+        side = 0
+        for _ in range(200):
+            if b - a <= 1e-14 * (1.0 + abs(b)):
+                break
+            c = (a * fb - b * fa) / (fb - fa)
+            if not (c > a and c < b):
+                c = 0.5 * (a + b)
+            fc = lift_margin(c, tm, s, X, ag, av, P)
+            if fc > 0.0:
+                b = c
+                fb = fc
+                if side == 1:
+                    fa *= 0.5
+                side = 1
+            else:
+                a = c
+                fa = fc
+                if side == -1:
+                    fb *= 0.5
+                side = -1
+        if b < best_t or best_s == 0.0:
+            best_t = b
+            best_s = s
+    return best_t, best_s
+
+
+# ======================================================================== restitution =====
+@njit(cache=True)
+def restitution(P, mem, om_before, t):
+    """Coefficient of restitution applied at an impact (law code ``P[P_E_KIND]``)."""
+    return P[P_E]
+
+
+# ========================================================================== helpers ======
+@njit(cache=True)
+def potential(th, P):
+    """Potential energy above the rest position [J] (rigid base)."""
+    a = P[P_ALPHA]
+    return P[P_M] * P[P_G] * P[P_R] * (math.cos(a - abs(th)) - math.cos(a))
+
+
+@njit(cache=True)
+def hermite5(u, h, y0, v0, a0, y1, v1, a1):
+    """Quintic Hermite interpolation on a step of length ``h`` at fraction ``u``: value and
+    derivative, from value, first and second derivative at both ends (order h^6)."""
+    u2 = u * u
+    u3 = u2 * u
+    u4 = u3 * u
+    u5 = u4 * u
+    H0 = 1.0 - 10.0 * u3 + 15.0 * u4 - 6.0 * u5
+    H1 = u - 6.0 * u3 + 8.0 * u4 - 3.0 * u5
+    H2 = 0.5 * u2 - 1.5 * u3 + 1.5 * u4 - 0.5 * u5
+    H3 = 10.0 * u3 - 15.0 * u4 + 6.0 * u5
+    H4 = -4.0 * u3 + 7.0 * u4 - 3.0 * u5
+    H5 = 0.5 * u3 - u4 + 0.5 * u5
+    y = H0 * y0 + h * H1 * v0 + h * h * H2 * a0 + H3 * y1 + h * H4 * v1 + h * h * H5 * a1
+    D0 = -30.0 * u2 + 60.0 * u3 - 30.0 * u4
+    D1 = 1.0 - 18.0 * u2 + 32.0 * u3 - 15.0 * u4
+    D2 = u - 4.5 * u2 + 6.0 * u3 - 2.5 * u4
+    D3 = -D0
+    D4 = -12.0 * u2 + 28.0 * u3 - 15.0 * u4
+    D5 = 1.5 * u2 - 4.0 * u3 + 2.5 * u4
+    dy = (D0 * y0 + D3 * y1) / h + D1 * v0 + D4 * v1 + h * (D2 * a0 + D5 * a1)
+    return y, dy
+
+
+@njit(cache=True)
+def hermite_root_omega(s, h, y0, v0, a0, y1, v1, a1):
+    """Fraction ``u`` in (0, 1] where ``s * theta'`` of the interpolant changes sign (bisection
+    and regula falsi; ``s * v0 > 0 >= s * v1``)."""
+    lo = 0.0
+    hi = 1.0
+    flo = s * v0
+    fhi = s * v1
+    for _ in range(60):
+        u = lo + (hi - lo) * flo / (flo - fhi) if flo != fhi else 0.5 * (lo + hi)
+        if not (u > lo and u < hi):
+            u = 0.5 * (lo + hi)
+        _, d = hermite5(u, h, y0, v0, a0, y1, v1, a1)
+        f = s * d
+        if f > 0.0:
+            lo = u
+            flo = f
+        else:
+            hi = u
+            fhi = f
+        if hi - lo < 1e-13:
+            break
+    return 0.5 * (lo + hi)
+
+
+@njit(cache=True)
+def hermite_root_level(s, level, h, y0, v0, a0, y1, v1, a1):
+    """Fraction ``u`` where ``s * theta`` of the interpolant first reaches ``level`` (bisection;
+    ``s * y0 < level <= s * y1``)."""
+    lo = 0.0
+    hi = 1.0
+    for _ in range(60):
+        u = 0.5 * (lo + hi)
+        y, _ = hermite5(u, h, y0, v0, a0, y1, v1, a1)
+        if s * y < level:
+            lo = u
+        else:
+            hi = u
+        if hi - lo < 1e-13:
+            break
+    return hi
+
+
+# ================================================================ Dormand-Prince 5(4) ======
+@njit(cache=True)
+def dp_step(t, th, om, a0, h, s, tm, X, ag, av, P):
+    """One Dormand-Prince 5(4) step for ``y = (theta, theta')``; ``a0`` is ``theta''`` at ``t``.
+    Returns the 5th-order state, the embedded error estimate and ``theta''`` at the end."""
+    k1t = om
+    k1o = a0
+    y2t = th + h * (0.2 * k1t)
+    y2o = om + h * (0.2 * k1o)
+    k2t = y2o
+    k2o = accel(y2t, y2o, s, t + 0.2 * h, tm, X, ag, av, P)
+    y3t = th + h * (3.0 / 40.0 * k1t + 9.0 / 40.0 * k2t)
+    y3o = om + h * (3.0 / 40.0 * k1o + 9.0 / 40.0 * k2o)
+    k3t = y3o
+    k3o = accel(y3t, y3o, s, t + 0.3 * h, tm, X, ag, av, P)
+    y4t = th + h * (44.0 / 45.0 * k1t - 56.0 / 15.0 * k2t + 32.0 / 9.0 * k3t)
+    y4o = om + h * (44.0 / 45.0 * k1o - 56.0 / 15.0 * k2o + 32.0 / 9.0 * k3o)
+    k4t = y4o
+    k4o = accel(y4t, y4o, s, t + 0.8 * h, tm, X, ag, av, P)
+    y5t = th + h * (
+        19372.0 / 6561.0 * k1t - 25360.0 / 2187.0 * k2t + 64448.0 / 6561.0 * k3t
+        - 212.0 / 729.0 * k4t
+    )
+    y5o = om + h * (
+        19372.0 / 6561.0 * k1o - 25360.0 / 2187.0 * k2o + 64448.0 / 6561.0 * k3o
+        - 212.0 / 729.0 * k4o
+    )
+    k5t = y5o
+    k5o = accel(y5t, y5o, s, t + 8.0 / 9.0 * h, tm, X, ag, av, P)
+    y6t = th + h * (
+        9017.0 / 3168.0 * k1t - 355.0 / 33.0 * k2t + 46732.0 / 5247.0 * k3t
+        + 49.0 / 176.0 * k4t - 5103.0 / 18656.0 * k5t
+    )
+    y6o = om + h * (
+        9017.0 / 3168.0 * k1o - 355.0 / 33.0 * k2o + 46732.0 / 5247.0 * k3o
+        + 49.0 / 176.0 * k4o - 5103.0 / 18656.0 * k5o
+    )
+    k6t = y6o
+    k6o = accel(y6t, y6o, s, t + h, tm, X, ag, av, P)
+    nt = th + h * (
+        35.0 / 384.0 * k1t + 500.0 / 1113.0 * k3t + 125.0 / 192.0 * k4t
+        - 2187.0 / 6784.0 * k5t + 11.0 / 84.0 * k6t
+    )
+    no = om + h * (
+        35.0 / 384.0 * k1o + 500.0 / 1113.0 * k3o + 125.0 / 192.0 * k4o
+        - 2187.0 / 6784.0 * k5o + 11.0 / 84.0 * k6o
+    )
+    k7t = no
+    k7o = accel(nt, no, s, t + h, tm, X, ag, av, P)
+    et = h * (
+        71.0 / 57600.0 * k1t - 71.0 / 16695.0 * k3t + 71.0 / 1920.0 * k4t
+        - 17253.0 / 339200.0 * k5t + 22.0 / 525.0 * k6t - 1.0 / 40.0 * k7t
+    )
+    eo = h * (
+        71.0 / 57600.0 * k1o - 71.0 / 16695.0 * k3o + 71.0 / 1920.0 * k4o
+        - 17253.0 / 339200.0 * k5o + 22.0 / 525.0 * k6o - 1.0 / 40.0 * k7o
+    )
+    return nt, no, et, eo, k7o
+
+
+@njit(cache=True)
+def locate_in_step(kind, level, t, th, om, a0, h, s, tm, X, ag, av, P):
+    """Step size ``tau`` in (0, h] at which a terminal event happens, by the Illinois method on
+    fresh RK steps of size ``tau`` (so the event is as accurate as the integration).
+
+    ``kind`` 0: ``s * theta`` reaches ``level`` from below (overturning);
+    ``kind`` 1: ``s * theta`` falls to 0 (impact)."""
+    lo = 0.0
+    hi = h
+    if kind == 0:
+        flo = level - s * th
+        nt, _, _, _, _ = dp_step(t, th, om, a0, h, s, tm, X, ag, av, P)
+        fhi = level - s * nt
+    else:
+        flo = s * th
+        nt, _, _, _, _ = dp_step(t, th, om, a0, h, s, tm, X, ag, av, P)
+        fhi = s * nt
+    side = 0
+    for _ in range(100):
+        if hi - lo <= 1e-13 * (1.0 + t):
+            break
+        c = (lo * fhi - hi * flo) / (fhi - flo)
+        if not (c > lo and c < hi):
+            c = 0.5 * (lo + hi)
+        nt, _, _, _, _ = dp_step(t, th, om, a0, c, s, tm, X, ag, av, P)
+        fc = (level - s * nt) if kind == 0 else s * nt
+        if fc > 0.0:
+            lo = c
+            flo = fc
+            if side == -1:
+                fhi *= 0.5
+            side = -1
+        else:
+            hi = c
+            fhi = fc
+            if side == 1:
+                flo *= 0.5
+            side = 1
+        if fc == 0.0:
+            break
+    return hi
+
+
+@njit(cache=True)
+def new_summary():
+    S = np.zeros(S_SIZE)
+    S[S_T_UPLIFT] = np.nan
+    S[S_T_OVERTURN] = np.nan
+    S[S_T_EXCEED_ALPHA] = np.nan
+    return S
+
+
+@njit(cache=True)
+def record_theta(S, mem, th, t):
+    """Update the extreme values with a rotation reached at time ``t``."""
+    a = abs(th)
+    if a > S[S_THETA_MAX]:
+        S[S_THETA_MAX] = a
+        S[S_THETA_AT_MAX] = th
+        S[S_T_THETA_MAX] = t
+    if th > S[S_THETA_POS]:
+        S[S_THETA_POS] = th
+    if th < S[S_THETA_NEG]:
+        S[S_THETA_NEG] = th
+    if a > mem[MEM_HALF_MAX]:
+        mem[MEM_HALF_MAX] = a
+    if a > mem[MEM_ABS_MAX]:
+        mem[MEM_ABS_MAX] = a
+
+
+@njit(cache=True)
+def record_peak(S, pk, t, th):
+    """Log a peak of the rotation (``theta' = 0`` while rocking)."""
+    n = int(S[S_N_PEAKS])
+    if n < pk.shape[0]:
+        pk[n, 0] = t
+        pk[n, 1] = th
+    S[S_N_PEAKS] = n + 1
+
+
+@njit(cache=True)
+def do_impact(t, om_b, s, P, mem, S, imp, up, ni_cap, nu_cap, X, ag, av, tm):
+    """Apply an impact at ``t``: restitution, pivot switch, log; returns ``(omega, pivot)``."""
+    e = restitution(P, mem, om_b, t)
+    om_a = e * om_b
+    n = int(S[S_N_IMPACTS])
+    if n < ni_cap:
+        imp[n, 0] = t
+        imp[n, 1] = om_b
+        imp[n, 2] = om_a
+    S[S_N_IMPACTS] = n + 1
+    S[S_E_DISSIPATED] += 0.5 * P[P_I] * (om_b * om_b - om_a * om_a)
+    mem[MEM_HALF_MAX] = 0.0
+    p = math.sqrt(P[P_M] * P[P_G] * P[P_R] / P[P_I])
+    if abs(om_a) < P[P_REST_TOL] * p * P[P_ALPHA]:
+        # negligible velocity: back to rest unless the ground lifts the body right now
+        S[S_E_DISSIPATED] += 0.5 * P[P_I] * om_a * om_a
+        k = int(S[S_N_UPLIFTS]) - 1
+        if 0 <= k < nu_cap:
+            up[k, 1] = t
+        return 0.0, 0.0
+    return om_a, -s
+
+
+@njit(cache=True)
+def start_uplift(t, S, up, nu_cap):
+    if math.isnan(S[S_T_UPLIFT]):
+        S[S_T_UPLIFT] = t
+    k = int(S[S_N_UPLIFTS])
+    if k < nu_cap:
+        up[k, 0] = t
+        up[k, 1] = np.nan
+    S[S_N_UPLIFTS] = k + 1
+
+
+@njit(cache=True)
+def fill_rest(j, t_to, out_dt, th_out, om_out, pv_out, inclusive):
+    """Write rest values on the output grid up to ``t_to``; returns the next output index."""
+    n = th_out.shape[0]
+    while j < n:
+        tj = j * out_dt
+        if tj > t_to or (not inclusive and tj >= t_to):
+            break
+        th_out[j] = 0.0
+        om_out[j] = 0.0
+        pv_out[j] = 0.0
+        j += 1
+    return j
+
+
+# ============================================================ event-driven integrator ======
+@njit(cache=True)
+def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_out, imp, up,
+               pk, max_steps):
+    """Event-driven integration of one history (adaptive Dormand-Prince 5(4), stepping exactly on
+    the input breakpoints; uplift, impacts and overturning located inside the step).
+
+    Histories are written on the grid ``k * out_dt`` into ``th_out``, ``om_out``, ``pv_out``
+    (length 0: no history); impacts into ``imp`` (rows: t, omega before, omega after) and uplift
+    intervals into ``up`` (rows: start, end) and peaks into ``pk`` (rows: t, theta) up to their
+    capacity. Returns the summary vector."""
+    S = new_summary()
+    mem = np.zeros(MEM_SIZE)
+    n_rec = ag.shape[0]
+    ni_cap = imp.shape[0]
+    nu_cap = up.shape[0]
+    alpha = P[P_ALPHA]
+    p = math.sqrt(P[P_M] * P[P_G] * P[P_R] / P[P_I])
+    atol_t = rtol * alpha
+    atol_o = rtol * p * alpha
+    t = 0.0
+    th = th0
+    om = om0
+    if th0 != 0.0:
+        s = 1.0 if th0 > 0.0 else -1.0
+    elif om0 != 0.0:
+        s = 1.0 if om0 > 0.0 else -1.0
+    else:
+        s = 0.0
+    if s != 0.0:
+        start_uplift(0.0, S, up, nu_cap)
+        record_theta(S, mem, th, 0.0)
+    j = 0  # next output index
+    h = 0.0
+    steps = 0
+    while t < t_end:
+        if steps >= max_steps:
+            S[S_STATUS] = 2.0
+            break
+        tb = segment_end(t, X, n_rec, t_end)
+        tm = 0.5 * (t + tb)
+        if s == 0.0:
+            sd = lift_direction(t, tm, X, ag, av, P)
+            if sd == 0.0:
+                tu, sd = locate_uplift(t, tb, tm, X, ag, av, P)
+            else:
+                tu = t
+            if sd == 0.0:
+                j = fill_rest(j, tb, out_dt, th_out, om_out, pv_out, True)
+                t = tb
+                continue
+            j = fill_rest(j, tu, out_dt, th_out, om_out, pv_out, False)
+            t = tu
+            s = sd
+            th = 0.0
+            om = 0.0
+            start_uplift(t, S, up, nu_cap)
+            h = 0.0
+            if t >= tb:
+                continue
+        # ---- rocking about pivot s inside the segment [t, tb]
+        a0 = accel(th, om, s, t, tm, X, ag, av, P)
+        if h <= 0.0:
+            # initial step: a fraction of the rocking time scale 1/p
+            h = 0.01 / p
+        hmax = tb - t
+        if th == 0.0 and s * a0 < 0.0 and s * om > 0.0:
+            # leaving the base with a decelerating motion: do not step past the apex
+            h = min(h, 0.9 * abs(om / a0))
+        hh = min(h, hmax)
+        if hh >= hmax * (1.0 - 1e-12):
+            hh = hmax
+        if hh <= 1e-14 * (1.0 + t):
+            S[S_STATUS] = 1.0
+            break
+        nt, no, et, eo, a1 = dp_step(t, th, om, a0, hh, s, tm, X, ag, av, P)
+        steps += 1
+        sc_t = atol_t + rtol * max(abs(th), abs(nt))
+        sc_o = atol_o + rtol * max(abs(om), abs(no))
+        err = max(abs(et) / sc_t, abs(eo) / sc_o)
+        if not (err <= 1.0):
+            fac = 0.9 * err ** (-0.2) if err == err else 0.1
+            h = hh * max(0.1, fac)
+            continue
+        # accepted step [t, t + hh]
+        fac = 0.9 * err ** (-0.2) if err > 0.0 else 5.0
+        h_next = hh * min(5.0, max(0.2, fac))
+        event = 0  # 0 none, 1 impact, 2 overturn
+        if s * nt >= HALF_PI:
+            event = 2
+        elif s * nt < 0.0:
+            event = 1
+        if event != 0:
+            level = HALF_PI if event == 2 else 0.0
+            tau = locate_in_step(2 - event, level, t, th, om, a0, hh, s, tm, X, ag, av, P)
+            nt, no, _, _, a1 = dp_step(t, th, om, a0, tau, s, tm, X, ag, av, P)
+            if event == 1:
+                nt = 0.0
+            else:
+                nt = s * HALF_PI
+            hh = tau
+        # non-terminal events on the interpolant: peak and first exceedance of alpha
+        if s * om > 0.0 and s * no <= 0.0:
+            u = hermite_root_omega(s, hh, th, om, a0, nt, no, a1)
+            yp, _ = hermite5(u, hh, th, om, a0, nt, no, a1)
+            record_theta(S, mem, yp, t + u * hh)
+            record_peak(S, pk, t + u * hh, yp)
+        record_theta(S, mem, nt, t + hh)
+        if math.isnan(S[S_T_EXCEED_ALPHA]) and s * nt > alpha and s * th <= alpha:
+            u = hermite_root_level(s, alpha, hh, th, om, a0, nt, no, a1)
+            S[S_T_EXCEED_ALPHA] = t + u * hh
+        # history on the output grid
+        while j < th_out.shape[0] and j * out_dt <= t + hh:
+            u = (j * out_dt - t) / hh
+            if u < 0.0:
+                u = 0.0
+            yj, dj = hermite5(u, hh, th, om, a0, nt, no, a1)
+            th_out[j] = yj
+            om_out[j] = dj
+            pv_out[j] = s
+            j += 1
+        t = t + hh if hh < hmax else tb
+        th = nt
+        om = no
+        h = h_next
+        if event == 2:
+            S[S_OVERTURNED] = 1.0
+            S[S_T_OVERTURN] = t
+            k = int(S[S_N_UPLIFTS]) - 1
+            if 0 <= k < nu_cap:
+                up[k, 1] = t
+            while j < th_out.shape[0]:
+                th_out[j] = th
+                om_out[j] = np.nan
+                pv_out[j] = s
+                j += 1
+            break
+        if event == 1:
+            om, s = do_impact(t, om, s, P, mem, S, imp, up, ni_cap, nu_cap, X, ag, av, tm)
+            th = 0.0
+            h = h_next
+    # grid points beyond the last step by round-off only: the final state
+    while j < th_out.shape[0] and S[S_OVERTURNED] == 0.0:
+        th_out[j] = th
+        om_out[j] = om
+        pv_out[j] = s
+        j += 1
+    S[S_N_STEPS] = steps
+    S[S_T_FINAL] = t
+    return S
+
+
+# ==================================================== Newmark (average acceleration) ======
+@njit(cache=True)
+def newmark_solve(t, th, om, a0, h, s, X, ag, av, P):
+    """One Newmark step (beta = 1/4, gamma = 1/2) of size ``h`` with Newton iterations on the
+    nonlinear equation of motion (seed 000 §3.1.2, eqs. 6-8 reconstructed: the standard
+    constant-average-acceleration update). Returns ``(theta, theta', theta'')`` at ``t + h``."""
+    t1 = t + h
+    x = th + h * om + 0.5 * h * h * a0
+    d = 1e-7 * P[P_ALPHA]
+    for _ in range(50):
+        a1 = 4.0 / (h * h) * (x - th - h * om) - a0
+        w1 = 2.0 / h * (x - th) - om
+        r = a1 - accel(x, w1, s, t1, t1, X, ag, av, P)
+        fp = accel(x + d, w1 + 2.0 * d / h, s, t1, t1, X, ag, av, P)
+        fm = accel(x - d, w1 - 2.0 * d / h, s, t1, t1, X, ag, av, P)
+        dr = 4.0 / (h * h) - (fp - fm) / (2.0 * d)
+        dx = r / dr
+        x -= dx
+        if abs(dx) <= 1e-14 * (P[P_ALPHA] + abs(x)):
+            break
+    a1 = 4.0 / (h * h) * (x - th - h * om) - a0
+    w1 = 2.0 / h * (x - th) - om
+    return x, w1, a1
+
+
+@njit(cache=True)
+def newmark_locate(kind, level, t, th, om, a0, h, s, X, ag, av, P):
+    """Sub-step ``tau`` in (0, h] at which the Newmark solution reaches the event (see
+    :func:`locate_in_step`): locating the impact inside the step keeps the scheme second
+    order."""
+    lo = 0.0
+    hi = h
+    x, _, _ = newmark_solve(t, th, om, a0, h, s, X, ag, av, P)
+    if kind == 0:
+        flo = level - s * th
+        fhi = level - s * x
+    else:
+        flo = s * th
+        fhi = s * x
+    side = 0
+    for _ in range(100):
+        if hi - lo <= 1e-13 * (1.0 + t):
+            break
+        c = (lo * fhi - hi * flo) / (fhi - flo)
+        if not (c > lo and c < hi):
+            c = 0.5 * (lo + hi)
+        x, _, _ = newmark_solve(t, th, om, a0, c, s, X, ag, av, P)
+        fc = (level - s * x) if kind == 0 else s * x
+        if fc > 0.0:
+            lo = c
+            flo = fc
+            if side == -1:
+                fhi *= 0.5
+            side = -1
+        else:
+            hi = c
+            fhi = fc
+            if side == 1:
+                flo *= 0.5
+            side = 1
+        if fc == 0.0:
+            break
+    return hi
+
+
+@njit(cache=True)
+def newmark_core(P, X, ag, av, t_end, th0, om0, dt, th_out, om_out, pv_out, imp, up, pk):
+    """Newmark constant-average-acceleration integration with the step ``dt`` given by the user,
+    uplift and impacts located inside the step. Output on the grid ``k * dt``."""
+    S = new_summary()
+    mem = np.zeros(MEM_SIZE)
+    ni_cap = imp.shape[0]
+    nu_cap = up.shape[0]
+    nsteps = int(math.ceil(t_end / dt - 1e-9))
+    th = th0
+    om = om0
+    if th0 != 0.0:
+        s = 1.0 if th0 > 0.0 else -1.0
+    elif om0 != 0.0:
+        s = 1.0 if om0 > 0.0 else -1.0
+    else:
+        s = 0.0
+    if s != 0.0:
+        start_uplift(0.0, S, up, nu_cap)
+        record_theta(S, mem, th, 0.0)
+    nout = th_out.shape[0]
+    if nout > 0:
+        th_out[0] = th
+        om_out[0] = om
+        pv_out[0] = s
+    a = accel(th, om, s, 0.0, 0.0, X, ag, av, P) if s != 0.0 else 0.0
+    done = False
+    for n in range(nsteps):
+        t = n * dt
+        t_next = (n + 1) * dt
+        while t < t_next * (1.0 - 1e-15) and not done:
+            if s == 0.0:
+                sd = lift_direction(t, t, X, ag, av, P)
+                tu = t
+                if sd == 0.0:
+                    tu, sd = locate_uplift(t, t_next, t, X, ag, av, P)
+                if sd == 0.0:
+                    t = t_next
+                    break
+                t = tu
+                s = sd
+                th = 0.0
+                om = 0.0
+                start_uplift(t, S, up, nu_cap)
+                a = accel(0.0, 0.0, s, t, t, X, ag, av, P)
+                if t >= t_next:
+                    break
+            h = t_next - t
+            x, w, a1 = newmark_solve(t, th, om, a, h, s, X, ag, av, P)
+            if s * x >= HALF_PI:
+                tau = newmark_locate(0, HALF_PI, t, th, om, a, h, s, X, ag, av, P)
+                x, w, a1 = newmark_solve(t, th, om, a, tau, s, X, ag, av, P)
+                t = t + tau
+                th = s * HALF_PI
+                om = w
+                record_theta(S, mem, th, t)
+                S[S_OVERTURNED] = 1.0
+                S[S_T_OVERTURN] = t
+                k = int(S[S_N_UPLIFTS]) - 1
+                if 0 <= k < nu_cap:
+                    up[k, 1] = t
+                done = True
+                break
+            if s * x < 0.0:
+                tau = newmark_locate(1, 0.0, t, th, om, a, h, s, X, ag, av, P)
+                x, w, a1 = newmark_solve(t, th, om, a, tau, s, X, ag, av, P)
+                t = t + tau
+                om, s = do_impact(t, w, s, P, mem, S, imp, up, ni_cap, nu_cap, X, ag, av, t)
+                th = 0.0
+                a = accel(0.0, om, s, t, t, X, ag, av, P) if s != 0.0 else 0.0
+                continue
+            if s * om > 0.0 and s * w <= 0.0:
+                u = hermite_root_omega(s, h, th, om, a, x, w, a1)
+                yp, _ = hermite5(u, h, th, om, a, x, w, a1)
+                record_theta(S, mem, yp, t + u * h)
+                record_peak(S, pk, t + u * h, yp)
+            th = x
+            om = w
+            a = a1
+            t = t_next
+            record_theta(S, mem, th, t)
+        if nout > n + 1:
+            th_out[n + 1] = th
+            om_out[n + 1] = om
+            pv_out[n + 1] = s
+        if done:
+            for k in range(n + 2, nout):
+                th_out[k] = th
+                om_out[k] = np.nan
+                pv_out[k] = s
+            break
+    S[S_N_STEPS] = nsteps
+    S[S_T_FINAL] = S[S_T_OVERTURN] if done else nsteps * dt
+    return S
+
+
+# ================================================================= batch entry point ======
+@njit(cache=True, parallel=True)
+def batch_event(Ps, Xs, ag_flat, av_flat, offsets, lengths, t_ends, th0s, om0s, rtol, max_steps):
+    """Run many cases in parallel (``numba.prange``): case ``i`` uses the model ``Ps[i]``, the
+    excitation ``Xs[i]`` with the record ``ag_flat[offsets[i]:offsets[i] + lengths[i]]``.
+    Returns the summary matrix (one row per case), identical to one-by-one runs."""
+    nc = Ps.shape[0]
+    out = np.empty((nc, S_SIZE))
+    for i in prange(nc):
+        o = offsets[i]
+        n = lengths[i]
+        ag = ag_flat[o:o + n]
+        av = av_flat[o:o + n] if av_flat.shape[0] == ag_flat.shape[0] else av_flat[0:0]
+        e0 = np.empty(0)
+        imp = np.empty((0, 3))
+        up = np.empty((0, 2))
+        pk = np.empty((0, 2))
+        out[i, :] = event_core(Ps[i], Xs[i], ag, av, t_ends[i], th0s[i], om0s[i], rtol, 1.0,
+                               e0, e0, e0, imp, up, pk, max_steps)
+    return out

@@ -1,0 +1,381 @@
+"""Front end of the rocking engine: :func:`simulate` (one history) and :func:`simulate_batch`
+(many, in parallel), in the style of ``scipy.integrate.solve_ivp``: a thin function over the
+kernels returning a result object with arrays and a status message."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from murus.rocking import kernels as K
+from murus.rocking.excitation import Excitation, as_excitation
+from murus.rocking.model import ModelError, as_model
+
+#: Limit states of seed 002 §4 on the normalised rotation theta/alpha.
+LIMIT_STATES = {"limited": 0.1, "moderate": 0.4}
+
+#: Default free-motion time added after the end of the input [s].
+FREE_TAIL = 5.0
+
+_STATUS = {
+    0: "ok",
+    1: "step size underflow: the integration stopped early",
+    2: "step budget exhausted: the integration stopped early",
+}
+
+
+@dataclass
+class RockingResult:
+    """A single time history (SI units: s, rad, rad/s, m/s², J).
+
+    Arrays are on the output grid ``t``; ``pivot`` is 0 at rest, +1/-1 rocking about O/O'.
+    ``impacts`` has rows ``(t, omega_before, omega_after)``; ``uplift_intervals`` rows
+    ``(start, end)`` (end ``nan`` while still rocking at the end of the run); ``peaks`` rows
+    ``(t, theta)`` at each extremum of the rotation while rocking."""
+
+    t: np.ndarray
+    theta: np.ndarray
+    omega: np.ndarray
+    ag: np.ndarray
+    av: np.ndarray
+    pivot: np.ndarray
+    impacts: np.ndarray
+    uplift_intervals: np.ndarray
+    peaks: np.ndarray
+    alpha: float
+    p: float
+    restitution: float
+    theta_max: float
+    theta_signed_max: float
+    t_theta_max: float
+    theta_pos: float
+    theta_neg: float
+    n_impacts: int
+    uplift_time: float | None
+    overturned: bool
+    t_overturn: float | None
+    t_exceed_alpha: float | None
+    energy_dissipated: float
+    status: int
+    message: str
+    n_steps: int
+    meta: dict = field(default_factory=dict)
+
+    @property
+    def theta_max_over_alpha(self) -> float:
+        return self.theta_max / self.alpha
+
+    @property
+    def limit_states(self) -> dict[str, bool]:
+        """Limit states of seed 002 reached (``theta/alpha >= 0.1`` and ``0.4``) and collapse."""
+        out = {k: bool(self.theta_max_over_alpha >= v) for k, v in LIMIT_STATES.items()}
+        out["overturning"] = self.overturned
+        return out
+
+    @property
+    def success(self) -> bool:
+        return self.status == 0
+
+    @property
+    def rocking_criterion(self) -> np.ndarray:
+        """``RC(t) = |a_g| / ((g + a_v) tan alpha)`` (seed 000 eq. 9; > 1: rocking starts)."""
+        g = self.meta.get("model", {}).get("gravity", 9.81)
+        return np.abs(self.ag) / ((g + self.av) * math.tan(self.alpha))
+
+    @property
+    def kinetic_energy(self) -> np.ndarray:
+        I_O = self.meta["model"]["body"]["I_O"]
+        return 0.5 * I_O * np.nan_to_num(self.omega) ** 2
+
+    @property
+    def potential_energy(self) -> np.ndarray:
+        b = self.meta["model"]["body"]
+        g = self.meta["model"]["gravity"]
+        a = b["alpha"]
+        return b["mass"] * g * b["R"] * (np.cos(a - np.abs(self.theta)) - np.cos(a))
+
+    @property
+    def dissipated_energy(self) -> np.ndarray:
+        """Energy dissipated at impacts up to each output time [J] (logged impacts)."""
+        I_O = self.meta["model"]["body"]["I_O"]
+        if self.impacts.shape[0] == 0:
+            return np.zeros_like(self.t)
+        loss = 0.5 * I_O * (self.impacts[:, 1] ** 2 - self.impacts[:, 2] ** 2)
+        cum = np.cumsum(loss)
+        k = np.searchsorted(self.impacts[:, 0], self.t, side="right")
+        return np.where(k > 0, cum[np.maximum(k - 1, 0)], 0.0)
+
+    def summary(self) -> dict:
+        """Plain-number summary (what ``summary.json`` holds)."""
+        return {
+            "theta_max": self.theta_max,
+            "theta_max_over_alpha": self.theta_max_over_alpha,
+            "theta_signed_max": self.theta_signed_max,
+            "t_theta_max": self.t_theta_max,
+            "overturned": self.overturned,
+            "t_overturn": self.t_overturn,
+            "t_exceed_alpha": self.t_exceed_alpha,
+            "impacts": self.n_impacts,
+            "uplift_time": self.uplift_time,
+            "uplift_intervals": [[_f(a), _f(b)] for a, b in self.uplift_intervals],
+            "limit_states": self.limit_states,
+            "alpha": self.alpha,
+            "p": self.p,
+            "restitution": self.restitution,
+            "energy_dissipated": self.energy_dissipated,
+            "status": self.message,
+            "n_steps": self.n_steps,
+            "input": self.meta,
+        }
+
+
+def _f(x):
+    x = float(x)
+    return None if math.isnan(x) else x
+
+
+def _opt(x) -> float | None:
+    return None if math.isnan(x) else float(x)
+
+
+def _resolve(model, motion, duration, restitution, linearised):
+    mdl = as_model(model, restitution, linearised)
+    exc = as_excitation(motion)
+    if duration is None:
+        duration = exc.end_time + FREE_TAIL
+    duration = float(duration)
+    if not (math.isfinite(duration) and duration > 0.0):
+        raise ModelError(f"duration must be positive, got {duration!r}")
+    return mdl, exc, duration
+
+
+def _initial(theta0, omega0, theta0_over_alpha, body):
+    if theta0_over_alpha is not None:
+        theta0 = float(theta0_over_alpha) * body.alpha
+    theta0 = float(theta0)
+    omega0 = float(omega0)
+    if not (math.isfinite(theta0) and math.isfinite(omega0)):
+        raise ModelError("initial conditions must be finite")
+    if abs(theta0) >= 0.5 * math.pi:
+        raise ModelError(f"initial rotation {theta0!r} rad is beyond overturning (pi/2)")
+    return theta0, omega0
+
+
+def simulate(
+    model,
+    motion=None,
+    *,
+    method: str = "event",
+    duration: float | None = None,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+    theta0_over_alpha: float | None = None,
+    restitution=None,
+    linearised: bool | None = None,
+    rtol: float = 1e-9,
+    dt: float | None = None,
+    out_dt: float | None = None,
+    max_impacts: int = 100_000,
+    max_steps: int = 50_000_000,
+) -> RockingResult:
+    """Time-history analysis of a rocking body.
+
+    Parameters
+    ----------
+    model:
+        A :class:`RockingModel` or a :class:`RigidBlock` (Housner restitution by default).
+    motion:
+        A GroundMotion (``dt``, ``acc`` [m/s²], optional ``acc_v``), an excitation of
+        :mod:`murus.rocking.excitation`, or ``None`` for free vibration.
+    method:
+        ``"event"`` (default): adaptive Dormand-Prince 5(4) stepping exactly on the input's
+        breakpoints, events located to ~1e-12 s; ``"newmark"``: constant average acceleration
+        with the step ``dt`` and impacts located inside the step (second order).
+    duration:
+        End of the analysis [s]; default: end of the input plus 5 s of free motion.
+    theta0, omega0, theta0_over_alpha:
+        Initial rotation [rad] (or as a fraction of alpha) and angular velocity [rad/s].
+    rtol:
+        Relative tolerance of the event-driven integrator (absolute: ``rtol * alpha``).
+    dt:
+        Newmark time step [s] (required for ``method="newmark"``).
+    out_dt:
+        Output grid step [s] for the event-driven method (default: the record's step).
+    """
+    mdl, exc, t_end = _resolve(model, motion, duration, restitution, linearised)
+    th0, om0 = _initial(theta0, omega0, theta0_over_alpha, mdl.body)
+    P = mdl.params()
+    X = exc.vector()
+    ag, av = exc.arrays()
+    imp = np.full((max_impacts, 3), np.nan)
+    up = np.full((max(1000, max_impacts // 10), 2), np.nan)
+    pk = np.full((max_impacts + 1, 2), np.nan)
+    if method == "event":
+        if not (0.0 < rtol < 1e-2):
+            raise ModelError(f"rtol must be in (0, 1e-2), got {rtol!r}")
+        step = float(out_dt) if out_dt is not None else exc.default_output_step()
+        if not (math.isfinite(step) and step > 0.0):
+            raise ModelError(f"out_dt must be positive, got {out_dt!r}")
+        n_out = int(math.floor(t_end / step + 1e-9)) + 1
+        th = np.full(n_out, np.nan)
+        om = np.full(n_out, np.nan)
+        pv = np.full(n_out, np.nan)
+        S = K.event_core(P, X, ag, av, t_end, th0, om0, float(rtol), step, th, om, pv, imp, up,
+                         pk, int(max_steps))
+        t = np.arange(n_out) * step
+    elif method == "newmark":
+        if dt is None or not (math.isfinite(dt) and dt > 0.0):
+            raise ModelError("method 'newmark' needs a positive time step dt")
+        n_steps = int(math.ceil(t_end / dt - 1e-9))
+        th = np.full(n_steps + 1, np.nan)
+        om = np.full(n_steps + 1, np.nan)
+        pv = np.full(n_steps + 1, np.nan)
+        S = K.newmark_core(P, X, ag, av, float(n_steps * dt), th0, om0, float(dt), th, om, pv,
+                           imp, up, pk)
+        t = np.arange(n_steps + 1) * dt
+    else:
+        raise ModelError(f"unknown method {method!r}; expected 'event' or 'newmark'")
+    gh, gv = exc.sample(t)
+    n_imp = int(S[K.S_N_IMPACTS])
+    n_up = int(S[K.S_N_UPLIFTS])
+    status = int(S[K.S_STATUS])
+    meta = {
+        "model": mdl.describe(),
+        "motion": exc.describe(),
+        "solver": {"method": method, "duration": t_end, "rtol": rtol if method == "event" else None,
+                   "dt": dt if method == "newmark" else None, "theta0": th0, "omega0": om0},
+    }
+    return RockingResult(
+        t=t,
+        theta=th,
+        omega=om,
+        ag=gh,
+        av=gv,
+        pivot=pv,
+        impacts=imp[: min(n_imp, imp.shape[0])].copy(),
+        uplift_intervals=up[: min(n_up, up.shape[0])].copy(),
+        peaks=pk[: min(int(S[K.S_N_PEAKS]), pk.shape[0])].copy(),
+        alpha=mdl.body.alpha,
+        p=mdl.p,
+        restitution=mdl.e,
+        theta_max=float(S[K.S_THETA_MAX]),
+        theta_signed_max=float(S[K.S_THETA_AT_MAX]),
+        t_theta_max=float(S[K.S_T_THETA_MAX]),
+        theta_pos=float(S[K.S_THETA_POS]),
+        theta_neg=float(S[K.S_THETA_NEG]),
+        n_impacts=n_imp,
+        uplift_time=_opt(S[K.S_T_UPLIFT]),
+        overturned=bool(S[K.S_OVERTURNED]),
+        t_overturn=_opt(S[K.S_T_OVERTURN]),
+        t_exceed_alpha=_opt(S[K.S_T_EXCEED_ALPHA]),
+        energy_dissipated=float(S[K.S_E_DISSIPATED]),
+        status=status,
+        message=_STATUS.get(status, "unknown"),
+        n_steps=int(S[K.S_N_STEPS]),
+        meta=meta,
+    )
+
+
+# ----------------------------------------------------------------------------- batches ----
+SUMMARY_FIELDS = {
+    "theta_max": K.S_THETA_MAX,
+    "theta_signed_max": K.S_THETA_AT_MAX,
+    "t_theta_max": K.S_T_THETA_MAX,
+    "n_impacts": K.S_N_IMPACTS,
+    "uplift_time": K.S_T_UPLIFT,
+    "overturned": K.S_OVERTURNED,
+    "t_overturn": K.S_T_OVERTURN,
+    "t_exceed_alpha": K.S_T_EXCEED_ALPHA,
+    "energy_dissipated": K.S_E_DISSIPATED,
+    "status": K.S_STATUS,
+}
+
+
+@dataclass
+class BatchResult:
+    """Summaries of ``len(models) x len(motions)`` histories: each field is an array of shape
+    ``(n_models, n_motions)``; ``raw`` holds the full summary vectors."""
+
+    raw: np.ndarray
+    alpha: np.ndarray
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.raw[..., SUMMARY_FIELDS[name]]
+
+    @property
+    def theta_max_over_alpha(self) -> np.ndarray:
+        return self["theta_max"] / self.alpha[:, None]
+
+    @property
+    def overturned(self) -> np.ndarray:
+        return self["overturned"] > 0.5
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.raw.shape[:2]
+
+
+def _pack_motions(excs: list[Excitation]):
+    arrays = [e.arrays() for e in excs]
+    lengths = np.array([a[0].size for a in arrays], dtype=np.int64)
+    offsets = np.zeros(len(arrays), dtype=np.int64)
+    if len(arrays) > 1:
+        offsets[1:] = np.cumsum(lengths)[:-1]
+    ag_flat = np.concatenate([a[0] for a in arrays]) if lengths.sum() else np.zeros(0)
+    has_v = [a[1].size == a[0].size and a[0].size > 0 for a in arrays]
+    if any(has_v):
+        av_flat = np.concatenate(
+            [a[1] if hv else np.zeros(a[0].size) for a, hv in zip(arrays, has_v, strict=True)]
+        )
+    else:
+        av_flat = np.zeros(0)
+    return ag_flat, av_flat, offsets, lengths
+
+
+def simulate_batch(
+    models,
+    motions,
+    *,
+    duration: float | None = None,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+    rtol: float = 1e-9,
+    max_steps: int = 50_000_000,
+) -> BatchResult:
+    """Run every model under every motion, in parallel over the cores (event-driven method).
+
+    Each case is computed by the same kernel as :func:`simulate`, so that its summary is the
+    same number for number; only the histories are not kept."""
+    mdls = [as_model(m) for m in models]
+    excs = [as_excitation(m) for m in motions]
+    if not mdls or not excs:
+        raise ModelError("simulate_batch needs at least one model and one motion")
+    nm, nx = len(mdls), len(excs)
+    Pm = np.stack([m.params() for m in mdls])
+    Xm = np.stack([e.vector() for e in excs])
+    ag_flat, av_flat, offsets, lengths = _pack_motions(excs)
+    ends = np.array([e.end_time for e in excs])
+    t_end_m = ends + FREE_TAIL if duration is None else np.full(nx, float(duration))
+    im, ix = np.meshgrid(np.arange(nm), np.arange(nx), indexing="ij")
+    im = im.ravel()
+    ix = ix.ravel()
+    nc = im.size
+    if nc and av_flat.size and av_flat.size != ag_flat.size:  # pragma: no cover
+        raise ModelError("internal: vertical records misaligned")
+    raw = K.batch_event(
+        np.ascontiguousarray(Pm[im]),
+        np.ascontiguousarray(Xm[ix]),
+        ag_flat,
+        av_flat,
+        offsets[ix],
+        lengths[ix],
+        t_end_m[ix],
+        np.full(nc, float(theta0)),
+        np.full(nc, float(omega0)),
+        float(rtol),
+        int(max_steps),
+    )
+    return BatchResult(raw=raw.reshape(nm, nx, K.S_SIZE),
+                       alpha=np.array([m.body.alpha for m in mdls]))
