@@ -28,7 +28,7 @@ def quarter_period(body: RigidBlock, theta0: float) -> float:
 
 
 def peak_after(body, theta0, e, n):
-    """Successive peaks: cos(alpha - theta_n) - cos(alpha) = e^(2n) (cos(alpha - theta0) - cos(alpha))
+    """Successive peaks: cos(alpha - theta_n) - cos(alpha) = e^(2n) (cos(alpha - theta0) - cos a)
     (energy conserved between impacts, kinetic energy times e² at each impact)."""
     a = body.alpha
     c = math.cos(a) + e ** (2 * n) * (math.cos(a - theta0) - math.cos(a))
