@@ -86,7 +86,7 @@ def test_cascade_returns_to_rest_without_chattering():
     assert res.theta[-1] == 0.0 and res.pivot[-1] == 0.0
     # the number of impacts is bounded by the rest threshold: e^n < rest_tol * (initial ratio)
     e = w.housner_restitution()
-    bound = math.log(1e-5 / 2.0) / math.log(e) + 5
+    bound = math.log(RockingModel(w).rest_tol / 2.0) / math.log(e) + 5
     assert res.n_impacts < bound
     # all the initial potential energy has been dissipated
     E0 = w.mass * 9.81 * w.R * (math.cos(0.1 * w.alpha) - math.cos(w.alpha))

@@ -89,6 +89,16 @@ HALF_PI = 0.5 * math.pi
 
 # ======================================================================== excitation ======
 @njit(cache=True)
+def continuous_at(tb, X, n):
+    """Whether the input is continuous at the breakpoint ``tb`` (records: everywhere but at
+    their last sample; pulses: everywhere but at their start and end)."""
+    if X[X_KIND] == 0.0:
+        return tb < (n - 1) * X[X_DT] * (1.0 - 1e-12)
+    eps = 1e-12 * (1.0 + tb)
+    return X[X_T0] + eps < tb < X[X_T0] + X[X_DUR] - eps
+
+
+@njit(cache=True)
 def ground(t, tm, X, ag, av):
     """Ground acceleration (horizontal, vertical) [m/s2] at time ``t`` in the segment that
     contains ``tm`` (so that a discontinuous input takes the value of that segment)."""
@@ -361,46 +371,52 @@ def dp_step(t, th, om, a0, h, s, tm, X, ag, av, P):
 
 
 @njit(cache=True)
-def locate_in_step(kind, level, t, th, om, a0, h, s, tm, X, ag, av, P):
-    """Step size ``tau`` in (0, h] at which a terminal event happens, by the Illinois method on
-    fresh RK steps of size ``tau`` (so the event is as accurate as the integration).
+def locate_in_step(kind, level, t, th, om, a0, h, s, tm, X, ag, av, P, nt, no, a1):
+    """Step size ``tau`` in (0, h] at which a terminal event happens.
 
     ``kind`` 0: ``s * theta`` reaches ``level`` from below (overturning);
-    ``kind`` 1: ``s * theta`` falls to 0 (impact)."""
+    ``kind`` 1: ``s * theta`` falls to 0 (impact).
+    The first guess is the root of the quintic Hermite interpolant of the accepted step
+    (``nt, no, a1``: state and acceleration at its end); Newton iterations on fresh RK steps of
+    size ``tau`` (whose derivative is the angular velocity itself) then make the event as accurate
+    as the integration; the bracket is kept and bisection takes over if Newton leaves it."""
     lo = 0.0
     hi = h
-    if kind == 0:
-        flo = level - s * th
-        nt, _, _, _, _ = dp_step(t, th, om, a0, h, s, tm, X, ag, av, P)
-        fhi = level - s * nt
-    else:
-        flo = s * th
-        nt, _, _, _, _ = dp_step(t, th, om, a0, h, s, tm, X, ag, av, P)
-        fhi = s * nt
-    side = 0
-    for _ in range(100):
-        if hi - lo <= 1e-13 * (1.0 + t):
-            break
-        c = (lo * fhi - hi * flo) / (fhi - flo)
-        if not (c > lo and c < hi):
-            c = 0.5 * (lo + hi)
-        nt, _, _, _, _ = dp_step(t, th, om, a0, c, s, tm, X, ag, av, P)
-        fc = (level - s * nt) if kind == 0 else s * nt
-        if fc > 0.0:
-            lo = c
-            flo = fc
-            if side == -1:
-                fhi *= 0.5
-            side = -1
+    sg = 1.0 if kind == 1 else -1.0
+    lev = 0.0 if kind == 1 else level
+    # root of the interpolant: sg * (s * y - lev) goes from > 0 to <= 0
+    a = 0.0
+    b = 1.0
+    for _ in range(50):
+        u = 0.5 * (a + b)
+        y, _ = hermite5(u, h, th, om, a0, nt, no, a1)
+        if sg * (s * y - lev) > 0.0:
+            a = u
         else:
-            hi = c
-            fhi = fc
-            if side == 1:
-                flo *= 0.5
-            side = 1
-        if fc == 0.0:
+            b = u
+        if b - a < 1e-7:
             break
-    return hi
+    tau = 0.5 * (a + b) * h
+    for _ in range(30):
+        y, w, _, _, _ = dp_step(t, th, om, a0, tau, s, tm, X, ag, av, P)
+        f = sg * (s * y - lev)
+        if f > 0.0:
+            lo = tau
+        else:
+            hi = tau
+        if f == 0.0:
+            return tau
+        df = sg * s * w
+        nxt = tau - f / df if df != 0.0 else 0.5 * (lo + hi)
+        if not (nxt > lo and nxt < hi):
+            nxt = 0.5 * (lo + hi)
+        if abs(nxt - tau) <= 1e-14 * (1.0 + t):
+            tau = nxt
+            break
+        tau = nxt
+        if hi - lo <= 1e-14 * (1.0 + t):
+            break
+    return tau
 
 
 @njit(cache=True)
@@ -525,6 +541,8 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
     j = 0  # next output index
     h = 0.0
     steps = 0
+    a0 = 0.0
+    have_a0 = False  # theta'' at t is known (first same as last, across continuous breakpoints)
     while t < t_end:
         if steps >= max_steps:
             S[S_STATUS] = 2.0
@@ -548,10 +566,13 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
             om = 0.0
             start_uplift(t, S, up, nu_cap)
             h = 0.0
+            have_a0 = False
             if t >= tb:
                 continue
         # ---- rocking about pivot s inside the segment [t, tb]
-        a0 = accel(th, om, s, t, tm, X, ag, av, P)
+        if not have_a0:
+            a0 = accel(th, om, s, t, tm, X, ag, av, P)
+            have_a0 = True
         if h <= 0.0:
             # initial step: a fraction of the rocking time scale 1/p
             h = 0.01 / p
@@ -584,7 +605,8 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
             event = 1
         if event != 0:
             level = HALF_PI if event == 2 else 0.0
-            tau = locate_in_step(2 - event, level, t, th, om, a0, hh, s, tm, X, ag, av, P)
+            tau = locate_in_step(2 - event, level, t, th, om, a0, hh, s, tm, X, ag, av, P,
+                                 nt, no, a1)
             nt, no, _, _, a1 = dp_step(t, th, om, a0, tau, s, tm, X, ag, av, P)
             if event == 1:
                 nt = 0.0
@@ -611,10 +633,13 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
             om_out[j] = dj
             pv_out[j] = s
             j += 1
-        t = t + hh if hh < hmax else tb
+        at_break = hh >= hmax
+        t = t + hh if not at_break else tb
         th = nt
         om = no
         h = h_next
+        a0 = a1
+        have_a0 = event == 0 and (not at_break or continuous_at(tb, X, n_rec))
         if event == 2:
             S[S_OVERTURNED] = 1.0
             S[S_T_OVERTURN] = t

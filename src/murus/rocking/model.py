@@ -46,7 +46,7 @@ class RockingModel:
     restitution: RestitutionLaw = field(default_factory=Housner)
     linearised: bool = False
     gravity: float = G
-    rest_tol: float = 1e-5
+    rest_tol: float = 1e-3
 
     def __post_init__(self) -> None:
         if not isinstance(self.body, RigidBlock):
