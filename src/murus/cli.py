@@ -1,10 +1,13 @@
 """The ``murus`` command line.
 
 The CLI is thin: it parses, calls the library and writes outputs. Heavy imports stay inside the
-commands so that ``murus --help`` is fast. Bad input exits with code 2 and a one-line message.
+commands so that ``murus --help`` is fast. Bad input exits with code 2 and a one-line message on
+standard error, and leaves no output behind.
 """
 
 from __future__ import annotations
+
+from pathlib import Path
 
 import typer
 
@@ -18,6 +21,94 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 app.add_typer(motion_app, name="motion")
+
+
+def fail(message: str) -> None:
+    """Print a one-line error and exit with code 2."""
+    typer.echo(f"error: {message}", err=True)
+    raise typer.Exit(code=2)
+
+
+@app.command()
+def run(
+    case: Path = typer.Argument(..., help="Case file (TOML)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Output folder."),
+    no_figure: bool = typer.Option(False, "--no-figure", help="Skip response.png."),
+) -> None:
+    """Run a rocking case file: writes summary.json, timeseries.csv and response.png."""
+    from murus.config import CaseError
+    from murus.rocking import simulate
+    from murus.rocking.case import build, load_case
+    from murus.rocking.output import write_outputs
+
+    try:
+        cfg, path, text = load_case(case)
+        model, motion, kwargs = build(cfg, path, text)
+        result = simulate(model, motion, **kwargs)
+    except (CaseError, ValueError) as exc:
+        fail(str(exc).splitlines()[0])
+    if not result.success:
+        fail(f"{case}: {result.message}")
+    write_outputs(result, out, figure=not no_figure)
+    s = result.summary()
+    typer.echo(
+        f"{case.name}: theta_max/alpha = {s['theta_max_over_alpha']:.4f}, impacts = {s['impacts']}"
+        f", overturned = {s['overturned']} -> {out}"
+    )
+
+
+def _examples_dir(given: Path | None) -> Path | None:
+    import murus
+
+    cands = [given] if given else [Path.cwd() / "examples",
+                                   Path(murus.__file__).resolve().parents[2] / "examples"]
+    for c in cands:
+        if c is not None and (c / "demo").is_dir():
+            return c
+    return None
+
+
+@app.command()
+def demo(
+    out: Path = typer.Option(Path("out/demo"), "--out", "-o", help="Output folder."),
+    examples: Path | None = typer.Option(None, help="Folder holding demo/*.toml."),
+) -> None:
+    """Run the demonstration cases (examples/demo/*.toml) and write their outputs."""
+    from murus.rocking.output import atomic_dir
+
+    ex = _examples_dir(examples)
+    if ex is None:
+        fail("cannot find the examples/demo folder; run from the murus checkout or give --examples")
+    cases = sorted((ex / "demo").glob("*.toml"))
+    if not cases:
+        fail(f"{ex / 'demo'}: no case files")
+
+    def write(tmp: Path) -> None:
+        from murus.config import CaseError
+        from murus.rocking import simulate
+        from murus.rocking.case import build, load_case
+        from murus.rocking.output import write_result_files
+
+        lines = ["case,theta_max_over_alpha,impacts,overturned,uplift_time_s"]
+        for c in cases:
+            try:
+                cfg, path, text = load_case(c)
+                model, motion, kwargs = build(cfg, path, text)
+            except CaseError as exc:
+                fail(str(exc))
+            res = simulate(model, motion, **kwargs)
+            sub = tmp / c.stem
+            sub.mkdir()
+            write_result_files(res, sub)
+            s = res.summary()
+            lines.append(f"{c.stem},{s['theta_max_over_alpha']:.6f},{s['impacts']},"
+                         f"{s['overturned']},{s['uplift_time']}")
+            typer.echo(f"{c.stem}: theta_max/alpha = {s['theta_max_over_alpha']:.4f}, "
+                       f"impacts = {s['impacts']}, overturned = {s['overturned']}")
+        (tmp / "demo_summary.csv").write_text("\n".join(lines) + "\n")
+
+    atomic_dir(out, write)
+    typer.echo(f"outputs in {out}/")
 
 
 def main() -> None:  # pragma: no cover - entry point

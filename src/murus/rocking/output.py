@@ -1,0 +1,94 @@
+"""Writers of rocking results: ``summary.json``, ``timeseries.csv`` and ``response.png``,
+written into a temporary folder renamed at the end, so that nothing is left half-written."""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+
+def _clean(obj):
+    if isinstance(obj, dict):
+        return {str(k): _clean(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_clean(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _clean(obj.tolist())
+    if isinstance(obj, np.generic):
+        return _clean(obj.item())
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj
+
+
+def summary_json(result) -> str:
+    return json.dumps(_clean(result.summary()), indent=2) + "\n"
+
+
+def timeseries_csv(result) -> str:
+    """Columns: t [s], ag [m/s2], av [m/s2], rc [-], theta [rad], theta_over_alpha [-],
+    omega [rad/s], pivot [-1, 0, 1]."""
+    cols = np.column_stack([
+        result.t, result.ag, result.av, result.rocking_criterion, result.theta,
+        result.theta / result.alpha, result.omega, result.pivot,
+    ])
+    header = "t_s,ag_m_s2,av_m_s2,rc,theta_rad,theta_over_alpha,omega_rad_s,pivot"
+    lines = [header]
+    fmt = "{:.6f},{:.9g},{:.9g},{:.9g},{:.12g},{:.9g},{:.9g},{:.0f}"
+    for row in cols:
+        lines.append(fmt.format(*row))
+    return "\n".join(lines) + "\n"
+
+
+def atomic_dir(out: Path, write: Callable[[Path], None]) -> Path:
+    """Run ``write(tmp)`` in a temporary sibling of ``out`` and move it into place when it
+    succeeds; on any error nothing is left at ``out`` (an existing ``out`` is replaced only
+    after success)."""
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+    try:
+        write(tmp)
+        if out.exists():
+            old = out.parent / f".{out.name}.old"
+            if old.exists():
+                shutil.rmtree(old)
+            out.rename(old)
+            tmp.rename(out)
+            shutil.rmtree(old)
+        else:
+            tmp.rename(out)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return out
+
+
+def write_result_files(result, folder: Path, figure: bool = True) -> None:
+    """Write ``summary.json``, ``timeseries.csv`` and ``response.png`` into ``folder``."""
+    folder = Path(folder)
+    (folder / "summary.json").write_text(summary_json(result))
+    (folder / "timeseries.csv").write_text(timeseries_csv(result))
+    if figure:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        from murus.rocking.plots import plot_response
+
+        ax = plot_response(result)
+        fig = ax[0].figure
+        fig.savefig(folder / "response.png", dpi=120)
+        plt.close(fig)
+
+
+def write_outputs(result, out: Path, figure: bool = True) -> Path:
+    """Write the outputs of one run into ``out`` atomically."""
+    return atomic_dir(out, lambda tmp: write_result_files(result, tmp, figure))
