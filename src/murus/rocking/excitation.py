@@ -55,6 +55,7 @@ class Record:
         X = np.zeros(K.X_SIZE)
         X[K.X_KIND] = 0.0
         X[K.X_DT] = self.dt
+        X[K.X_INV_DT] = 1.0 / self.dt
         return X
 
     def arrays(self) -> tuple[np.ndarray, np.ndarray]:

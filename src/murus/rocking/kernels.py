@@ -58,7 +58,8 @@ X_OMEGA = 4  # pulse circular frequency [rad/s]
 X_PHASE = 5  # pulse phase [rad]: a = A sin(omega (t - t0) + phase)
 X_DUR = 6  # pulse duration [s]
 X_PIECE = 7  # pulse subdivision for the scan of uplift at rest [s]
-X_SIZE = 8
+X_INV_DT = 8  # 1 / record time step [1/s]
+X_SIZE = 10
 
 # ---- layout of the summary vector ---------------------------------------------------------
 S_THETA_MAX = 0  # max |theta| [rad]
@@ -98,17 +99,17 @@ def continuous_at(tb, X, n):
     return X[X_T0] + eps < tb < X[X_T0] + X[X_DUR] - eps
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ground(t, tm, X, ag, av):
     """Ground acceleration (horizontal, vertical) [m/s2] at time ``t`` in the segment that
     contains ``tm`` (so that a discontinuous input takes the value of that segment)."""
     if X[X_KIND] == 0.0:
-        dt = X[X_DT]
+        idt = X[X_INV_DT]
         n = ag.shape[0]
-        k = int(math.floor(tm / dt))
+        k = int(tm * idt)  # tm >= 0: truncation is the floor
         if k < 0 or k >= n - 1:
             return 0.0, 0.0
-        u = t / dt - k
+        u = t * idt - k
         h = ag[k] + u * (ag[k + 1] - ag[k])
         v = 0.0
         if av.shape[0] == n:
@@ -148,7 +149,7 @@ def segment_end(t, X, n, t_end):
 
 
 # ======================================================================= moment terms =====
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def moment(th, om, s, ag, av, P):
     """Total moment about the active pivot ``s`` [N m] (seed 000 eq. 5, seed 002 eq. 1)."""
     m = P[P_M]
@@ -161,7 +162,7 @@ def moment(th, om, s, ag, av, P):
     return -m * geff * R * math.sin(x) + m * ag * R * math.cos(x)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def accel(th, om, s, t, tm, X, ag, av, P):
     """Angular acceleration [rad/s2]."""
     gh, gv = ground(t, tm, X, ag, av)
@@ -543,6 +544,9 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
     steps = 0
     a0 = 0.0
     have_a0 = False  # theta'' at t is known (first same as last, across continuous breakpoints)
+    mp_a = 0.0
+    mm_a = 0.0
+    have_m = False  # lift margins at t are known (at rest)
     while t < t_end:
         if steps >= max_steps:
             S[S_STATUS] = 2.0
@@ -550,15 +554,26 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
         tb = segment_end(t, X, n_rec, t_end)
         tm = 0.5 * (t + tb)
         if s == 0.0:
-            sd = lift_direction(t, tm, X, ag, av, P)
-            if sd == 0.0:
-                tu, sd = locate_uplift(t, tb, tm, X, ag, av, P)
-            else:
+            # at rest: lift margins at both ends of the segment; those at its start are carried
+            # over from the previous segment when the input is continuous there
+            if not have_m:
+                mp_a = lift_margin(t, tm, 1.0, X, ag, av, P)
+                mm_a = lift_margin(t, tm, -1.0, X, ag, av, P)
+            if mp_a > 0.0 or mm_a > 0.0:
                 tu = t
-            if sd == 0.0:
-                j = fill_rest(j, tb, out_dt, th_out, om_out, pv_out, True)
-                t = tb
-                continue
+                sd = 1.0 if mp_a >= mm_a else -1.0
+            else:
+                mp_b = lift_margin(tb, tm, 1.0, X, ag, av, P)
+                mm_b = lift_margin(tb, tm, -1.0, X, ag, av, P)
+                if mp_b <= 0.0 and mm_b <= 0.0:
+                    j = fill_rest(j, tb, out_dt, th_out, om_out, pv_out, True)
+                    t = tb
+                    mp_a = mp_b
+                    mm_a = mm_b
+                    have_m = continuous_at(tb, X, n_rec)
+                    continue
+                tu, sd = locate_uplift(t, tb, tm, X, ag, av, P)
+            have_m = False
             j = fill_rest(j, tu, out_dt, th_out, om_out, pv_out, False)
             t = tu
             s = sd

@@ -209,9 +209,6 @@ def simulate(
     P = mdl.params()
     X = exc.vector()
     ag, av = exc.arrays()
-    imp = np.full((max_impacts, 3), np.nan)
-    up = np.full((max(1000, max_impacts // 10), 2), np.nan)
-    pk = np.full((max_impacts + 1, 2), np.nan)
     if method == "event":
         if not (0.0 < rtol < 1e-2):
             raise ModelError(f"rtol must be in (0, 1e-2), got {rtol!r}")
@@ -219,24 +216,37 @@ def simulate(
         if not (math.isfinite(step) and step > 0.0):
             raise ModelError(f"out_dt must be positive, got {out_dt!r}")
         n_out = int(math.floor(t_end / step + 1e-9)) + 1
-        th = np.full(n_out, np.nan)
-        om = np.full(n_out, np.nan)
-        pv = np.full(n_out, np.nan)
-        S = K.event_core(P, X, ag, av, t_end, th0, om0, float(rtol), step, th, om, pv, imp, up,
-                         pk, int(max_steps))
         t = np.arange(n_out) * step
+
+        def kernel(th, om, pv, imp, up, pk):
+            return K.event_core(P, X, ag, av, t_end, th0, om0, float(rtol), step, th, om, pv,
+                                imp, up, pk, int(max_steps))
     elif method == "newmark":
         if dt is None or not (math.isfinite(dt) and dt > 0.0):
             raise ModelError("method 'newmark' needs a positive time step dt")
         n_steps = int(math.ceil(t_end / dt - 1e-9))
-        th = np.full(n_steps + 1, np.nan)
-        om = np.full(n_steps + 1, np.nan)
-        pv = np.full(n_steps + 1, np.nan)
-        S = K.newmark_core(P, X, ag, av, float(n_steps * dt), th0, om0, float(dt), th, om, pv,
-                           imp, up, pk)
-        t = np.arange(n_steps + 1) * dt
+        n_out = n_steps + 1
+        t = np.arange(n_out) * dt
+
+        def kernel(th, om, pv, imp, up, pk):
+            return K.newmark_core(P, X, ag, av, float(n_steps * dt), th0, om0, float(dt), th, om,
+                                  pv, imp, up, pk)
     else:
         raise ModelError(f"unknown method {method!r}; expected 'event' or 'newmark'")
+    # event logs start small; a run that logs more is repeated with room for all (deterministic)
+    cap = 256
+    while True:
+        th = np.full(n_out, np.nan)
+        om = np.full(n_out, np.nan)
+        pv = np.full(n_out, np.nan)
+        imp = np.full((min(cap, max_impacts), 3), np.nan)
+        up = np.full((cap, 2), np.nan)
+        pk = np.full((cap, 2), np.nan)
+        S = kernel(th, om, pv, imp, up, pk)
+        need = max(S[K.S_N_IMPACTS], S[K.S_N_UPLIFTS], S[K.S_N_PEAKS])
+        if need <= cap or cap >= max(max_impacts, 1):
+            break
+        cap = int(min(max(need, 2 * cap), max_impacts))
     gh, gv = exc.sample(t)
     n_imp = int(S[K.S_N_IMPACTS])
     n_up = int(S[K.S_N_UPLIFTS])
