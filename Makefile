@@ -26,7 +26,7 @@ test: $(TSTAMP)
 	$(BIN)/python -m pytest -q
 
 validate: $(TSTAMP)
-	$(BIN)/python -m murus.validation --out VALIDATION.md
+	$(BIN)/python validation/run.py --out VALIDATION.md
 
 bench: $(TSTAMP)
 	$(BIN)/python -m pip install -q -e ".[bench]"
