@@ -22,7 +22,7 @@ demo: $(STAMP)
 	$(BIN)/murus demo --out out/demo
 
 test: $(TSTAMP)
-	$(BIN)/python -m ruff check src tests benchmarks
+	$(BIN)/python -m ruff check src tests benchmarks validation
 	$(BIN)/python -m pytest -q
 
 validate: $(TSTAMP)

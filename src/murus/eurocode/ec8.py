@@ -111,8 +111,8 @@ def _shape(T, ag, S, TB, TC, TD, plateau):
         np.where(
             T <= TC,
             ag * S * plateau,
-            np.where(T <= TD, ag * S * plateau * TC / np.maximum(T, 1e-300),
-                     ag * S * plateau * TC * TD / np.maximum(T, 1e-300) ** 2),
+            np.where(T <= TD, ag * S * plateau * TC / np.maximum(T, 1e-12),
+                     ag * S * plateau * TC * TD / np.maximum(T, 1e-12) ** 2),
         ),
     )
     return out
@@ -183,7 +183,7 @@ def design_spectrum(T, ag: float, q: float, ground: str = "A", spectrum_type: in
     if np.any(T < 0):
         raise ValueError("periods must be >= 0 s")
     S, TB, TC, TD = p.S, p.TB, p.TC, p.TD
-    Tsafe = np.maximum(T, 1e-300)
+    Tsafe = np.maximum(T, 1e-12)
     return np.where(
         T <= TB,
         a * S * (2.0 / 3.0 + T / TB * (2.5 / q - 2.0 / 3.0)),

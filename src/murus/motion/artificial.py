@@ -30,7 +30,7 @@ import numpy as np
 
 from murus.motion.core import GroundMotion
 from murus.motion.processing import end_correction
-from murus.motion.spectra import response_spectrum
+from murus.motion.spectra import pseudo_spectrum
 
 __all__ = ["envelope", "spectrum_compatible", "generate_ec8", "check_ec8", "Criterion",
            "CompatibilityReport"]
@@ -76,11 +76,11 @@ def spectrum_compatible(target, periods, dt: float = 0.01, rise: float = 2.0,
     fp = 1.0 / periods[::-1]  # increasing frequencies
     gm = GroundMotion(dt=dt, acc=acc, name=name)
     # initial level: match the mean spectral ordinate
-    s = response_spectrum(gm, periods, damping)
-    gm = gm.scaled(float(np.mean(tgt) / np.mean(s.psa)))
+    s = pseudo_spectrum(gm, periods, damping)
+    gm = gm.scaled(float(np.mean(tgt) / np.mean(s)))
     for _ in range(iterations):
-        s = response_spectrum(gm, periods, damping)
-        ratio = (tgt / s.psa)[::-1]
+        s = pseudo_spectrum(gm, periods, damping)
+        ratio = (tgt / s)[::-1]
         r = np.interp(f, fp, ratio, left=ratio[0], right=ratio[-1])
         X = np.fft.rfft(gm.acc) * r
         X[f < f_min] = 0.0
@@ -204,7 +204,7 @@ def check_ec8(records: list[GroundMotion], ag: float, ground: str = "B",
     crit.append(Criterion("number of records >= 3", n >= 3, n, 3, n / 3))
     if n == 0:
         return CompatibilityReport(crit, T, np.zeros_like(T), tgt, (lo, hi))
-    spectra = [response_spectrum(r, T, damping).psa for r in records]
+    spectra = [pseudo_spectrum(r, T, damping) for r in records]
     mean = np.mean(spectra, axis=0)
     mpga = float(np.mean([r.pga for r in records]))
     crit.append(Criterion("mean PGA >= ag S", mpga >= agS * (1 - 1e-12), mpga, agS, mpga / agS))

@@ -193,7 +193,7 @@ class GroundMotion:
         return integrate(self.acc, self.dt)[0]
 
     def displacement(self) -> np.ndarray:
-        """Ground displacement [m] (exact double integral of the piecewise-linear acc, from rest)."""
+        """Ground displacement [m] (exact double integral of piecewise-linear acc, from rest)."""
         return integrate(self.acc, self.dt)[1]
 
     def with_meta(self, **kw) -> GroundMotion:

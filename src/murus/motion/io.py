@@ -680,7 +680,8 @@ def format_at2(motion: GroundMotion) -> str:
     ]
     a = motion.acc / G
     for k in range(0, a.size, 5):
-        lines.append("".join(f"{x:17.9E}" for x in a[k:k + 5]))
+        # blank-separated (a fixed width would merge fields with 3-digit exponents)
+        lines.append("".join(f" {x: .9E}" for x in a[k:k + 5]))
     return "\n".join(lines) + "\n"
 
 

@@ -45,9 +45,7 @@ def baseline_correct(motion: GroundMotion, order: int = 2, fit: str = "velocity"
     k = {"acceleration": 0, "velocity": 1, "displacement": 2}[fit]
     scale = max(t[-1], motion.dt)
     corr = P.deriv(k)(tau) / scale**k if k else P(tau)
-    def fix(a):
-        return a - corr
-    return motion._replace(acc=fix(motion.acc))
+    return motion._replace(acc=motion.acc - corr)
 
 
 def end_correction(motion: GroundMotion) -> GroundMotion:

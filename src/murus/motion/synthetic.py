@@ -6,7 +6,8 @@ Harmonic ramps (seed 001, eq. 5 and Fig. 12):
 - S1(t): the ramp up to the peak acceleration A_peak at t_p = A_peak / A, then an envelope that
   decreases linearly to zero over 2 t_p ("the duration of the decreasing part is defined as twice
   the increasing one"), total duration 3 t_p (:func:`two_ramp`);
-- S2(t): the ramp truncated when its envelope A t reaches a given acceleration (:func:`truncated_ramp`).
+- S2(t): the ramp truncated when its envelope A t reaches a given acceleration
+  (:func:`truncated_ramp`).
 
 Each accepts a vertical component of the same shape and ``vertical_ratio`` (default 0.5, seed 001
 after EN 1998-1) times the amplitude, ``vertical="in_phase"`` (positive peaks together) or
