@@ -507,6 +507,70 @@ def fill_rest(j, t_to, out_dt, th_out, om_out, pv_out, inclusive):
     return j
 
 
+@njit(cache=True)
+def initial_pivot(th0, om0):
+    """Pivot of the initial state: the side of theta0, else of omega0, else rest (0)."""
+    if th0 != 0.0:
+        return 1.0 if th0 > 0.0 else -1.0
+    if om0 != 0.0:
+        return 1.0 if om0 > 0.0 else -1.0
+    return 0.0
+
+
+@njit(cache=True)
+def rest_phase(t, tb, tm, X, ag, av, P, have_m, mp_a, mm_a, j, out_dt, th_out, om_out, pv_out,
+               S, up, nu_cap, n_rec):
+    """One segment ``[t, tb]`` at rest: lift margins at both ends (those at ``t`` carried over
+    from the previous segment when the input is continuous there), uplift located inside.
+
+    Returns ``(t, pivot, j, have_m, mp_a, mm_a)``: pivot 0 and ``t = tb`` when the body stays
+    at rest, else the uplift time and pivot."""
+    if not have_m:
+        mp_a = lift_margin(t, tm, 1.0, X, ag, av, P)
+        mm_a = lift_margin(t, tm, -1.0, X, ag, av, P)
+    if mp_a > 0.0 or mm_a > 0.0:
+        tu = t
+        sd = 1.0 if mp_a >= mm_a else -1.0
+    else:
+        mp_b = lift_margin(tb, tm, 1.0, X, ag, av, P)
+        mm_b = lift_margin(tb, tm, -1.0, X, ag, av, P)
+        if mp_b <= 0.0 and mm_b <= 0.0:
+            j = fill_rest(j, tb, out_dt, th_out, om_out, pv_out, True)
+            return tb, 0.0, j, continuous_at(tb, X, n_rec), mp_b, mm_b
+        tu, sd = locate_uplift(t, tb, tm, X, ag, av, P)
+    j = fill_rest(j, tu, out_dt, th_out, om_out, pv_out, False)
+    start_uplift(tu, S, up, nu_cap)
+    return tu, sd, j, False, mp_a, mm_a
+
+
+@njit(cache=True)
+def overturned_at(t, th, s, S, up, nu_cap, j, th_out, om_out, pv_out):
+    """Record overturning at ``t`` and fill the rest of the history."""
+    S[S_OVERTURNED] = 1.0
+    S[S_T_OVERTURN] = t
+    k = int(S[S_N_UPLIFTS]) - 1
+    if 0 <= k < nu_cap:
+        up[k, 1] = t
+    while j < th_out.shape[0]:
+        th_out[j] = th
+        om_out[j] = np.nan
+        pv_out[j] = s
+        j += 1
+    return j
+
+
+@njit(cache=True)
+def finish(S, t, th, om, s, steps, j, th_out, om_out, pv_out):
+    """Grid points beyond the last step by round-off only get the final state; counters."""
+    while j < th_out.shape[0] and S[S_OVERTURNED] == 0.0:
+        th_out[j] = th
+        om_out[j] = om
+        pv_out[j] = s
+        j += 1
+    S[S_N_STEPS] = steps
+    S[S_T_FINAL] = t
+
+
 # ============================================================ event-driven integrator ======
 @njit(cache=True)
 def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_out, imp, up,
@@ -530,12 +594,7 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
     t = 0.0
     th = th0
     om = om0
-    if th0 != 0.0:
-        s = 1.0 if th0 > 0.0 else -1.0
-    elif om0 != 0.0:
-        s = 1.0 if om0 > 0.0 else -1.0
-    else:
-        s = 0.0
+    s = initial_pivot(th0, om0)
     if s != 0.0:
         start_uplift(0.0, S, up, nu_cap)
         record_theta(S, mem, th, 0.0)
@@ -554,32 +613,13 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
         tb = segment_end(t, X, n_rec, t_end)
         tm = 0.5 * (t + tb)
         if s == 0.0:
-            # at rest: lift margins at both ends of the segment; those at its start are carried
-            # over from the previous segment when the input is continuous there
-            if not have_m:
-                mp_a = lift_margin(t, tm, 1.0, X, ag, av, P)
-                mm_a = lift_margin(t, tm, -1.0, X, ag, av, P)
-            if mp_a > 0.0 or mm_a > 0.0:
-                tu = t
-                sd = 1.0 if mp_a >= mm_a else -1.0
-            else:
-                mp_b = lift_margin(tb, tm, 1.0, X, ag, av, P)
-                mm_b = lift_margin(tb, tm, -1.0, X, ag, av, P)
-                if mp_b <= 0.0 and mm_b <= 0.0:
-                    j = fill_rest(j, tb, out_dt, th_out, om_out, pv_out, True)
-                    t = tb
-                    mp_a = mp_b
-                    mm_a = mm_b
-                    have_m = continuous_at(tb, X, n_rec)
-                    continue
-                tu, sd = locate_uplift(t, tb, tm, X, ag, av, P)
-            have_m = False
-            j = fill_rest(j, tu, out_dt, th_out, om_out, pv_out, False)
-            t = tu
-            s = sd
+            t, s, j, have_m, mp_a, mm_a = rest_phase(t, tb, tm, X, ag, av, P, have_m, mp_a, mm_a,
+                                                     j, out_dt, th_out, om_out, pv_out, S, up,
+                                                     nu_cap, n_rec)
+            if s == 0.0:
+                continue
             th = 0.0
             om = 0.0
-            start_uplift(t, S, up, nu_cap)
             h = 0.0
             have_a0 = False
             if t >= tb:
@@ -656,29 +696,13 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
         a0 = a1
         have_a0 = event == 0 and (not at_break or continuous_at(tb, X, n_rec))
         if event == 2:
-            S[S_OVERTURNED] = 1.0
-            S[S_T_OVERTURN] = t
-            k = int(S[S_N_UPLIFTS]) - 1
-            if 0 <= k < nu_cap:
-                up[k, 1] = t
-            while j < th_out.shape[0]:
-                th_out[j] = th
-                om_out[j] = np.nan
-                pv_out[j] = s
-                j += 1
+            j = overturned_at(t, th, s, S, up, nu_cap, j, th_out, om_out, pv_out)
             break
         if event == 1:
             om, s = do_impact(t, om, s, P, mem, S, imp, up, ni_cap, nu_cap, X, ag, av, tm)
             th = 0.0
             h = h_next
-    # grid points beyond the last step by round-off only: the final state
-    while j < th_out.shape[0] and S[S_OVERTURNED] == 0.0:
-        th_out[j] = th
-        om_out[j] = om
-        pv_out[j] = s
-        j += 1
-    S[S_N_STEPS] = steps
-    S[S_T_FINAL] = t
+    finish(S, t, th, om, s, steps, j, th_out, om_out, pv_out)
     return S
 
 
@@ -758,12 +782,7 @@ def newmark_core(P, X, ag, av, t_end, th0, om0, dt, th_out, om_out, pv_out, imp,
     nsteps = int(math.ceil(t_end / dt - 1e-9))
     th = th0
     om = om0
-    if th0 != 0.0:
-        s = 1.0 if th0 > 0.0 else -1.0
-    elif om0 != 0.0:
-        s = 1.0 if om0 > 0.0 else -1.0
-    else:
-        s = 0.0
+    s = initial_pivot(th0, om0)
     if s != 0.0:
         start_uplift(0.0, S, up, nu_cap)
         record_theta(S, mem, th, 0.0)
