@@ -112,3 +112,30 @@ def test_newmark_and_event_agree_on_peaks():
     # Newmark is second order: with dt p = 4e-4 the peak error is far below 1e-5 relative
     assert nm.peaks[0, 1] == pytest.approx(ev.peaks[0, 1], rel=1e-5)
     assert nm.impacts[0, 0] == pytest.approx(ev.impacts[0, 0], abs=1e-6)
+
+
+def test_overturning_times_match_quadrature():
+    """Kicked from rest with more than the energy of the unstable equilibrium, the block
+    overturns without impact; the times at which theta reaches alpha and pi/2 follow from
+    theta' = sqrt(w0^2 + 2 p^2 (cos(alpha) - cos(alpha - theta)))."""
+    a, p = BLOCK.alpha, BLOCK.p
+    w_crit = p * math.sqrt(2 * (1 - math.cos(a)))
+    w0 = 1.2 * w_crit
+
+    def t_to(level):
+        val, _ = quad(lambda th: 1 / math.sqrt(w0**2 + 2 * p**2 * (math.cos(a) - math.cos(a - th))),
+                      0, level, epsabs=1e-14, epsrel=1e-13)
+        return val
+
+    for method, tol in (("event", 1e-9), ("newmark", 1e-6)):
+        res = simulate(BLOCK, omega0=w0, duration=5.0, method=method, dt=1e-4, rtol=1e-11)
+        assert res.overturned and res.n_impacts == 0
+        assert res.t_overturn == pytest.approx(t_to(0.5 * math.pi), abs=tol)
+        if method == "event":
+            assert res.t_exceed_alpha == pytest.approx(t_to(a), abs=tol)
+            assert res.theta_max == pytest.approx(0.5 * math.pi, rel=1e-12)
+            assert res.limit_states == {"limited": True, "moderate": True, "overturning": True}
+    # just below the critical velocity the block comes back and impacts
+    res = simulate(BLOCK, omega0=0.99 * w_crit, duration=5.0)
+    assert not res.overturned and res.n_impacts >= 1
+    assert res.theta_max < a

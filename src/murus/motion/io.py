@@ -667,7 +667,8 @@ def format_csv(motion: GroundMotion, units: str = "m/s2") -> str:
 
 
 def format_at2(motion: GroundMotion) -> str:
-    """PEER AT2 text (units of g with g = murus.G, 10 significant digits, 5 values a line)."""
+    """PEER AT2 text (units of g with g = murus.G, 10 significant digits, 5 values a line).
+    AT2 holds the horizontal component only (a vertical component is not written)."""
     title = "PEER NGA STRONG MOTION DATABASE RECORD (written by murus)"
     ev = _clean(motion.meta.get("event", motion.name or "record")).replace(",", ";")
     st = _clean(motion.meta.get("station", "")).replace(",", ";")

@@ -1,0 +1,34 @@
+"""Ground motions: the :class:`GroundMotion` type, readers and writers, processing, intensity
+measures, response spectra, synthetic signals and artificial spectrum-compatible records.
+
+SI units: s, m/s², m/s, m. Heavy modules (scipy.signal, h5py, matplotlib) are imported lazily.
+
+>>> from murus.motion import GroundMotion, read, write
+>>> from murus.motion import synthetic, spectra, measures, processing
+"""
+
+from murus.motion.core import GroundMotion
+from murus.motion.io import MotionFormatError, read, write
+
+__all__ = ["GroundMotion", "read", "write", "MotionFormatError", "suite", "RecordsExtraMissing"]
+
+
+def suite(name: str = "farfield", components: str = "both", normalized: bool = False):
+    """FEMA P695 record set (needs ``pip install murus[records]``); see
+    :func:`murus.motion.records.suite`."""
+    from murus.motion.records import suite as _suite
+
+    return _suite(name, components, normalized)
+
+
+def __getattr__(name):
+    if name == "RecordsExtraMissing":
+        from murus.motion.records import RecordsExtraMissing
+
+        return RecordsExtraMissing
+    if name in ("synthetic", "spectra", "measures", "processing", "artificial", "records", "io",
+                "plots"):
+        import importlib
+
+        return importlib.import_module(f"murus.motion.{name}")
+    raise AttributeError(f"module 'murus.motion' has no attribute {name!r}")

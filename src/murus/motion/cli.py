@@ -1,0 +1,228 @@
+"""``murus motion`` commands: info, spectrum, generate ec8, ramp.
+
+Thin layer over the library. Bad input exits with code 2 and a one-line message on stderr;
+outputs are written into a temporary directory (or file) next to the target and renamed at the
+end, so a failed command leaves nothing half-written. Heavy imports stay inside the commands.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+
+import typer
+
+app = typer.Typer(
+    name="motion",
+    help="Ground motions: record info, response spectra, EC8 artificial records, ramps.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+generate_app = typer.Typer(help="Generate ground motions.", no_args_is_help=True)
+app.add_typer(generate_app, name="generate")
+
+
+def _fail(msg: str) -> None:
+    typer.echo(f"error: {' '.join(str(msg).split())}", err=True)
+    raise typer.Exit(2)
+
+
+@contextmanager
+def _guard():
+    """Turn user errors (bad files, bad values) into exit code 2 with a one-line message."""
+    from murus.motion.io import MotionFormatError
+
+    try:
+        yield
+    except (MotionFormatError, ValueError, ImportError, OSError) as exc:
+        _fail(str(exc))
+
+
+@contextmanager
+def _staged_dir(out: Path):
+    """Yield a temporary directory; on success move its files into ``out`` (created)."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        _fail(f"{out}: exists and is not a directory")
+    parent = out.resolve().parent
+    parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=parent))
+    try:
+        yield tmp
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    if not out.exists():
+        os.replace(tmp, out)
+    else:
+        for p in tmp.iterdir():
+            os.replace(p, out / p.name)
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _load(file: Path, units: str | None, dt: float | None):
+    from murus.motion.io import read
+
+    return read(file, units=units, dt=dt)
+
+
+UNITS_HELP = "Units of a CSV/text file without a '# units:' line: g, m/s2 or cm/s2."
+
+
+@app.command()
+def info(
+    file: Path = typer.Argument(..., help="Record file (AT2, ESM, COSMOS V2, CSV/text)."),
+    as_json: bool = typer.Option(False, "--json", help="Print a JSON object (SI units)."),
+    units: str = typer.Option(None, help=UNITS_HELP),
+    dt: float = typer.Option(None, help="Time step [s] of a one-column file."),
+) -> None:
+    """Format, dt, npts, PGA, PGV, Arias intensity and D5-95 of a record."""
+    with _guard():
+        from murus.motion.measures import summary
+
+        gm = _load(file, units, dt)
+        s = summary(gm)
+    s = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in s.items()}
+    s = {"file": str(file), "format": gm.meta.get("format"), "name": gm.name, **s}
+    if as_json:
+        typer.echo(json.dumps(s))
+        return
+    typer.echo(f"{file}  [{s['format']}]")
+    typer.echo(f"  npts {s['npts']}   dt {s['dt']:g} s   duration {s['duration']:.3f} s")
+    typer.echo(f"  PGA {s['pga']:.4g} m/s² ({s['pga'] / 9.81:.4g} g)   PGV {s['pgv']:.4g} m/s"
+               f"   PGD {s['pgd']:.4g} m")
+    typer.echo(f"  Arias {s['arias']:.4g} m/s   D5-75 {s['d5_75']:.3f} s   "
+               f"D5-95 {s['d5_95']:.3f} s   CAV {s['cav']:.4g} m/s")
+
+
+@app.command()
+def spectrum(
+    file: Path = typer.Argument(..., help="Record file."),
+    damping: float = typer.Option(0.05, help="Damping ratio (fraction of critical)."),
+    out: Path = typer.Option(Path("spectrum"), help="Output directory."),
+    units: str = typer.Option(None, help=UNITS_HELP),
+    dt: float = typer.Option(None, help="Time step [s] of a one-column file."),
+    n_periods: int = typer.Option(100, help="Number of log-spaced periods 0.01-10 s."),
+) -> None:
+    """Response spectrum: DIR/spectrum.csv (columns period [s], sd [m], sv [m/s], sa [m/s²],
+    psv [m/s], psa [m/s²]) and DIR/spectrum.png."""
+    with _guard():
+        if not 0 <= damping < 1:
+            raise ValueError(f"--damping {damping} must be in [0, 1)")
+        if n_periods < 2:
+            raise ValueError("--n-periods must be >= 2")
+        from murus.motion.spectra import default_periods, response_spectrum
+
+        gm = _load(file, units, dt)
+        sp = response_spectrum(gm, default_periods(n_periods), damping)
+        with _staged_dir(out) as tmp:
+            lines = ["period,sd,sv,sa,psv,psa"]
+            for row in zip(sp.period, sp.sd, sp.sv, sp.sa, sp.psv, sp.psa, strict=True):
+                lines.append(",".join(f"{x:.10g}" for x in row))
+            # units: period s, sd m, sv m/s, sa m/s² (absolute), psv m/s, psa m/s²
+            (tmp / "spectrum.csv").write_text("\n".join(lines) + "\n")
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            from murus.motion.plots import plot_spectrum
+
+            ax = plot_spectrum(sp, label=gm.name)
+            ax.figure.savefig(tmp / "spectrum.png", dpi=120)
+            plt.close(ax.figure)
+    typer.echo(f"wrote {out}/spectrum.csv and {out}/spectrum.png")
+
+
+@generate_app.command("ec8")
+def generate_ec8_cmd(
+    ag: float = typer.Option(..., help="Reference peak ground acceleration on rock, in g."),
+    ground: str = typer.Option("B", help="Ground type A-E."),
+    spectrum_type: int = typer.Option(1, "--type", help="Spectrum type 1 or 2."),
+    n: int = typer.Option(7, help="Number of records (EN 1998-1 requires at least 3)."),
+    seed: int = typer.Option(1, help="Random seed (reproducible)."),
+    out: Path = typer.Option(Path("ec8_records"), help="Output directory."),
+    t1: float = typer.Option(None, help="Fundamental period T1 [s]: check range [0.2 T1, 2 T1]."),
+    t_lo: float = typer.Option(0.05, help="Lower period of the check range [s] (without --t1)."),
+    t_hi: float = typer.Option(2.0, help="Upper period of the check range [s] (without --t1)."),
+    dt: float = typer.Option(0.01, help="Time step [s]."),
+    stationary: float = typer.Option(10.0, help="Stationary part of the envelope [s]."),
+) -> None:
+    """Artificial records compatible with the EN 1998-1 elastic spectrum, with the
+    §3.2.3.1.2 report (report.txt, report.json) and a figure of the spectra (spectra.png)."""
+    with _guard():
+        from murus import G
+        from murus.eurocode.ec8 import parameters
+        from murus.motion.artificial import check_ec8, generate_ec8
+        from murus.motion.io import write
+
+        if not (ag > 0 and math.isfinite(ag)):
+            raise ValueError(f"--ag {ag} must be positive (in g)")
+        if ag > 3:
+            raise ValueError(f"--ag {ag} is in g and looks too large (m/s² given?)")
+        parameters(ground, spectrum_type)
+        if n < 1 or n > 1000:
+            raise ValueError("--n must be between 1 and 1000")
+        if not (dt > 0 and dt <= 0.05):
+            raise ValueError("--dt must be in (0, 0.05] s")
+        rng = (0.2 * t1, 2.0 * t1) if t1 else (t_lo, t_hi)
+        if not 0 < rng[0] < rng[1]:
+            raise ValueError("period range must satisfy 0 < T_lo < T_hi")
+        agm = ag * G
+        recs = generate_ec8(agm, ground, spectrum_type, n=n, seed=seed, dt=dt,
+                            stationary=stationary)
+        rep = check_ec8(recs, agm, ground, spectrum_type, period_range=rng)
+        with _staged_dir(out) as tmp:
+            for r in recs:
+                write(r, tmp / f"{r.name}.csv")
+            (tmp / "report.txt").write_text(rep.to_text() + "\n")
+            (tmp / "report.json").write_text(json.dumps(rep.to_dict(), indent=2) + "\n")
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            from murus.motion.plots import plot_compatibility
+
+            ax = plot_compatibility(rep)
+            ax.figure.savefig(tmp / "spectra.png", dpi=120)
+            plt.close(ax.figure)
+    typer.echo(rep.to_text())
+    typer.echo(f"wrote {n} records, report.txt, report.json and spectra.png to {out}")
+
+
+@app.command()
+def ramp(
+    amplitude_rate: float = typer.Option(..., help="Amplitude rate A of S(t) = A t sin(2 pi f t)"
+                                                   " [m/s³]."),
+    frequency: float = typer.Option(..., help="Frequency f [Hz]."),
+    duration: float = typer.Option(..., help="Duration [s]."),
+    out: Path = typer.Option(..., help="Output file (.csv or .at2)."),
+    dt: float = typer.Option(0.005, help="Time step [s]."),
+    vertical: str = typer.Option(None, help="Vertical component: in_phase or opposition."),
+) -> None:
+    """Harmonic ramp S(t) = A t sin(2 pi f t) of seed 001 (eq. 5), written as CSV or AT2."""
+    with _guard():
+        from murus.motion.io import write
+        from murus.motion.synthetic import harmonic_ramp
+
+        for key, val in (("--amplitude-rate", amplitude_rate), ("--frequency", frequency),
+                         ("--duration", duration), ("--dt", dt)):
+            if not (math.isfinite(val) and val > 0):
+                raise ValueError(f"{key} {val} must be positive")
+        if frequency >= 0.5 / dt:
+            raise ValueError(f"--frequency {frequency} Hz is above the Nyquist frequency "
+                             f"{0.5 / dt:g} Hz of --dt {dt}")
+        if duration / dt > 5e7:
+            raise ValueError("too many samples: increase --dt or reduce --duration")
+        if vertical is not None and out.suffix.lower() == ".at2":
+            raise ValueError("an AT2 file holds one component: use a .csv --out for --vertical")
+        gm = harmonic_ramp(amplitude_rate, frequency, duration, dt, vertical=vertical)
+        write(gm, out)
+    typer.echo(f"wrote {out} ({gm.npts} samples, peak {gm.pga:.4g} m/s²)")
