@@ -24,12 +24,10 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", default=str(ROOT / "VALIDATION.md"))
     args = ap.parse_args()
+    import motion
     import rocking
 
-    parts = [HEADER, rocking.section()]
-    motion = HERE / "motion_section.md"
-    if motion.exists():
-        parts.append(motion.read_text())
+    parts = [HEADER, rocking.section(), motion.section()]
     Path(args.out).write_text("\n".join(parts))
     print(f"wrote {args.out}")
 
