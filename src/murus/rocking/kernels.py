@@ -508,13 +508,18 @@ def fill_rest(j, t_to, out_dt, th_out, om_out, pv_out, inclusive):
 
 
 @njit(cache=True)
-def initial_pivot(th0, om0):
-    """Pivot of the initial state: the side of theta0, else of omega0, else rest (0)."""
+def initial_pivot(th0, om0, S, mem, up):
+    """Pivot of the initial state (the side of theta0, else of omega0, else rest: 0); a body
+    that starts rocking opens an uplift interval at t = 0."""
+    s = 0.0
     if th0 != 0.0:
-        return 1.0 if th0 > 0.0 else -1.0
-    if om0 != 0.0:
-        return 1.0 if om0 > 0.0 else -1.0
-    return 0.0
+        s = 1.0 if th0 > 0.0 else -1.0
+    elif om0 != 0.0:
+        s = 1.0 if om0 > 0.0 else -1.0
+    if s != 0.0:
+        start_uplift(0.0, S, up, up.shape[0])
+        record_theta(S, mem, th0, 0.0)
+    return s
 
 
 @njit(cache=True)
@@ -594,10 +599,7 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
     t = 0.0
     th = th0
     om = om0
-    s = initial_pivot(th0, om0)
-    if s != 0.0:
-        start_uplift(0.0, S, up, nu_cap)
-        record_theta(S, mem, th, 0.0)
+    s = initial_pivot(th0, om0, S, mem, up)
     j = 0  # next output index
     h = 0.0
     steps = 0
@@ -782,10 +784,7 @@ def newmark_core(P, X, ag, av, t_end, th0, om0, dt, th_out, om_out, pv_out, imp,
     nsteps = int(math.ceil(t_end / dt - 1e-9))
     th = th0
     om = om0
-    s = initial_pivot(th0, om0)
-    if s != 0.0:
-        start_uplift(0.0, S, up, nu_cap)
-        record_theta(S, mem, th, 0.0)
+    s = initial_pivot(th0, om0, S, mem, up)
     nout = th_out.shape[0]
     if nout > 0:
         th_out[0] = th
