@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 from murus import G
 
@@ -105,12 +106,12 @@ class RigidBlock:
             raise BodyError("the body has no mass: give a positive density or top_mass")
 
     # -- masses -----------------------------------------------------------------------------
-    @property
+    @cached_property
     def body_mass(self) -> float:
         """Mass of the uniform rectangle [kg]."""
         return self.density * self.width * self.height * self.thickness
 
-    @property
+    @cached_property
     def mass(self) -> float:
         """Total mass ``m`` [kg]."""
         return self.body_mass + self.top_mass
@@ -121,22 +122,22 @@ class RigidBlock:
         return self.mass * G
 
     # -- geometry about a corner -------------------------------------------------------------
-    @property
+    @cached_property
     def z_G(self) -> float:
         """Height of the centre of gravity above the base [m]."""
         return (self.body_mass * 0.5 * self.height + self.top_mass * self.height) / self.mass
 
-    @property
+    @cached_property
     def R(self) -> float:
         """Distance from a base corner to the centre of gravity [m] (seed 000 eq. 2)."""
         return math.hypot(self.z_G, 0.5 * self.width)
 
-    @property
+    @cached_property
     def alpha(self) -> float:
         """Slenderness angle [rad]: ``arctan((b/2) / z_G)``."""
         return math.atan2(0.5 * self.width, self.z_G)
 
-    @property
+    @cached_property
     def I_O(self) -> float:
         """Moment of inertia about a base corner [kg m²] (seed 000 eq. 4, seed 002 Table 1).
 
@@ -146,7 +147,7 @@ class RigidBlock:
         top = self.top_mass * (self.height**2 + 0.25 * self.width**2)
         return rect + top
 
-    @property
+    @cached_property
     def p(self) -> float:
         """Frequency parameter ``p = sqrt(m g R / I_O)`` [rad/s] (seed 002 §2)."""
         return math.sqrt(self.mass * G * self.R / self.I_O)

@@ -89,7 +89,7 @@ HALF_PI = 0.5 * math.pi
 
 
 # ======================================================================== excitation ======
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def continuous_at(tb, X, n):
     """Whether the input is continuous at the breakpoint ``tb`` (records: everywhere but at
     their last sample; pulses: everywhere but at their start and end)."""
@@ -121,13 +121,13 @@ def ground(t, tm, X, ag, av):
     return X[X_AMP] * math.sin(X[X_OMEGA] * (t - t0) + X[X_PHASE]), 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def segment_end(t, X, n, t_end):
     """The next breakpoint of the input strictly after ``t`` (or ``t_end``)."""
     eps = 1e-12 * (1.0 + abs(t))
     if X[X_KIND] == 0.0:
         dt = X[X_DT]
-        k = int(math.floor(t / dt))
+        k = int(math.floor(t * X[X_INV_DT]))
         cand = (k + 1) * dt
         if cand <= t + eps:
             cand = (k + 2) * dt
@@ -180,7 +180,7 @@ def lift_direction(t, tm, X, ag, av, P):
     return 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def lift_margin(t, tm, s, X, ag, av, P):
     """``s * M(theta=0)`` about pivot ``s``: positive when the ground lifts the body."""
     gh, gv = ground(t, tm, X, ag, av)
@@ -492,7 +492,7 @@ def start_uplift(t, S, up, nu_cap):
     S[S_N_UPLIFTS] = k + 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def fill_rest(j, t_to, out_dt, th_out, om_out, pv_out, inclusive):
     """Write rest values on the output grid up to ``t_to``; returns the next output index."""
     n = th_out.shape[0]
@@ -522,7 +522,7 @@ def initial_pivot(th0, om0, S, mem, up):
     return s
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rest_phase(t, tb, tm, X, ag, av, P, have_m, mp_a, mm_a, j, out_dt, th_out, om_out, pv_out,
                S, up, nu_cap, n_rec):
     """One segment ``[t, tb]`` at rest: lift margins at both ends (those at ``t`` carried over

@@ -1,0 +1,45 @@
+"""Run every benchmark side by side with its peer and write BENCHMARKS.md (``make bench``;
+``--assemble-only`` rebuilds BENCHMARKS.md from the existing results files)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+
+HEADER = """# murus benchmarks
+
+Each benchmark runs murus and the tool a user would otherwise pick in the same process, on the
+same input, and reports ratios and accuracy against an exact or converged reference. Regenerate
+with `make bench` (installs the peers of the `bench` extra, then runs `benchmarks/run.py`).
+Timings are from a 2-core machine (the project's standard machine); numba kernels are compiled
+(and cached) before timing.
+
+"""
+
+RUNS = [
+    ("bench_rocking.py", "RESULTS_rocking.md"),
+    ("bench_spectra.py", "RESULTS_motion.md"),
+]
+
+
+def main() -> None:
+    assemble_only = "--assemble-only" in sys.argv[1:]
+    parts = [HEADER]
+    for script, out in RUNS:
+        if not assemble_only:
+            subprocess.run([sys.executable, str(HERE / script), "--out", str(HERE / out)],
+                           check=True)
+        text = (HERE / out).read_text()
+        # one heading level down: each results file becomes a section
+        parts.append("\n".join("#" + ln if ln.startswith("#") else ln
+                               for ln in text.splitlines()) + "\n")
+    (ROOT / "BENCHMARKS.md").write_text("\n".join(parts))
+    print(f"wrote {ROOT / 'BENCHMARKS.md'}")
+
+
+if __name__ == "__main__":
+    main()
