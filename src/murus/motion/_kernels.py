@@ -197,21 +197,23 @@ def _substep_peak(u, v, a0, a1, m, c, h, refine):
 
 
 @njit(cache=True)
+def nj_columns(omegas, xi, dt):
+    """The eight Nigam-Jennings coefficients of every oscillator, one array per coefficient."""
+    nper = omegas.size
+    C = np.empty((8, nper))
+    for j in range(nper):
+        cs = nj_coefficients(omegas[j], xi, dt)
+        for r in range(8):
+            C[r, j] = cs[r]
+    return C[0], C[1], C[2], C[3], C[4], C[5], C[6], C[7]
+
+
+@njit(cache=True)
 def _sd_single_step(acc, dt, omegas, xi, refine):
     """max |u| [m] for oscillators advanced by the record step only (no sub-steps)."""
     nper = omegas.size
     n = acc.size
-    c0 = np.empty(nper)
-    c1 = np.empty(nper)
-    c2 = np.empty(nper)
-    c3 = np.empty(nper)
-    c4 = np.empty(nper)
-    c5 = np.empty(nper)
-    c6 = np.empty(nper)
-    c7 = np.empty(nper)
-    for j in range(nper):
-        c0[j], c1[j], c2[j], c3[j], c4[j], c5[j], c6[j], c7[j] = nj_coefficients(
-            omegas[j], xi, dt)
+    c0, c1, c2, c3, c4, c5, c6, c7 = nj_columns(omegas, xi, dt)
     herm = 1.0 if refine else 0.0
     u = np.zeros(nper)
     v = np.zeros(nper)
@@ -249,21 +251,13 @@ def _sd_substepped(acc, dt, omegas, xi, substeps, refine):
     nper = omegas.size
     n = acc.size
     S = np.empty((nper, 8))
-    c0 = np.empty(nper)
-    c1 = np.empty(nper)
-    c2 = np.empty(nper)
-    c3 = np.empty(nper)
-    c4 = np.empty(nper)
-    c5 = np.empty(nper)
-    c6 = np.empty(nper)
-    c7 = np.empty(nper)
+    c0, c1, c2, c3, c4, c5, c6, c7 = nj_columns(omegas, xi, dt)
     iw2 = np.empty(nper)
     q = np.empty(nper)
     xw = np.empty(nper)
     iwd = np.empty(nper)
     for j in range(nper):
         w = omegas[j]
-        c0[j], c1[j], c2[j], c3[j], c4[j], c5[j], c6[j], c7[j] = nj_coefficients(w, xi, dt)
         cs = nj_coefficients(w, xi, dt / substeps[j])
         for r in range(8):
             S[j, r] = cs[r]
