@@ -24,10 +24,11 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", default=str(ROOT / "VALIDATION.md"))
     args = ap.parse_args()
+    import eurocode
     import motion
     import rocking
 
-    parts = [HEADER, rocking.section(), motion.section()]
+    parts = [HEADER, rocking.section(), motion.section(), eurocode.section()]
     Path(args.out).write_text("\n".join(parts))
     print(f"wrote {args.out}")
 
