@@ -139,7 +139,7 @@ def test_existing_output_replaced_only_on_success(tmp_path):
     assert (tmp_path / "out" / "summary.json").read_text() == before
 
 
-def test_help_is_fast_and_lists_commands():
+def test_help_lists_commands():
     r = runner.invoke(app, ["--help"])
     assert r.exit_code == 0
     assert "run" in r.output and "motion" in r.output and "demo" in r.output

@@ -458,7 +458,7 @@ def record_peak(S, pk, t, th):
 
 
 @njit(cache=True)
-def do_impact(t, om_b, s, P, mem, S, imp, up, ni_cap, nu_cap, X, ag, av, tm):
+def do_impact(t, om_b, s, P, mem, S, imp, up, ni_cap, nu_cap):
     """Apply an impact at ``t``: restitution, pivot switch, log; returns ``(omega, pivot)``."""
     e = restitution(P, mem, om_b, t)
     om_a = e * om_b
@@ -701,7 +701,7 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
             j = overturned_at(t, th, s, S, up, nu_cap, j, th_out, om_out, pv_out)
             break
         if event == 1:
-            om, s = do_impact(t, om, s, P, mem, S, imp, up, ni_cap, nu_cap, X, ag, av, tm)
+            om, s = do_impact(t, om, s, P, mem, S, imp, up, ni_cap, nu_cap)
             th = 0.0
             h = h_next
     finish(S, t, th, om, s, steps, j, th_out, om_out, pv_out)
@@ -832,7 +832,7 @@ def newmark_core(P, X, ag, av, t_end, th0, om0, dt, th_out, om_out, pv_out, imp,
                 tau = newmark_locate(1, 0.0, t, th, om, a, h, s, X, ag, av, P)
                 x, w, a1 = newmark_solve(t, th, om, a, tau, s, X, ag, av, P)
                 t = t + tau
-                om, s = do_impact(t, w, s, P, mem, S, imp, up, ni_cap, nu_cap, X, ag, av, t)
+                om, s = do_impact(t, w, s, P, mem, S, imp, up, ni_cap, nu_cap)
                 th = 0.0
                 a = accel(0.0, om, s, t, t, X, ag, av, P) if s != 0.0 else 0.0
                 continue

@@ -119,7 +119,7 @@ class RockingResult:
             "t_exceed_alpha": self.t_exceed_alpha,
             "impacts": self.n_impacts,
             "uplift_time": self.uplift_time,
-            "uplift_intervals": [[_f(a), _f(b)] for a, b in self.uplift_intervals],
+            "uplift_intervals": [[_opt(a), _opt(b)] for a, b in self.uplift_intervals],
             "limit_states": self.limit_states,
             "alpha": self.alpha,
             "p": self.p,
@@ -129,11 +129,6 @@ class RockingResult:
             "n_steps": self.n_steps,
             "input": self.meta,
         }
-
-
-def _f(x):
-    x = float(x)
-    return None if math.isnan(x) else x
 
 
 def _opt(x) -> float | None:
