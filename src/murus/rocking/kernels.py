@@ -38,16 +38,55 @@ import numpy as np
 from numba import njit, prange
 
 # ---- layout of the model parameter vector P ----------------------------------------------
-P_I = 0  # moment of inertia about the pivot [kg m2]
+P_I = 0  # moment of inertia about the corner pivot [kg m2]
 P_M = 1  # mass [kg]
 P_R = 2  # corner to centre of gravity [m]
 P_ALPHA = 3  # slenderness angle [rad]
 P_G = 4  # gravity [m/s2]
 P_LINEAR = 5  # 1.0: linearised equation
-P_E_KIND = 6  # restitution law code (0: constant)
+P_E_KIND = 6  # restitution law code (E_* below)
 P_E = 7  # restitution value for the constant law
 P_REST_TOL = 8  # rest threshold, relative to p * alpha
-P_SIZE = 16
+P_IG = 9  # moment of inertia about the centre of gravity [kg m2]
+P_ZG = 10  # height of the centre of gravity [m]
+P_HB = 11  # half base width b/2 [m]
+P_PIVOT = 12  # pivot law code (PIVOT_* below)
+P_PIVOT_MIN = 13  # smallest pivot lever [m]
+P_PIVOT_FACTOR = 14  # factor on the ground acceleration of the equivalent static load [-]
+P_TERMS = 15  # 1.0: restraint terms present (tie, spring bed, damper)
+P_TIE_MODE = 16  # 0 no tie, 1 tension only, 2 tension and compression
+P_TIE_K = 17  # tie stiffness [N/m]
+P_TIE_Y = 18  # tie height above the base [m]
+P_TIE_X = 19  # tie anchor, horizontal body coordinate from the base centre [m]
+P_TIE_P0 = 20  # pretension [N]
+P_TIE_FY = 21  # yield force [N] (inf: elastic)
+P_TIE_DP = 22  # plastic elongation [m] (state of the run: kernels work on a copy of P)
+P_BED_K = 23  # spring bed stiffness per unit height [N/m/m] (0: none)
+P_BED_Z1 = 24  # spring bed from height z1 ...
+P_BED_Z2 = 25  # ... to z2 [m]
+P_BED_X = 26  # spring bed face, horizontal body coordinate [m] (on the side of pivot -1)
+P_DMP_C = 27  # damper coefficient [N s/m] (0: none)
+P_DMP_Y = 28  # damper height [m]
+P_DMP_X = 29  # damper anchor, horizontal body coordinate [m]
+P_E_K0 = 30  # coefficient laws: e = 1 - (k0 + k1 r) sin^2(alpha_n) during the input ...
+P_E_K1 = 31
+P_E_K0F = 32  # ... and with (k0f, k1f) in free vibration (seed 000 eq. 17)
+P_E_K1F = 33
+P_E_FREE = 34  # 1.0: a distinct free-vibration law
+P_E_ASPECT = 35  # factor on the energy lost at an impact (seed 000 eq. 18; 1: off)
+P_E_ABSMAX = 36  # iterated variant of eq. 16: the largest rotation of the whole run (0: causal)
+P_SIZE = 40
+
+# restitution law codes
+E_CONSTANT = 0  # P_E at every impact (constant and Housner on the corner)
+E_MOMENTUM = 1  # angular momentum about the new pivot with the current levers (eq. 13)
+E_COEFFICIENT = 2  # 1 - (k0 + k1 r) sin^2(alpha_n) (eqs. 14-17)
+
+# pivot law codes (lever of the weight about the pivot, seed 000 §3.3.1)
+PIVOT_CORNER = 0  # b/2 (Housner)
+PIVOT_KERN = 1  # b/6
+PIVOT_EFFECTIVE = 2  # Lc / 2, Lc the compressed length of the linear distribution
+PIVOT_NEUTRAL = 3  # b - 3e, the zero-stress point of the linear distribution
 
 # ---- layout of the excitation vector X ---------------------------------------------------
 X_KIND = 0  # 0: sampled record (piecewise linear), 1: harmonic pulse
@@ -83,6 +122,7 @@ S_SIZE = 16
 # ---- law memory (state carried by history-dependent laws of later issues) ----------------
 MEM_HALF_MAX = 0  # max |theta| since the last impact
 MEM_ABS_MAX = 1  # max |theta| so far
+MEM_T_FREE = 2  # end of the input: free vibration after it [s]
 MEM_SIZE = 4
 
 HALF_PI = 0.5 * math.pi
@@ -150,23 +190,174 @@ def segment_end(t, X, n, t_end):
 
 # ======================================================================= moment terms =====
 @njit(cache=True, inline="always")
-def moment(th, om, s, ag, av, P):
-    """Total moment about the active pivot ``s`` [N m] (seed 000 eq. 5, seed 002 eq. 1)."""
+def lever(ag, av, P):
+    """Lever arm of the weight about the active pivot [m] (seed 000 §3.3.1, eqs. 11-12).
+
+    The corner law gives ``b/2``. The compressive-length laws place the pivot where the linear
+    no-tension stress block of the equivalent static load puts it: eccentricity
+    ``e = f |a_g| z_G / (g + a_v)`` (``f``: ``P_PIVOT_FACTOR``), compressed length
+    ``Lc = B`` for ``e <= B/6``, else ``3 (B/2 - e)`` (EN 1996-1-1, :mod:`murus.eurocode.ec6`),
+    and the lever is ``B/6`` (kern), ``Lc/2`` (effective width) or ``B - 3e`` (zero-stress point,
+    neutral axis), bounded to ``[P_PIVOT_MIN, B/2]``."""
+    hb = P[P_HB]
+    code = P[P_PIVOT]
+    if code == 0.0:
+        return hb
+    B = 2.0 * hb
+    if code == 1.0:
+        bl = B / 6.0
+    else:
+        e = P[P_PIVOT_FACTOR] * abs(ag) * P[P_ZG] / (P[P_G] + av)
+        lc = B if e <= B / 6.0 else 3.0 * (hb - e)
+        bl = 0.5 * lc if code == 2.0 else lc - hb
+    return min(hb, max(P[P_PIVOT_MIN], bl))
+
+
+@njit(cache=True, inline="always")
+def inertia(bl, P):
+    """Moment of inertia about a pivot of lever ``bl`` [kg m2] (parallel axes)."""
+    if P[P_PIVOT] == 0.0:
+        return P[P_I]
+    return P[P_IG] + P[P_M] * (bl * bl + P[P_ZG] * P[P_ZG])
+
+
+@njit(cache=True, inline="always")
+def _bed_moment(th, s, bl, P):
+    """Moment of a no-tension spring bed of stiffness ``k'`` per unit height on the face at body
+    coordinate ``x_b`` over heights ``[z1, z2]`` (the transverse walls of seed 002, eqs. 3-6).
+
+    A face point at height ``z`` (pivot frame ``x0 = x_b - s b``) moves horizontally by
+    ``x0 (cos th - 1) + z sin th``; the bed is compressed by ``c(z) = x0 (1 - cos th) - z sin th``
+    where positive and pushes back with ``k' c``, at the lever ``y(z) = z cos th - x0 sin th``.
+    The moment ``int k' c y dz`` over the compressed part is integrated in closed form. For the
+    bed on the pivot's face (``x0 = 0``) it is ``k' (z2^3 - z1^3)/3 sin(-th) cos th``, the term of
+    REFERENCE.md; seed 002 eq. 6 is ``-cos th`` times this integral for a bed at the distance
+    ``s`` from the pivot over ``[0, h']`` (its ``B`` term needs a factor ``s``), a difference of
+    order ``th^2`` at the tiny rotations a stiff bed allows (tests/rocking/test_restraints.py)."""
+    x0 = P[P_BED_X] - s * bl
+    ct = math.cos(th)
+    st = math.sin(th)
+    a0 = x0 * (1.0 - ct)
+    a1 = -st
+    z1 = P[P_BED_Z1]
+    z2 = P[P_BED_Z2]
+    if a1 == 0.0:
+        if a0 <= 0.0:
+            return 0.0
+    else:
+        zc = -a0 / a1  # c(z) = 0
+        if a1 > 0.0:
+            z1 = max(z1, zc)
+        else:
+            z2 = min(z2, zc)
+    if z2 <= z1:
+        return 0.0
+    y0 = -x0 * st
+    y1 = ct
+    c1 = y0 * a1 + y1 * a0
+    c2 = y1 * a1
+    F2 = y0 * a0 * z2 + 0.5 * c1 * z2 * z2 + c2 * z2 * z2 * z2 / 3.0
+    F1 = y0 * a0 * z1 + 0.5 * c1 * z1 * z1 + c2 * z1 * z1 * z1 / 3.0
+    return P[P_BED_K] * (F2 - F1)
+
+
+@njit(cache=True, inline="always")
+def tie_force(d, P):
+    """Tie force [N] (tension positive) at the outward displacement ``d`` [m] of its anchor:
+    pretension plus ``K (d - d_p)``, none in compression for a tension-only tie, bounded by the
+    yield force (``d_p``: plastic elongation so far)."""
+    f = P[P_TIE_P0] + P[P_TIE_K] * (d - P[P_TIE_DP])
+    fy = P[P_TIE_FY]
+    if P[P_TIE_MODE] == 1.0:
+        f = max(0.0, f)
+    elif f < -fy:
+        f = -fy
+    return min(f, fy)
+
+
+@njit(cache=True, inline="always")
+def restraint_moment(th, om, s, bl, P):
+    """Moments of the restraints about pivot ``s`` [N m] (seed 002 eqs. 2, 6, 7).
+
+    A body point at body coordinates ``(u, y)`` (``u`` from the base centre, positive towards
+    pivot +1, the outer face) sits at ``x0 = u - s b`` from the pivot; after the rotation it is at
+    ``X = x0 cos th + y sin th``, ``Y = y cos th - x0 sin th``. A horizontal force ``F_x`` there
+    has the moment ``Y F_x`` (positive clockwise, as theta).
+
+    - tie (eq. 2): outward anchor displacement ``d = X - x0``, force :func:`tie_force`, moment
+      ``-Y F``; for a tie at ``(R_t, alpha_t)`` from the pivot this is
+      ``-K R_t^2 cos(A_t) (sin alpha_t - sin A_t)``, seed 002 eq. 2;
+    - damper (eq. 7): the anchor moves at ``Y theta'``, force ``-c Y theta'``, moment
+      ``-c Y^2 theta'``, i.e. ``-c R_d^2 cos^2(A_d) theta'``;
+    - spring bed (eqs. 3-6): :func:`_bed_moment`."""
+    ct = math.cos(th)
+    st = math.sin(th)
+    M = 0.0
+    if P[P_TIE_MODE] != 0.0:
+        x0 = P[P_TIE_X] - s * bl
+        y = P[P_TIE_Y]
+        d = x0 * (ct - 1.0) + y * st
+        M -= (y * ct - x0 * st) * tie_force(d, P)
+    if P[P_DMP_C] != 0.0:
+        x0 = P[P_DMP_X] - s * bl
+        Y = P[P_DMP_Y] * ct - x0 * st
+        M -= P[P_DMP_C] * Y * Y * om
+    if P[P_BED_K] != 0.0:
+        M += _bed_moment(th, s, bl, P)
+    return M
+
+
+@njit(cache=True, inline="always")
+def moment_at(th, om, s, bl, ag, av, P):
+    """Total moment about the active pivot ``s`` of lever ``bl`` [N m] (seed 000 eq. 5, seed
+    002 eq. 1): gravity, ground inertia and the restraints."""
     m = P[P_M]
-    R = P[P_R]
-    a = P[P_ALPHA]
     geff = P[P_G] + av
+    if P[P_PIVOT] == 0.0:
+        R = P[P_R]
+        a = P[P_ALPHA]
+    else:
+        zg = P[P_ZG]
+        R = math.sqrt(bl * bl + zg * zg)
+        a = math.atan2(bl, zg)
     x = s * a - th
     if P[P_LINEAR] != 0.0:
-        return -m * geff * R * x + m * ag * R
-    return -m * geff * R * math.sin(x) + m * ag * R * math.cos(x)
+        M = -m * geff * R * x + m * ag * R
+    else:
+        M = -m * geff * R * math.sin(x) + m * ag * R * math.cos(x)
+    if P[P_TERMS] != 0.0:
+        M += restraint_moment(th, om, s, bl, P)
+    return M
+
+
+@njit(cache=True, inline="always")
+def moment(th, om, s, ag, av, P):
+    """Total moment about the active pivot ``s`` [N m]."""
+    return moment_at(th, om, s, lever(ag, av, P), ag, av, P)
 
 
 @njit(cache=True, inline="always")
 def accel(th, om, s, t, tm, X, ag, av, P):
     """Angular acceleration [rad/s2]."""
     gh, gv = ground(t, tm, X, ag, av)
-    return moment(th, om, s, gh, gv, P) / P[P_I]
+    bl = lever(gh, gv, P)
+    return moment_at(th, om, s, bl, gh, gv, P) / inertia(bl, P)
+
+
+@njit(cache=True)
+def update_tie(th, s, bl, P):
+    """Plastic elongation of a yielding tie after an accepted step (return mapping; the step
+    itself used the bounded force, so the error is local to the step that yields)."""
+    if P[P_TIE_MODE] == 0.0 or not math.isfinite(P[P_TIE_FY]):
+        return
+    x0 = P[P_TIE_X] - s * bl
+    d = x0 * (math.cos(th) - 1.0) + P[P_TIE_Y] * math.sin(th)
+    f = P[P_TIE_P0] + P[P_TIE_K] * (d - P[P_TIE_DP])
+    fy = P[P_TIE_FY]
+    if f > fy:
+        P[P_TIE_DP] = d - (fy - P[P_TIE_P0]) / P[P_TIE_K]
+    elif P[P_TIE_MODE] == 2.0 and f < -fy:
+        P[P_TIE_DP] = d - (-fy - P[P_TIE_P0]) / P[P_TIE_K]
 
 
 @njit(cache=True)
@@ -230,9 +421,42 @@ def locate_uplift(ta, tb, tm, X, ag, av, P):
 
 # ======================================================================== restitution =====
 @njit(cache=True)
-def restitution(P, mem, om_before, t):
-    """Coefficient of restitution applied at an impact (law code ``P[P_E_KIND]``)."""
-    return P[P_E]
+def restitution(P, mem, om_before, t, bl):
+    """Coefficient of restitution applied at an impact at time ``t`` with the pivot lever ``bl``
+    (law code ``P[P_E_KIND]``; seed 000 §3.3.2).
+
+    - constant (Housner on the corner included): ``P[P_E]``;
+    - momentum: angular momentum about the new pivot, levers ``b1`` before and ``b2`` after,
+      ``e = (I_G + m z_G^2 - m b1 b2) / (I_G + m z_G^2 + m b2^2)`` (Housner's derivation with the
+      pivot at the compressive-length point, eq. 13; ``cos 2 alpha`` for a mass at the top);
+      here ``b1 = b2 = bl``, the lever at the instant of the impact;
+    - coefficient: ``e = 1 - (k0 + k1 r) sin^2(alpha_n)``, ``alpha_n = atan(bl / z_G)``, with
+      ``r`` the largest rotation of the half-cycle before the impact over the largest rotation
+      so far (causal) or of the whole run (iterated, ``P_E_ABSMAX > 0``) (eqs. 14-16), and
+      ``(k0f, k1f)`` once the input has ended when a free-vibration law is set (eq. 17).
+
+    The aspect-ratio factor ``f`` of eq. 18 scales the energy lost at the impact:
+    ``e' = sqrt(1 - f (1 - e^2))``."""
+    kind = P[P_E_KIND]
+    if kind == 0.0:
+        e = P[P_E]
+    elif kind == 1.0:
+        j = P[P_IG] + P[P_M] * P[P_ZG] * P[P_ZG]
+        mb = P[P_M] * bl
+        e = (j - mb * bl) / (j + mb * bl)
+    else:
+        zg = P[P_ZG]
+        s2 = bl * bl / (bl * bl + zg * zg)
+        amax = P[P_E_ABSMAX] if P[P_E_ABSMAX] > 0.0 else mem[MEM_ABS_MAX]
+        r = min(1.0, mem[MEM_HALF_MAX] / amax) if amax > 0.0 else 1.0
+        if P[P_E_FREE] != 0.0 and t > mem[MEM_T_FREE]:
+            e = 1.0 - (P[P_E_K0F] + P[P_E_K1F] * r) * s2
+        else:
+            e = 1.0 - (P[P_E_K0] + P[P_E_K1] * r) * s2
+    f = P[P_E_ASPECT]
+    if f != 1.0:
+        e = math.sqrt(max(0.0, 1.0 - f * (1.0 - e * e)))
+    return min(1.0, max(0.0, e))
 
 
 # ========================================================================== helpers ======
@@ -458,9 +682,11 @@ def record_peak(S, pk, t, th):
 
 
 @njit(cache=True)
-def do_impact(t, om_b, s, P, mem, S, imp, up, ni_cap, nu_cap):
+def do_impact(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap):
     """Apply an impact at ``t``: restitution, pivot switch, log; returns ``(omega, pivot)``."""
-    e = restitution(P, mem, om_b, t)
+    gh, gv = ground(t, tm, X, ag, av)
+    bl = lever(gh, gv, P)
+    e = restitution(P, mem, om_b, t, bl)
     om_a = e * om_b
     n = int(S[S_N_IMPACTS])
     if n < ni_cap:
@@ -468,12 +694,13 @@ def do_impact(t, om_b, s, P, mem, S, imp, up, ni_cap, nu_cap):
         imp[n, 1] = om_b
         imp[n, 2] = om_a
     S[S_N_IMPACTS] = n + 1
-    S[S_E_DISSIPATED] += 0.5 * P[P_I] * (om_b * om_b - om_a * om_a)
+    i_o = inertia(bl, P)
+    S[S_E_DISSIPATED] += 0.5 * i_o * (om_b * om_b - om_a * om_a)
     mem[MEM_HALF_MAX] = 0.0
     p = math.sqrt(P[P_M] * P[P_G] * P[P_R] / P[P_I])
     if abs(om_a) < P[P_REST_TOL] * p * P[P_ALPHA]:
         # negligible velocity: back to rest unless the ground lifts the body right now
-        S[S_E_DISSIPATED] += 0.5 * P[P_I] * om_a * om_a
+        S[S_E_DISSIPATED] += 0.5 * i_o * om_a * om_a
         k = int(S[S_N_UPLIFTS]) - 1
         if 0 <= k < nu_cap:
             up[k, 1] = t
@@ -505,6 +732,20 @@ def fill_rest(j, t_to, out_dt, th_out, om_out, pv_out, inclusive):
         pv_out[j] = 0.0
         j += 1
     return j
+
+
+@njit(cache=True)
+def start_run(P, X, n_rec):
+    """Working copy of the parameters (a yielding tie keeps its plastic elongation there), law
+    memory with the end of the input (the switch to free vibration of seed 000 eq. 17)."""
+    Pw = P.copy()
+    Pw[P_TIE_DP] = 0.0
+    mem = np.zeros(MEM_SIZE)
+    if X[X_KIND] == 0.0:
+        mem[MEM_T_FREE] = (n_rec - 1) * X[X_DT]
+    else:
+        mem[MEM_T_FREE] = X[X_T0] + X[X_DUR]
+    return Pw, mem
 
 
 @njit(cache=True)
@@ -588,8 +829,8 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
     intervals into ``up`` (rows: start, end) and peaks into ``pk`` (rows: t, theta) up to their
     capacity. Returns the summary vector."""
     S = new_summary()
-    mem = np.zeros(MEM_SIZE)
     n_rec = ag.shape[0]
+    P, mem = start_run(P, X, n_rec)
     ni_cap = imp.shape[0]
     nu_cap = up.shape[0]
     alpha = P[P_ALPHA]
@@ -670,6 +911,9 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
             else:
                 nt = s * HALF_PI
             hh = tau
+        if P[P_TIE_MODE] != 0.0 and event == 0:
+            gh, gv = ground(t + hh, tm, X, ag, av)
+            update_tie(nt, s, lever(gh, gv, P), P)
         # non-terminal events on the interpolant: peak and first exceedance of alpha
         if s * om > 0.0 and s * no <= 0.0:
             u = hermite_root_omega(s, hh, th, om, a0, nt, no, a1)
@@ -701,7 +945,7 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
             j = overturned_at(t, th, s, S, up, nu_cap, j, th_out, om_out, pv_out)
             break
         if event == 1:
-            om, s = do_impact(t, om, s, P, mem, S, imp, up, ni_cap, nu_cap)
+            om, s = do_impact(t, tm, om, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap)
             th = 0.0
             h = h_next
     finish(S, t, th, om, s, steps, j, th_out, om_out, pv_out)
@@ -778,7 +1022,7 @@ def newmark_core(P, X, ag, av, t_end, th0, om0, dt, th_out, om_out, pv_out, imp,
     """Newmark constant-average-acceleration integration with the step ``dt`` given by the user,
     uplift and impacts located inside the step. Output on the grid ``k * dt``."""
     S = new_summary()
-    mem = np.zeros(MEM_SIZE)
+    P, mem = start_run(P, X, ag.shape[0])
     ni_cap = imp.shape[0]
     nu_cap = up.shape[0]
     nsteps = int(math.ceil(t_end / dt - 1e-9))
@@ -832,7 +1076,7 @@ def newmark_core(P, X, ag, av, t_end, th0, om0, dt, th_out, om_out, pv_out, imp,
                 tau = newmark_locate(1, 0.0, t, th, om, a, h, s, X, ag, av, P)
                 x, w, a1 = newmark_solve(t, th, om, a, tau, s, X, ag, av, P)
                 t = t + tau
-                om, s = do_impact(t, w, s, P, mem, S, imp, up, ni_cap, nu_cap)
+                om, s = do_impact(t, t, w, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap)
                 th = 0.0
                 a = accel(0.0, om, s, t, t, X, ag, av, P) if s != 0.0 else 0.0
                 continue
@@ -846,6 +1090,9 @@ def newmark_core(P, X, ag, av, t_end, th0, om0, dt, th_out, om_out, pv_out, imp,
             a = a1
             t = t_next
             record_theta(S, mem, th, t)
+            if P[P_TIE_MODE] != 0.0:
+                gh, gv = ground(t, t, X, ag, av)
+                update_tie(th, s, lever(gh, gv, P), P)
         if nout > n + 1:
             th_out[n + 1] = th
             om_out[n + 1] = om

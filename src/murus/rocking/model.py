@@ -16,6 +16,7 @@ from murus import G
 from murus.rocking import kernels as K
 from murus.rocking.body import RigidBlock
 from murus.rocking.restitution import Housner, RestitutionLaw, make_restitution
+from murus.rocking.restraints import Damper, Pivot, SpringBed, Tie
 
 
 class ModelError(ValueError):
@@ -40,6 +41,13 @@ class RockingModel:
     rest_tol:
         After an impact the body returns to rest when ``|theta'| < rest_tol * p * alpha`` and the
         ground cannot lift it (ends the cascade of ever smaller impacts).
+    tie, transverse_walls, damper:
+        Restraints (:mod:`murus.rocking.restraints`; seed 002 eqs. 2-7).
+    motion_sides:
+        ``"two"``: the wall rocks freely both ways; ``"one"``: inward rotations push against the
+        transverse walls (seed 002 "one-sided motion"), which must then be given.
+    pivot:
+        A :class:`Pivot` law (seed 000 §3.3.1); default Housner's corner.
     """
 
     body: RigidBlock
@@ -47,6 +55,11 @@ class RockingModel:
     linearised: bool = False
     gravity: float = G
     rest_tol: float = 1e-3
+    tie: Tie | None = None
+    transverse_walls: SpringBed | None = None
+    damper: Damper | None = None
+    motion_sides: str = "two"
+    pivot: Pivot = field(default_factory=Pivot)
 
     def __post_init__(self) -> None:
         if not isinstance(self.body, RigidBlock):
@@ -56,6 +69,46 @@ class RockingModel:
             raise ModelError(f"gravity must be positive, got {self.gravity!r}")
         if not (math.isfinite(self.rest_tol) and 0.0 <= self.rest_tol < 1.0):
             raise ModelError(f"rest_tol must be in [0, 1), got {self.rest_tol!r}")
+        self._check_restraints()
+
+    def _check_restraints(self) -> None:
+        b = self.body
+        hb = 0.5 * b.width
+        for item, kind in ((self.tie, Tie), (self.damper, Damper)):
+            if item is None:
+                continue
+            if not isinstance(item, kind):
+                raise ModelError(f"{kind.KIND} must be a {kind.__name__}")
+            if item.height > b.height * (1 + 1e-12):
+                raise ModelError(f"{kind.KIND} height {item.height:g} m is above the wall "
+                                 f"(height {b.height:g} m)")
+            if abs(item.x) > hb * (1 + 1e-12):
+                raise ModelError(f"{kind.KIND} x = {item.x:g} m is outside the wall "
+                                 f"(|x| <= {hb:g} m)")
+        bed = self.transverse_walls
+        if bed is not None:
+            if not isinstance(bed, SpringBed):
+                raise ModelError("transverse_walls must be a SpringBed")
+            if bed.z1 + bed.effective_height > b.height * (1 + 1e-12):
+                raise ModelError(
+                    f"transverse walls reach {bed.z1 + bed.effective_height:g} m, above the "
+                    f"wall (height {b.height:g} m)")
+            if bed.x is not None and abs(bed.x) > hb * (1 + 1e-12):
+                raise ModelError(f"transverse_walls x = {bed.x:g} m is outside the wall")
+        if self.motion_sides not in ("one", "two"):
+            raise ModelError(f"motion_sides must be 'one' or 'two', got {self.motion_sides!r}")
+        if self.motion_sides == "one" and bed is None:
+            raise ModelError("a one-sided wall needs transverse walls (the spring bed that stops "
+                             "inward rotations)")
+        if self.motion_sides == "two" and bed is not None:
+            raise ModelError("transverse walls make the motion one-sided: set "
+                             "motion_sides = 'one'")
+        if not isinstance(self.pivot, Pivot):
+            raise ModelError("pivot must be a Pivot")
+
+    @property
+    def restrained(self) -> bool:
+        return any(x is not None for x in (self.tie, self.transverse_walls, self.damper))
 
     @property
     def e(self) -> float:
@@ -77,18 +130,58 @@ class RockingModel:
         P[K.P_ALPHA] = b.alpha
         P[K.P_G] = self.gravity
         P[K.P_LINEAR] = 1.0 if self.linearised else 0.0
-        P[K.P_E_KIND] = float(self.restitution.KIND)
-        P[K.P_E] = self.restitution.kernel_value(b)
         P[K.P_REST_TOL] = self.rest_tol
+        P[K.P_IG] = b.I_O - b.mass * b.R**2
+        P[K.P_ZG] = b.z_G
+        P[K.P_HB] = 0.5 * b.width
+        P[K.P_PIVOT] = float(self.pivot.code)
+        P[K.P_PIVOT_MIN] = self.pivot.min_lever_fraction * 0.5 * b.width
+        P[K.P_PIVOT_FACTOR] = self.pivot.factor
+        P[K.P_E_ASPECT] = 1.0
+        self.restitution.fill(P, b, self.pivot.code != 0)
+        P[K.P_TERMS] = 1.0 if self.restrained else 0.0
+        if self.tie is not None:
+            t = self.tie
+            P[K.P_TIE_MODE] = 1.0 if t.tension_only else 2.0
+            P[K.P_TIE_K] = t.stiffness
+            P[K.P_TIE_Y] = t.height
+            P[K.P_TIE_X] = t.x
+            P[K.P_TIE_P0] = t.pretension
+            P[K.P_TIE_FY] = t.yield_force
+        if self.transverse_walls is not None:
+            w = self.transverse_walls
+            P[K.P_BED_K] = w.stiffness
+            P[K.P_BED_Z1] = w.z1
+            P[K.P_BED_Z2] = w.z1 + w.effective_height
+            P[K.P_BED_X] = 0.5 * b.width if w.x is None else w.x
+        if self.damper is not None:
+            P[K.P_DMP_C] = self.damper.coefficient
+            P[K.P_DMP_Y] = self.damper.height
+            P[K.P_DMP_X] = self.damper.x
         return P
 
+    def replace(self, **changes) -> RockingModel:
+        """A copy with some fields changed (validated again)."""
+        from dataclasses import replace
+
+        return replace(self, **changes)
+
     def describe(self) -> dict:
+        law = {"law": self.restitution.name, "e": self.e}
+        if hasattr(self.restitution, "describe"):
+            law.update(self.restitution.describe())
         return {
             "body": self.body.describe(),
-            "restitution": {"law": self.restitution.name, "e": self.e},
+            "restitution": law,
             "linearised": self.linearised,
             "gravity": self.gravity,
             "rest_tol": self.rest_tol,
+            "pivot": self.pivot.describe(),
+            "motion_sides": self.motion_sides,
+            "tie": None if self.tie is None else self.tie.describe(),
+            "transverse_walls": (None if self.transverse_walls is None
+                                 else self.transverse_walls.describe()),
+            "damper": None if self.damper is None else self.damper.describe(),
         }
 
 
@@ -96,14 +189,10 @@ def as_model(model_or_body, restitution=None, linearised: bool | None = None) ->
     """A :class:`RockingModel` from a model or a body (with optional overrides)."""
     if isinstance(model_or_body, RockingModel):
         m = model_or_body
-        if restitution is not None or linearised is not None:
-            m = RockingModel(
-                m.body,
-                restitution if restitution is not None else m.restitution,
-                m.linearised if linearised is None else linearised,
-                m.gravity,
-                m.rest_tol,
-            )
+        if restitution is not None:
+            m = m.replace(restitution=restitution)
+        if linearised is not None:
+            m = m.replace(linearised=linearised)
         return m
     if isinstance(model_or_body, RigidBlock):
         return RockingModel(

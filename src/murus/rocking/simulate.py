@@ -62,6 +62,12 @@ class RockingResult:
     message: str
     n_steps: int
     meta: dict = field(default_factory=dict)
+    lever: np.ndarray | None = None
+
+    def _lever(self) -> np.ndarray:
+        if self.lever is not None:
+            return self.lever
+        return np.full_like(self.t, 0.5 * self.meta["model"]["body"]["width"])
 
     @property
     def theta_max_over_alpha(self) -> float:
@@ -80,9 +86,13 @@ class RockingResult:
 
     @property
     def rocking_criterion(self) -> np.ndarray:
-        """``RC(t) = |a_g| / ((g + a_v) tan alpha)`` (seed 000 eq. 9; > 1: rocking starts)."""
+        """``RC(t) = |a_g| z_G / ((g + a_v) b_n)`` with ``b_n`` the lever of the weight about
+        the pivot: ``b/2`` on the corner (seed 000 eq. 9: ``m a_g H / (m g B/2)``), the
+        compressive-length lever with a moving pivot (eq. 11); > 1: rocking starts (without
+        restraints)."""
         g = self.meta.get("model", {}).get("gravity", 9.81)
-        return np.abs(self.ag) / ((g + self.av) * math.tan(self.alpha))
+        zg = self.meta["model"]["body"]["z_G"]
+        return np.abs(self.ag) * zg / ((g + self.av) * self._lever())
 
     @property
     def kinetic_energy(self) -> np.ndarray:
@@ -91,10 +101,15 @@ class RockingResult:
 
     @property
     def potential_energy(self) -> np.ndarray:
+        """Gravity potential above the rest position [J] (corner pivots; with a moving pivot it
+        is the corner's value, an approximation) plus the elastic energy of an elastic tie and
+        of the spring bed."""
         b = self.meta["model"]["body"]
         g = self.meta["model"]["gravity"]
         a = b["alpha"]
-        return b["mass"] * g * b["R"] * (np.cos(a - np.abs(self.theta)) - np.cos(a))
+        th = np.nan_to_num(self.theta)
+        out = b["mass"] * g * b["R"] * (np.cos(a - np.abs(th)) - np.cos(a))
+        return out + restraint_energy(self.meta["model"], th, self.pivot)
 
     @property
     def dissipated_energy(self) -> np.ndarray:
@@ -129,6 +144,41 @@ class RockingResult:
             "n_steps": self.n_steps,
             "input": self.meta,
         }
+
+
+def restraint_energy(model: dict, theta: np.ndarray, pivot: np.ndarray) -> np.ndarray:
+    """Elastic energy [J] stored in an elastic tie (no yielding, no pretension) and in the
+    spring bed at the rotations ``theta`` about the pivots ``pivot`` (corner levers)."""
+    body = model["body"]
+    hb = 0.5 * body["width"]
+    s = np.where(np.nan_to_num(pivot) < 0, -1.0, 1.0)
+    ct, st = np.cos(theta), np.sin(theta)
+    E = np.zeros_like(theta)
+    tie = model.get("tie")
+    if tie is not None:
+        x0 = tie["x"] - s * hb
+        d = x0 * (ct - 1.0) + tie["height"] * st
+        if tie["tension_only"]:
+            d = np.maximum(d, 0.0)
+        E += 0.5 * tie["stiffness"] * d**2
+    bed = model.get("transverse_walls")
+    if bed is not None:
+        xb = hb if bed["x"] is None else bed["x"]
+        x0 = xb - s * hb
+        # compression c(z) = a0 + a1 z >= 0 over [z1, z2]: int c^2 dz = [c^3 / (3 a1)]
+        a0 = x0 * (1.0 - ct)
+        a1 = -st
+        z1 = np.full_like(theta, bed["z1"])
+        z2 = z1 + bed["effective_height"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            zc = np.where(a1 != 0.0, -a0 / a1, np.nan)
+        z1 = np.where(a1 > 0.0, np.maximum(z1, zc), z1)
+        z2 = np.where(a1 < 0.0, np.minimum(z2, zc), z2)
+        live = (z2 > z1) & (a1 != 0.0)
+        a1s = np.where(live, a1, 1.0)
+        integral = ((a0 + a1s * z2) ** 3 - (a0 + a1s * z1) ** 3) / (3.0 * a1s)
+        E += np.where(live, 0.5 * bed["stiffness"] * integral, 0.0)
+    return E
 
 
 def _opt(x) -> float | None:
@@ -228,20 +278,19 @@ def simulate(
                                   pv, imp, up, pk)
     else:
         raise ModelError(f"unknown method {method!r}; expected 'event' or 'newmark'")
-    # event logs start small; a run that logs more is repeated with room for all (deterministic)
-    cap = 256
+    law = mdl.restitution
+    iterations = 0
     while True:
-        th = np.full(n_out, np.nan)
-        om = np.full(n_out, np.nan)
-        pv = np.full(n_out, np.nan)
-        imp = np.full((min(cap, max_impacts), 3), np.nan)
-        up = np.full((cap, 2), np.nan)
-        pk = np.full((cap, 2), np.nan)
-        S = kernel(th, om, pv, imp, up, pk)
-        need = max(S[K.S_N_IMPACTS], S[K.S_N_UPLIFTS], S[K.S_N_PEAKS])
-        if need <= cap or cap >= max(max_impacts, 1):
+        S, th, om, pv, imp, up, pk = _run_logged(kernel, n_out, max_impacts)
+        iterations += 1
+        if getattr(law, "variant", "causal") != "iterated" or S[K.S_OVERTURNED]:
             break
-        cap = int(min(max(need, 2 * cap), max_impacts))
+        target = float(S[K.S_THETA_MAX])
+        if P[K.P_E_ABSMAX] > 0.0 and abs(target - P[K.P_E_ABSMAX]) <= 1e-9 * target:
+            break
+        if iterations > law.max_iterations or target <= 0.0:
+            break
+        P[K.P_E_ABSMAX] = target
     gh, gv = exc.sample(t)
     n_imp = int(S[K.S_N_IMPACTS])
     n_up = int(S[K.S_N_UPLIFTS])
@@ -252,6 +301,8 @@ def simulate(
         "solver": {"method": method, "duration": t_end, "rtol": rtol if method == "event" else None,
                    "dt": dt if method == "newmark" else None, "theta0": th0, "omega0": om0},
     }
+    if getattr(law, "variant", "causal") == "iterated":
+        meta["solver"]["restitution_iterations"] = iterations
     return RockingResult(
         t=t,
         theta=th,
@@ -280,7 +331,27 @@ def simulate(
         message=_STATUS.get(status, "unknown"),
         n_steps=int(S[K.S_N_STEPS]),
         meta=meta,
+        lever=mdl.pivot.lever(mdl.body, gh, gv, mdl.gravity) if mdl.pivot.code else None,
     )
+
+
+def _run_logged(kernel, n_out, max_impacts):
+    """Run a kernel; event logs start small and a run that logs more is repeated with room for
+    all (the kernel is deterministic)."""
+    cap = 256
+    while True:
+        th = np.full(n_out, np.nan)
+        om = np.full(n_out, np.nan)
+        pv = np.full(n_out, np.nan)
+        imp = np.full((min(cap, max_impacts), 3), np.nan)
+        up = np.full((cap, 2), np.nan)
+        pk = np.full((cap, 2), np.nan)
+        S = kernel(th, om, pv, imp, up, pk)
+        need = max(S[K.S_N_IMPACTS], S[K.S_N_UPLIFTS], S[K.S_N_PEAKS])
+        if need <= cap or cap >= max(max_impacts, 1):
+            break
+        cap = int(min(max(need, 2 * cap), max_impacts))
+    return S, th, om, pv, imp, up, pk
 
 
 # ----------------------------------------------------------------------------- batches ----
@@ -369,18 +440,27 @@ def simulate_batch(
     nc = im.size
     if nc and av_flat.size and av_flat.size != ag_flat.size:  # pragma: no cover
         raise ModelError("internal: vertical records misaligned")
-    raw = K.batch_event(
-        np.ascontiguousarray(Pm[im]),
-        np.ascontiguousarray(Xm[ix]),
-        ag_flat,
-        av_flat,
-        offsets[ix],
-        lengths[ix],
-        t_end_m[ix],
-        np.full(nc, float(theta0)),
-        np.full(nc, float(omega0)),
-        float(rtol),
-        int(max_steps),
-    )
+    Pc = np.ascontiguousarray(Pm[im])
+    Xc = np.ascontiguousarray(Xm[ix])
+
+    def run(sel):
+        return K.batch_event(Pc[sel], Xc[sel], ag_flat, av_flat, offsets[ix][sel],
+                             lengths[ix][sel], t_end_m[ix][sel], np.full(sel.size, float(theta0)),
+                             np.full(sel.size, float(omega0)), float(rtol), int(max_steps))
+
+    raw = run(np.arange(nc))
+    # the iterated variant of seed 000 eq. 16: re-run the cases whose largest rotation moved
+    iterated = np.array([getattr(m.restitution, "variant", "") == "iterated" for m in mdls])
+    todo = np.flatnonzero(iterated[im])
+    for _ in range(max((m.restitution.max_iterations for m in mdls if
+                        getattr(m.restitution, "variant", "") == "iterated"), default=0)):
+        todo = todo[(raw[todo, K.S_OVERTURNED] == 0.0) & (raw[todo, K.S_THETA_MAX] > 0.0)]
+        target = raw[todo, K.S_THETA_MAX]
+        moved = np.abs(target - Pc[todo, K.P_E_ABSMAX]) > 1e-9 * target
+        todo = todo[moved]
+        if todo.size == 0:
+            break
+        Pc[todo, K.P_E_ABSMAX] = raw[todo, K.S_THETA_MAX]
+        raw[todo] = run(todo)
     return BatchResult(raw=raw.reshape(nm, nx, K.S_SIZE),
                        alpha=np.array([m.body.alpha for m in mdls]))

@@ -1,0 +1,207 @@
+"""Restraints of a rocking wall: a horizontal tie, a spring bed (transverse walls) and a viscous
+damper (seed 002 §2, eqs. 1-7), and the pivot laws of seed 000 §3.3.1.
+
+Geometry: a point of the wall is given by its height ``y`` above the base and its horizontal body
+coordinate ``x`` from the middle of the base, positive towards the pivot O of positive rotations
+(the outer face, ``x = +b/2``). The wall rotates outward (``theta > 0``) against the tie and
+inward (``theta < 0``, about the pivot O' at ``x = -b/2``) against the transverse walls,
+represented by a no-tension bed of horizontal springs over the heights ``[z1, z2]`` (seed 002
+Figure 1: "one-sided" motion). By default the bed acts on the face at ``x = +b/2``, at the
+distance ``s = b`` from O', which is the geometry of seed 002 eq. 6 (reproduced exactly up to the
+factor ``cos theta`` of its springs normal to the rotated face, and with the factor ``s`` that its
+printed ``B`` term lacks for dimensional consistency); ``x = -b/2`` puts it on the pivot's face.
+The moments are written out in :func:`murus.rocking.kernels.restraint_moment`. SI units: N/m,
+N/m per m of height, N s/m, m.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+
+class RestraintError(ValueError):
+    """An invalid restraint (one-line message naming the parameter)."""
+
+
+def _num(owner: str, name: str, value, *, positive=False, allow_inf=False) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise RestraintError(f"{owner} {name} must be a number, got {value!r}") from None
+    if math.isnan(v) or (math.isinf(v) and not allow_inf):
+        raise RestraintError(f"{owner} {name} must be finite, got {value!r}")
+    if positive and not v > 0.0:
+        raise RestraintError(f"{owner} {name} must be positive, got {value!r}")
+    if not positive and v < 0.0:
+        raise RestraintError(f"{owner} {name} must not be negative, got {value!r}")
+    return v
+
+
+@dataclass(frozen=True)
+class Tie:
+    """A horizontal tie (steel tie rod, or the elastic part of a device) of axial stiffness
+    ``stiffness`` [N/m] anchored at ``height`` [m] and body coordinate ``x`` [m] (seed 002 eq. 2,
+    term T_K).
+
+    ``tension_only`` (default): the tie works only when the wall moves outward (a rod anchored
+    by a plate); ``False``: the bidirectional elastic tie of seed 002 Figure 2.
+    ``pretension`` [N] and ``yield_force`` [N] (elastic-perfectly plastic, with the plastic
+    elongation carried along the run) are the options seed 002 leaves out."""
+
+    stiffness: float
+    height: float
+    x: float = 0.0
+    tension_only: bool = True
+    pretension: float = 0.0
+    yield_force: float = math.inf
+    KIND: ClassVar[str] = "tie"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stiffness", _num("tie", "stiffness", self.stiffness,
+                                                   positive=True))
+        object.__setattr__(self, "height", _num("tie", "height", self.height, positive=True))
+        object.__setattr__(self, "pretension", _num("tie", "pretension", self.pretension))
+        object.__setattr__(self, "yield_force", _num("tie", "yield_force", self.yield_force,
+                                                     positive=True, allow_inf=True))
+        try:
+            object.__setattr__(self, "x", float(self.x))
+        except (TypeError, ValueError):
+            raise RestraintError(f"tie x must be a number, got {self.x!r}") from None
+        if self.pretension > self.yield_force:
+            raise RestraintError("tie pretension exceeds its yield force")
+
+    def describe(self) -> dict:
+        return {"stiffness": self.stiffness, "height": self.height, "x": self.x,
+                "tension_only": self.tension_only, "pretension": self.pretension,
+                "yield_force": None if math.isinf(self.yield_force) else self.yield_force}
+
+
+@dataclass(frozen=True)
+class SpringBed:
+    """Transverse walls as a no-tension bed of horizontal springs of stiffness ``stiffness``
+    per unit height [N/m/m], from ``z1`` to ``z1 + effective_height`` [m], resisting inward
+    motion (seed 002 eqs. 3-6, term T_K'; eq. 10: ``K' = E_x t / L_eff``, 4.5e8 N/m/m in §4.2).
+    ``x``: body coordinate of the face it acts on (default ``+b/2``, seed 002 eq. 6; see the
+    module docstring)."""
+
+    stiffness: float
+    effective_height: float
+    z1: float = 0.0
+    x: float | None = None
+    KIND: ClassVar[str] = "transverse_walls"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stiffness", _num("transverse_walls", "stiffness",
+                                                   self.stiffness, positive=True))
+        object.__setattr__(self, "effective_height", _num(
+            "transverse_walls", "effective_height", self.effective_height, positive=True))
+        object.__setattr__(self, "z1", _num("transverse_walls", "z1", self.z1))
+
+    def describe(self) -> dict:
+        return {"stiffness": self.stiffness, "effective_height": self.effective_height,
+                "z1": self.z1, "x": self.x}
+
+
+@dataclass(frozen=True)
+class Damper:
+    """A horizontal linear viscous damper of coefficient ``coefficient`` [N s/m] at ``height``
+    [m] and body coordinate ``x`` [m] (seed 002 eq. 7, term T_D; eq. 13 gives the reference
+    ``c_d``, :func:`murus.rocking.design.reference_damping`)."""
+
+    coefficient: float
+    height: float
+    x: float = 0.0
+    KIND: ClassVar[str] = "damper"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "coefficient", _num("damper", "coefficient",
+                                                     self.coefficient))
+        object.__setattr__(self, "height", _num("damper", "height", self.height,
+                                                positive=True))
+        try:
+            object.__setattr__(self, "x", float(self.x))
+        except (TypeError, ValueError):
+            raise RestraintError(f"damper x must be a number, got {self.x!r}") from None
+
+    def describe(self) -> dict:
+        return {"coefficient": self.coefficient, "height": self.height, "x": self.x}
+
+
+# ------------------------------------------------------------------------------ pivot laws ---
+#: Readings of the zero-stress pivot of seed 000 §3.3.1 (lever arm of the weight about it).
+PIVOT_READINGS = {
+    "corner": 0,  # b/2, Housner's corner
+    "kern": 1,  # b/6
+    "effective-width": 2,  # Lc/2
+    "neutral-axis": 3,  # b - 3e
+}
+
+
+@dataclass(frozen=True)
+class Pivot:
+    """Where the wall pivots (seed 000 §3.3.1, eqs. 11-13, reconstructed: their text was lost).
+
+    ``law = "corner"`` is Housner's corner. ``law = "compressive-length"`` puts the pivot at the
+    point given by the EN 1996-1-1 linear stress block of the equivalent static load at every
+    instant: eccentricity ``e = factor |a_g| z_G / (g + a_v)``, compressed length ``Lc``, and the
+    lever of the weight about the pivot is read as ``reading``:
+
+    - ``"kern"``: ``b/6``; rocking starts at 1.5 times the corner's criterion;
+    - ``"effective-width"`` (default): ``Lc/2``, the middle of the compressed length; rocking
+      starts when ``e = 0.3 b``, at 5/3 of the corner's criterion;
+    - ``"neutral-axis"``: ``b - 3e = Lc - b/2``, the lever about the zero-stress point; starts at
+      ``e = b/4``, twice the corner's criterion;
+    - ``"corner"``: ``b/2``.
+
+    All are bounded to ``[min_lever, b/2]`` (``min_lever`` default 5 % of ``b/2``: a lever of
+    zero would leave no restoring moment at all). The default reading is the one that predicts
+    rocking for tests S07-S09 of both walls of seed 000 and not for the long wall at S06
+    (VALIDATION.md). ``alpha_n``, ``R_n``, the inertia about the pivot and Housner's ``e_n``
+    follow the lever (eqs. 12-13)."""
+
+    law: str = "corner"
+    reading: str = "effective-width"
+    factor: float = 1.0
+    min_lever_fraction: float = 0.05
+
+    def __post_init__(self) -> None:
+        if self.law not in ("corner", "compressive-length"):
+            raise RestraintError(
+                f"unknown pivot law {self.law!r}; expected 'corner' or 'compressive-length'")
+        if self.reading not in PIVOT_READINGS:
+            raise RestraintError(f"unknown pivot reading {self.reading!r}; expected one of "
+                                 f"{', '.join(PIVOT_READINGS)}")
+        f = _num("pivot", "factor", self.factor, positive=True)
+        object.__setattr__(self, "factor", f)
+        mf = _num("pivot", "min_lever_fraction", self.min_lever_fraction, positive=True)
+        if mf > 1.0:
+            raise RestraintError(f"pivot min_lever_fraction must be at most 1, got {mf!r}")
+        object.__setattr__(self, "min_lever_fraction", mf)
+
+    @property
+    def code(self) -> int:
+        return 0 if self.law == "corner" else PIVOT_READINGS[self.reading]
+
+    def lever(self, body, a_g, a_v=0.0, g: float = 9.81):
+        """Lever of the weight about the pivot [m] for ground accelerations [m/s²] (NumPy),
+        the same formula as the kernel's :func:`murus.rocking.kernels.lever`."""
+        import numpy as np
+
+        hb = 0.5 * body.width
+        if self.code == 0:
+            return np.full(np.shape(a_g), hb) if np.ndim(a_g) else hb
+        B = body.width
+        if self.code == 1:
+            bl = np.full(np.shape(a_g), B / 6.0)
+        else:
+            e = self.factor * np.abs(a_g) * body.z_G / (g + np.asarray(a_v))
+            lc = np.where(e <= B / 6.0, B, 3.0 * (hb - e))
+            bl = 0.5 * lc if self.code == 2 else lc - hb
+        out = np.clip(bl, self.min_lever_fraction * hb, hb)
+        return float(out) if np.ndim(out) == 0 else out
+
+    def describe(self) -> dict:
+        return {"law": self.law, "reading": self.reading if self.law != "corner" else None,
+                "factor": self.factor, "min_lever_fraction": self.min_lever_fraction}
