@@ -12,6 +12,7 @@ from pathlib import Path
 import typer
 
 from murus.motion.cli import app as motion_app
+from murus.rocking.design_cli import app as design_app
 
 app = typer.Typer(
     name="murus",
@@ -21,6 +22,7 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 app.add_typer(motion_app, name="motion")
+app.add_typer(design_app, name="design")
 
 
 def fail(message: str) -> None:

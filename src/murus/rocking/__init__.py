@@ -4,6 +4,9 @@ Sign convention (seed 000 §3.1.1, seed 002 Figure 1): ``theta > 0`` is a clockw
 about the right corner O; a positive ground acceleration drives a positive rotation (seed 002
 eq. 1); the vertical ground acceleration is positive upward. SI units.
 
+The names below are imported on first use (PEP 562), so that ``murus --help`` and the design
+commands do not load numba.
+
 >>> from murus.rocking import RigidBlock, simulate
 >>> res = simulate(RigidBlock(width=0.25, height=1.0, density=2000.0), theta0_over_alpha=0.5,
 ...                duration=1.0)
@@ -11,45 +14,50 @@ eq. 1); the vertical ground acceleration is positive upward. SI units.
 True
 """
 
-from murus.rocking.body import BodyError, RigidBlock, seed000_wall, seed002_block
-from murus.rocking.excitation import (
-    ExcitationError,
-    HarmonicPulse,
-    Record,
-    as_excitation,
-    cosine_pulse,
-    free_vibration,
-    rectangular_pulse,
-    sine_pulse,
-)
-from murus.rocking.model import ModelError, RockingModel
-from murus.rocking.restitution import Constant, Housner, RestitutionError
-from murus.rocking.simulate import BatchResult, RockingResult, simulate, simulate_batch
+from importlib import import_module
 
-__all__ = [
-    "BatchResult",
-    "BodyError",
-    "Constant",
-    "ExcitationError",
-    "HarmonicPulse",
-    "Housner",
-    "ModelError",
-    "Record",
-    "RestitutionError",
-    "RigidBlock",
-    "RockingModel",
-    "RockingResult",
-    "as_excitation",
-    "cosine_pulse",
-    "free_vibration",
-    "rectangular_pulse",
-    "seed000_wall",
-    "seed002_block",
-    "simulate",
-    "simulate_batch",
-    "sine_pulse",
-]
+_EXPORTS = {
+    "BodyError": "body",
+    "RigidBlock": "body",
+    "seed000_wall": "body",
+    "seed002_block": "body",
+    "ExcitationError": "excitation",
+    "HarmonicPulse": "excitation",
+    "Record": "excitation",
+    "as_excitation": "excitation",
+    "cosine_pulse": "excitation",
+    "free_vibration": "excitation",
+    "rectangular_pulse": "excitation",
+    "sine_pulse": "excitation",
+    "ModelError": "model",
+    "RockingModel": "model",
+    "AmplitudeDependent": "restitution",
+    "Constant": "restitution",
+    "Housner": "restitution",
+    "RestitutionError": "restitution",
+    "Damper": "restraints",
+    "Pivot": "restraints",
+    "RestraintError": "restraints",
+    "SpringBed": "restraints",
+    "Tie": "restraints",
+    "BatchResult": "simulate",
+    "RockingResult": "simulate",
+    "simulate": "simulate",
+    "simulate_batch": "simulate",
+    "critical_amplitude": "analysis",
+    "overturns": "analysis",
+}
 
-from murus.rocking.analysis import critical_amplitude, overturns  # noqa: E402
+__all__ = sorted(_EXPORTS)
 
-__all__ += ["critical_amplitude", "overturns"]
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        value = getattr(import_module(f"murus.rocking.{_EXPORTS[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'murus.rocking' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
