@@ -6,7 +6,7 @@ import math
 from collections.abc import Callable
 
 from murus.rocking.model import ModelError, as_model
-from murus.rocking.simulate import simulate
+from murus.rocking.engine import simulate
 
 
 def overturns(model, excitation, *, without_impact: bool = False, tail: float | None = None,
