@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
-from murus.rocking.model import ModelError, as_model
 from murus.rocking.engine import simulate
+from murus.rocking.model import ModelError, as_model
 
 
 def overturns(model, excitation, *, without_impact: bool = False, tail: float | None = None,

@@ -9,7 +9,23 @@ Example (every key documented in the README)::
     density = 2140.7     # kg/m3, uniform rectangle (omit for a massless wall)
     top_mass = 0.0       # kg at mid-top
     [restitution]
-    law = "housner"      # or "constant" with value = 0.9
+    law = "housner"      # or "constant" (value = 0.9), "coefficient" (k = 1.5: e = 1 - k sin2
+                         # alpha, seed 000 eqs. 14-15), "amplitude-dependent" (k0, k1,
+                         # k0_free, k1_free, A0, variant = "causal" | "iterated": eqs. 16-18)
+    [pivot]              # seed 000 §3.3.1
+    law = "corner"       # or "compressive-length" with reading = "effective-width" | "kern" |
+                         # "neutral-axis", factor = 1.0, min_lever_fraction = 0.05
+    [restraint]          # seed 002
+    motion_sides = "two" # or "one": inward rotations against the transverse walls
+    [restraint.tie]
+    stiffness = 7.0e4    # N/m; height (m), x (m, body coordinate), tension_only = true,
+    height = 6.0         # pretension (N), yield_force (N)
+    [restraint.damper]
+    coefficient = 1.0e3  # N s/m, or fraction (of c_d) with delta_t (s), seed 002 eq. 13
+    height = 6.0
+    [restraint.transverse_walls]
+    stiffness = 4.5e8    # N/m per m of height; effective_height (m), z1 (m), x (m)
+    effective_height = 6.0
     [motion]
     file = "record.csv"  # two columns time [s], acceleration (or one column with dt)
     units = "g"
@@ -48,17 +64,99 @@ class BodyCfg(Strict):
         return self
 
 
+Coef = float | None
+
+
 class RestitutionCfg(Strict):
-    law: Literal["housner", "constant"] = "housner"
+    law: Literal["housner", "constant", "coefficient", "amplitude-dependent"] = "housner"
     value: float | None = Field(default=None, ge=0.0, le=1.0, allow_inf_nan=False)
+    k: Coef = Field(default=None, ge=0.0, allow_inf_nan=False)
+    k0: Coef = Field(default=None, ge=0.0, allow_inf_nan=False)
+    k1: Coef = Field(default=None, ge=0.0, allow_inf_nan=False)
+    k0_free: Coef = Field(default=None, ge=0.0, allow_inf_nan=False)
+    k1_free: Coef = Field(default=None, ge=0.0, allow_inf_nan=False)
+    A0: Coef = Field(default=None, gt=0.0, allow_inf_nan=False)
+    variant: Literal["causal", "iterated"] | None = None
 
     @model_validator(mode="after")
     def _value(self):
+        given = {k for k in ("value", "k", "k0", "k1", "k0_free", "k1_free", "A0", "variant")
+                 if getattr(self, k) is not None}
+        allowed = {
+            "housner": set(),
+            "constant": {"value"},
+            "coefficient": {"k", "k0_free", "A0"},
+            "amplitude-dependent": {"k0", "k1", "k0_free", "k1_free", "A0", "variant"},
+        }[self.law]
+        extra = sorted(given - allowed)
+        if extra:
+            raise ValueError(f"law '{self.law}' takes no {', '.join(extra)}"
+                             + (f" (it takes {', '.join(sorted(allowed))})" if allowed else ""))
         if self.law == "constant" and self.value is None:
             raise ValueError("law 'constant' needs value (between 0 and 1)")
-        if self.law == "housner" and self.value is not None:
-            raise ValueError("law 'housner' takes no value (use law = 'constant')")
         return self
+
+    def build(self):
+        from murus.rocking.restitution import AmplitudeDependent, Constant, Housner
+
+        if self.law == "housner":
+            return Housner()
+        if self.law == "constant":
+            return Constant(self.value)
+        common = {"k0_free": self.k0_free, "A0": self.A0}
+        if self.law == "coefficient":
+            return AmplitudeDependent.coefficient(1.5 if self.k is None else self.k, **common)
+        return AmplitudeDependent(
+            1.0 if self.k0 is None else self.k0, 1.0 if self.k1 is None else self.k1,
+            k1_free=self.k1_free, variant=self.variant or "causal", **common)
+
+
+class PivotCfg(Strict):
+    law: Literal["corner", "compressive-length"] = "corner"
+    reading: Literal["effective-width", "kern", "neutral-axis", "corner"] = "effective-width"
+    factor: float = Field(default=1.0, gt=0.0, allow_inf_nan=False)
+    min_lever_fraction: float = Field(default=0.05, gt=0.0, le=1.0, allow_inf_nan=False)
+
+
+class TieCfg(Strict):
+    stiffness: float = Field(gt=0, allow_inf_nan=False)
+    height: float = Field(gt=0, allow_inf_nan=False)
+    x: float = Field(default=0.0, allow_inf_nan=False)
+    tension_only: bool = True
+    pretension: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    yield_force: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+
+
+class DamperCfg(Strict):
+    coefficient: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    fraction: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    delta_t: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    height: float = Field(gt=0, allow_inf_nan=False)
+    x: float = Field(default=0.0, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def _c(self):
+        if (self.coefficient is None) == (self.fraction is None):
+            raise ValueError("give either coefficient (N s/m) or fraction (of c_d) with delta_t")
+        if self.fraction is not None and self.delta_t is None:
+            raise ValueError("fraction (of c_d, seed 002 eq. 13) needs delta_t (s)")
+        if self.coefficient is not None and self.delta_t is not None:
+            raise ValueError("delta_t goes with fraction, not with coefficient")
+        return self
+
+
+class WallsCfg(Strict):
+    stiffness: float = Field(gt=0, allow_inf_nan=False)
+    effective_height: float = Field(gt=0, allow_inf_nan=False)
+    z1: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    x: float | None = Field(default=None, allow_inf_nan=False)
+
+
+class RestraintCfg(Strict):
+    motion_sides: Literal["one", "two"] = "two"
+    tie: TieCfg | None = None
+    damper: DamperCfg | None = None
+    transverse_walls: WallsCfg | None = None
 
 
 MotionType = Literal["record", "sine-pulse", "cosine-pulse", "rectangular-pulse", "free"]
@@ -128,6 +226,8 @@ class SolverCfg(Strict):
 class RockingCase(Strict):
     body: BodyCfg
     restitution: RestitutionCfg = RestitutionCfg()
+    pivot: PivotCfg = PivotCfg()
+    restraint: RestraintCfg = RestraintCfg()
     motion: MotionCfg
     solver: SolverCfg = SolverCfg()
 
@@ -151,16 +251,12 @@ def build(case: RockingCase, path: Path, text: str):
         rectangular_pulse,
         sine_pulse,
     )
-    from murus.rocking.model import RockingModel
-    from murus.rocking.restitution import Constant, Housner
-
     b = case.body
     try:
         body = RigidBlock(b.width, b.height, b.thickness, b.density, b.top_mass, name=b.name)
     except BodyError as exc:
         raise fail_at(path, text, ("body",), str(exc)) from None
-    law = Housner() if case.restitution.law == "housner" else Constant(case.restitution.value)
-    model = RockingModel(body, law, linearised=case.solver.linearised)
+    model = _model(case, body, path, text)
     m = case.motion
     kind = m.kind
     if kind == "record":
@@ -190,6 +286,58 @@ def build(case: RockingCase, path: Path, text: str):
     if case.solver.duration is not None and not math.isfinite(case.solver.duration):
         raise fail_at(path, text, ("solver", "duration"), "must be finite")
     return model, motion, kwargs
+
+
+def _model(case: RockingCase, body, path: Path, text: str):
+    """The rocking model of a case; a bad combination names the table it comes from."""
+    from math import inf
+
+    from murus.rocking.model import ModelError, RockingModel
+    from murus.rocking.restitution import RestitutionError
+    from murus.rocking.restraints import Damper, Pivot, RestraintError, SpringBed, Tie
+
+    r = case.restraint
+    where = ("restraint",)
+    try:
+        where = ("restitution",)
+        law = case.restitution.build()
+        where = ("pivot",)
+        pv = case.pivot
+        pivot = Pivot(pv.law, pv.reading, pv.factor, pv.min_lever_fraction)
+        tie = damper = walls = None
+        if r.tie is not None:
+            where = ("restraint", "tie")
+            t = r.tie
+            tie = Tie(t.stiffness, t.height, t.x, t.tension_only, t.pretension,
+                      inf if t.yield_force is None else t.yield_force)
+        if r.damper is not None:
+            where = ("restraint", "damper")
+            d = r.damper
+            c = d.coefficient
+            if c is None:
+                from murus.rocking.design import reference_damping
+
+                c = d.fraction * reference_damping(body, d.delta_t)
+            damper = Damper(c, d.height, d.x)
+        if r.transverse_walls is not None:
+            where = ("restraint", "transverse_walls")
+            w = r.transverse_walls
+            walls = SpringBed(w.stiffness, w.effective_height, w.z1, w.x)
+        where = ("restraint",)
+        return RockingModel(body, law, linearised=case.solver.linearised, tie=tie,
+                            transverse_walls=walls, damper=damper, motion_sides=r.motion_sides,
+                            pivot=pivot)
+    except (ModelError, RestitutionError, RestraintError) as exc:
+        msg = str(exc)
+        if "above the wall" in msg or "outside the wall" in msg:
+            for key in ("tie", "damper", "transverse_walls"):
+                if key.replace("_", " ") in msg or msg.startswith(key):
+                    where = ("restraint", key)
+        elif "transverse walls make" in msg:
+            where = ("restraint", "transverse_walls")
+        elif "one-sided wall" in msg:
+            where = ("restraint", "motion_sides")
+        raise fail_at(path, text, where, msg) from None
 
 
 def _read_record(m: MotionCfg, path: Path, text: str):
