@@ -26,9 +26,14 @@ def main() -> None:
     args = ap.parse_args()
     import eurocode
     import motion
+    import restrained
     import rocking
+    import seed000_model
+    import winkler
 
-    parts = [HEADER, rocking.section(), motion.section(), eurocode.section()]
+    parts = [HEADER, rocking.section(), restrained.section(), seed000_model.section(),
+             winkler.run(ROOT / "docs" / "figures" / "winkler"), motion.section(),
+             eurocode.section()]
     Path(args.out).write_text("\n".join(parts))
     print(f"wrote {args.out}")
 

@@ -44,6 +44,10 @@ _EXPORTS = {
     "RockingResult": "engine",
     "simulate": "engine",
     "simulate_batch": "engine",
+    "WinklerBase": "winkler",
+    "WinklerError": "winkler",
+    "WinklerResult": "winkler",
+    "simulate_winkler": "winkler",
     "critical_amplitude": "analysis",
     "overturns": "analysis",
 }

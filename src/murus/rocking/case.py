@@ -24,7 +24,7 @@ Example (every key documented in the README)::
     coefficient = 1.0e3  # N s/m, or fraction (of c_d) with delta_t (s), seed 002 eq. 13
     height = 6.0
     [restraint.transverse_walls]
-    stiffness = 4.5e8    # N/m per m of height; effective_height (m), z1 (m), x (m)
+    stiffness = 4.5e8    # N/m per m of height, or "rigid"; effective_height (m), z1 (m), x (m)
     effective_height = 6.0
     [motion]
     file = "record.csv"  # two columns time [s], acceleration (or one column with dt)
@@ -146,7 +146,7 @@ class DamperCfg(Strict):
 
 
 class WallsCfg(Strict):
-    stiffness: float = Field(gt=0, allow_inf_nan=False)
+    stiffness: float | Literal["rigid"] = Field(gt=0)
     effective_height: float = Field(gt=0, allow_inf_nan=False)
     z1: float = Field(default=0.0, ge=0, allow_inf_nan=False)
     x: float | None = Field(default=None, allow_inf_nan=False)
@@ -322,7 +322,8 @@ def _model(case: RockingCase, body, path: Path, text: str):
         if r.transverse_walls is not None:
             where = ("restraint", "transverse_walls")
             w = r.transverse_walls
-            walls = SpringBed(w.stiffness, w.effective_height, w.z1, w.x)
+            k = math.inf if w.stiffness == "rigid" else w.stiffness
+            walls = SpringBed(k, w.effective_height, w.z1, w.x)
         where = ("restraint",)
         return RockingModel(body, law, linearised=case.solver.linearised, tie=tie,
                             transverse_walls=walls, damper=damper, motion_sides=r.motion_sides,

@@ -162,7 +162,7 @@ def restraint_energy(model: dict, theta: np.ndarray, pivot: np.ndarray) -> np.nd
             d = np.maximum(d, 0.0)
         E += 0.5 * tie["stiffness"] * d**2
     bed = model.get("transverse_walls")
-    if bed is not None:
+    if bed is not None and bed["stiffness"] != "rigid":
         xb = hb if bed["x"] is None else bed["x"]
         x0 = xb - s * hb
         # compression c(z) = a0 + a1 z >= 0 over [z1, z2]: int c^2 dz = [c^3 / (3 a1)]
@@ -251,6 +251,9 @@ def simulate(
     """
     mdl, exc, t_end = _resolve(model, motion, duration, restitution, linearised)
     th0, om0 = _initial(theta0, omega0, theta0_over_alpha, mdl.body)
+    if mdl.rigid_walls and (th0 < 0.0 or (th0 == 0.0 and om0 < 0.0)):
+        raise ModelError("rigid transverse walls: the wall cannot start rotating inward "
+                         "(theta0 < 0 or omega0 < 0)")
     P = mdl.params()
     X = exc.vector()
     ag, av = exc.arrays()

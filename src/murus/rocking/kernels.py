@@ -75,6 +75,7 @@ P_E_K1F = 33
 P_E_FREE = 34  # 1.0: a distinct free-vibration law
 P_E_ASPECT = 35  # factor on the energy lost at an impact (seed 000 eq. 18; 1: off)
 P_E_ABSMAX = 36  # iterated variant of eq. 16: the largest rotation of the whole run (0: causal)
+P_STOP = 37  # 1.0: rigid transverse walls, the wall bounces at theta = 0 instead of rocking inward
 P_SIZE = 40
 
 # restitution law codes
@@ -222,7 +223,7 @@ def inertia(bl, P):
 
 
 @njit(cache=True, inline="always")
-def _bed_moment(th, s, bl, P):
+def _bed_moment(ct, st, s, bl, P):
     """Moment of a no-tension spring bed of stiffness ``k'`` per unit height on the face at body
     coordinate ``x_b`` over heights ``[z1, z2]`` (the transverse walls of seed 002, eqs. 3-6).
 
@@ -235,8 +236,6 @@ def _bed_moment(th, s, bl, P):
     ``s`` from the pivot over ``[0, h']`` (its ``B`` term needs a factor ``s``), a difference of
     order ``th^2`` at the tiny rotations a stiff bed allows (tests/rocking/test_restraints.py)."""
     x0 = P[P_BED_X] - s * bl
-    ct = math.cos(th)
-    st = math.sin(th)
     a0 = x0 * (1.0 - ct)
     a1 = -st
     z1 = P[P_BED_Z1]
@@ -277,6 +276,12 @@ def tie_force(d, P):
 
 @njit(cache=True, inline="always")
 def restraint_moment(th, om, s, bl, P):
+    """Moments of the restraints about pivot ``s`` [N m] (see :func:`restraint_terms`)."""
+    return restraint_terms(math.cos(th), math.sin(th), om, s, bl, P)
+
+
+@njit(cache=True, inline="always")
+def restraint_terms(ct, st, om, s, bl, P):
     """Moments of the restraints about pivot ``s`` [N m] (seed 002 eqs. 2, 6, 7).
 
     A body point at body coordinates ``(u, y)`` (``u`` from the base centre, positive towards
@@ -289,9 +294,9 @@ def restraint_moment(th, om, s, bl, P):
       ``-K R_t^2 cos(A_t) (sin alpha_t - sin A_t)``, seed 002 eq. 2;
     - damper (eq. 7): the anchor moves at ``Y theta'``, force ``-c Y theta'``, moment
       ``-c Y^2 theta'``, i.e. ``-c R_d^2 cos^2(A_d) theta'``;
-    - spring bed (eqs. 3-6): :func:`_bed_moment`."""
-    ct = math.cos(th)
-    st = math.sin(th)
+    - spring bed (eqs. 3-6): :func:`_bed_moment`.
+
+    ``ct, st``: cosine and sine of theta, computed once per evaluation."""
     M = 0.0
     if P[P_TIE_MODE] != 0.0:
         x0 = P[P_TIE_X] - s * bl
@@ -303,30 +308,39 @@ def restraint_moment(th, om, s, bl, P):
         Y = P[P_DMP_Y] * ct - x0 * st
         M -= P[P_DMP_C] * Y * Y * om
     if P[P_BED_K] != 0.0:
-        M += _bed_moment(th, s, bl, P)
+        M += _bed_moment(ct, st, s, bl, P)
     return M
 
 
 @njit(cache=True, inline="always")
 def moment_at(th, om, s, bl, ag, av, P):
     """Total moment about the active pivot ``s`` of lever ``bl`` [N m] (seed 000 eq. 5, seed
-    002 eq. 1): gravity, ground inertia and the restraints."""
+    002 eq. 1): gravity, ground inertia and the restraints.
+
+    With ``R sin(alpha) = bl`` and ``R cos(alpha) = z_G``, the terms
+    ``-m (g + a_v) R sin(s alpha - th) + m a_g R cos(s alpha - th)`` are evaluated as
+    ``-m (g + a_v) (s bl cos th - z_G sin th) + m a_g (z_G cos th + s bl sin th)``: one sine
+    and one cosine per evaluation, shared with the restraints."""
     m = P[P_M]
     geff = P[P_G] + av
-    if P[P_PIVOT] == 0.0:
-        R = P[P_R]
-        a = P[P_ALPHA]
-    else:
-        zg = P[P_ZG]
-        R = math.sqrt(bl * bl + zg * zg)
-        a = math.atan2(bl, zg)
-    x = s * a - th
+    zg = P[P_ZG]
     if P[P_LINEAR] != 0.0:
-        M = -m * geff * R * x + m * ag * R
-    else:
-        M = -m * geff * R * math.sin(x) + m * ag * R * math.cos(x)
+        if P[P_PIVOT] == 0.0:
+            R = P[P_R]
+            a = P[P_ALPHA]
+        else:
+            R = math.sqrt(bl * bl + zg * zg)
+            a = math.atan2(bl, zg)
+        M = -m * geff * R * (s * a - th) + m * ag * R
+        if P[P_TERMS] != 0.0:
+            M += restraint_moment(th, om, s, bl, P)
+        return M
+    ct = math.cos(th)
+    st = math.sin(th)
+    sb = s * bl
+    M = -m * geff * (sb * ct - zg * st) + m * ag * (zg * ct + sb * st)
     if P[P_TERMS] != 0.0:
-        M += restraint_moment(th, om, s, bl, P)
+        M += restraint_terms(ct, st, om, s, bl, P)
     return M
 
 
@@ -366,7 +380,7 @@ def lift_direction(t, tm, X, ag, av, P):
     gh, gv = ground(t, tm, X, ag, av)
     if moment(0.0, 0.0, 1.0, gh, gv, P) > 0.0:
         return 1.0
-    if -moment(0.0, 0.0, -1.0, gh, gv, P) > 0.0:
+    if P[P_STOP] == 0.0 and -moment(0.0, 0.0, -1.0, gh, gv, P) > 0.0:
         return -1.0
     return 0.0
 
@@ -374,6 +388,8 @@ def lift_direction(t, tm, X, ag, av, P):
 @njit(cache=True, inline="always")
 def lift_margin(t, tm, s, X, ag, av, P):
     """``s * M(theta=0)`` about pivot ``s``: positive when the ground lifts the body."""
+    if s < 0.0 and P[P_STOP] != 0.0:
+        return -1.0
     gh, gv = ground(t, tm, X, ag, av)
     return s * moment(0.0, 0.0, s, gh, gv, P)
 
@@ -688,6 +704,13 @@ def do_impact(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap):
     bl = lever(gh, gv, P)
     e = restitution(P, mem, om_b, t, bl)
     om_a = e * om_b
+    s_next = -s
+    if P[P_STOP] != 0.0 and s > 0.0:
+        # rigid transverse walls: the limit of a stiff spring bed, an impact on the base into
+        # the walls, an elastic bounce of no duration and an impact on the base out of them
+        mem[MEM_HALF_MAX] = 0.0
+        om_a = -restitution(P, mem, om_a, t, bl) * om_a
+        s_next = s
     n = int(S[S_N_IMPACTS])
     if n < ni_cap:
         imp[n, 0] = t
@@ -705,7 +728,7 @@ def do_impact(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap):
         if 0 <= k < nu_cap:
             up[k, 1] = t
         return 0.0, 0.0
-    return om_a, -s
+    return om_a, s_next
 
 
 @njit(cache=True)

@@ -111,6 +111,11 @@ class RockingModel:
         return any(x is not None for x in (self.tie, self.transverse_walls, self.damper))
 
     @property
+    def rigid_walls(self) -> bool:
+        """Transverse walls of infinite stiffness: the wall bounces at theta = 0."""
+        return self.transverse_walls is not None and math.isinf(self.transverse_walls.stiffness)
+
+    @property
     def e(self) -> float:
         """The coefficient of restitution of the constant-valued laws [-]."""
         return self.restitution.value(self.body)
@@ -150,7 +155,10 @@ class RockingModel:
             P[K.P_TIE_FY] = t.yield_force
         if self.transverse_walls is not None:
             w = self.transverse_walls
-            P[K.P_BED_K] = w.stiffness
+            if math.isinf(w.stiffness):
+                P[K.P_STOP] = 1.0
+            else:
+                P[K.P_BED_K] = w.stiffness
             P[K.P_BED_Z1] = w.z1
             P[K.P_BED_Z2] = w.z1 + w.effective_height
             P[K.P_BED_X] = 0.5 * b.width if w.x is None else w.x

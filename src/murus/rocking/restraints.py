@@ -84,7 +84,14 @@ class SpringBed:
     per unit height [N/m/m], from ``z1`` to ``z1 + effective_height`` [m], resisting inward
     motion (seed 002 eqs. 3-6, term T_K'; eq. 10: ``K' = E_x t / L_eff``, 4.5e8 N/m/m in §4.2).
     ``x``: body coordinate of the face it acts on (default ``+b/2``, seed 002 eq. 6; see the
-    module docstring)."""
+    module docstring).
+
+    ``stiffness = inf``: rigid transverse walls, the limit of a stiff bed. The wall then never
+    rotates inward: at ``theta = 0`` it bounces with ``theta'+ = -e_1 e_2 theta'-``, the two
+    base impacts of the elastic bed's bounce (into and out of the walls; the second with the
+    half-cycle rotation of the bounce, zero) with an elastic bounce of no duration. The run then
+    needs none of the many small steps a stiff bed contact takes
+    (tests/rocking/test_restraints.py checks the convergence as the stiffness grows)."""
 
     stiffness: float
     effective_height: float
@@ -94,13 +101,15 @@ class SpringBed:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", _num("transverse_walls", "stiffness",
-                                                   self.stiffness, positive=True))
+                                                   self.stiffness, positive=True,
+                                                   allow_inf=True))
         object.__setattr__(self, "effective_height", _num(
             "transverse_walls", "effective_height", self.effective_height, positive=True))
         object.__setattr__(self, "z1", _num("transverse_walls", "z1", self.z1))
 
     def describe(self) -> dict:
-        return {"stiffness": self.stiffness, "effective_height": self.effective_height,
+        k = "rigid" if math.isinf(self.stiffness) else self.stiffness
+        return {"stiffness": k, "effective_height": self.effective_height,
                 "z1": self.z1, "x": self.x}
 
 
@@ -148,7 +157,7 @@ class Pivot:
     instant: eccentricity ``e = factor |a_g| z_G / (g + a_v)``, compressed length ``Lc``, and the
     lever of the weight about the pivot is read as ``reading``:
 
-    - ``"kern"``: ``b/6``; rocking starts at 1.5 times the corner's criterion;
+    - ``"kern"``: ``b/6``; rocking starts at 3 times the corner's criterion;
     - ``"effective-width"`` (default): ``Lc/2``, the middle of the compressed length; rocking
       starts when ``e = 0.3 b``, at 5/3 of the corner's criterion;
     - ``"neutral-axis"``: ``b - 3e = Lc - b/2``, the lever about the zero-stress point; starts at
