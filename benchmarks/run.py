@@ -22,6 +22,7 @@ Timings are from a 2-core machine (the project's standard machine); numba kernel
 
 RUNS = [
     ("bench_rocking.py", "RESULTS_rocking.md"),
+    ("bench_restrained.py", "RESULTS_restrained.md"),
     ("bench_spectra.py", "RESULTS_motion.md"),
 ]
 

@@ -721,7 +721,14 @@ def do_impact(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap):
     S[S_E_DISSIPATED] += 0.5 * i_o * (om_b * om_b - om_a * om_a)
     mem[MEM_HALF_MAX] = 0.0
     p = math.sqrt(P[P_M] * P[P_G] * P[P_R] / P[P_I])
-    if abs(om_a) < P[P_REST_TOL] * p * P[P_ALPHA]:
+    rest = abs(om_a) < P[P_REST_TOL] * p * P[P_ALPHA]
+    if not rest and s_next == s:
+        # a bounce on rigid walls: end the cascade once the excursion it starts,
+        # om^2 / (2 |theta''|) under the restoring acceleration at theta = 0, is below
+        # rest_tol * alpha (the bounces form a geometric series of vanishing excursions)
+        a0 = accel(0.0, om_a, s, t, tm, X, ag, av, P)
+        rest = s * a0 < 0.0 and om_a * om_a < 2.0 * P[P_REST_TOL] * P[P_ALPHA] * abs(a0)
+    if rest:
         # negligible velocity: back to rest unless the ground lifts the body right now
         S[S_E_DISSIPATED] += 0.5 * i_o * om_a * om_a
         k = int(S[S_N_UPLIFTS]) - 1

@@ -91,7 +91,10 @@ class SpringBed:
     base impacts of the elastic bed's bounce (into and out of the walls; the second with the
     half-cycle rotation of the bounce, zero) with an elastic bounce of no duration. The run then
     needs none of the many small steps a stiff bed contact takes
-    (tests/rocking/test_restraints.py checks the convergence as the stiffness grows)."""
+    (tests/rocking/test_restraints.py checks the convergence as the stiffness grows). The
+    geometric cascade of ever smaller bounces ends, with the wall at rest against the walls,
+    once the excursion a bounce starts (``theta'^2 / (2 |theta''|)`` under the restoring
+    acceleration at ``theta = 0``) is below ``rest_tol * alpha``."""
 
     stiffness: float
     effective_height: float
