@@ -39,22 +39,23 @@ def run(
 ) -> None:
     """Run a rocking case file: writes summary.json, timeseries.csv and response.png."""
     from murus.config import CaseError
-    from murus.rocking import simulate
-    from murus.rocking.case import build, load_case
+    from murus.rocking.case import build, load_case, run_case
     from murus.rocking.output import write_outputs
 
     try:
         cfg, path, text = load_case(case)
         model, motion, kwargs = build(cfg, path, text)
-        result = simulate(model, motion, **kwargs)
+        result = run_case(model, motion, kwargs)
     except (CaseError, ValueError) as exc:
         fail(str(exc).splitlines()[0])
     if not result.success:
         fail(f"{case}: {result.message}")
     write_outputs(result, out, figure=not no_figure)
     s = result.summary()
+    events = (f"impacts = {s['impacts']}" if "impacts" in s
+              else f"zero crossings = {s['crossings']}")
     typer.echo(
-        f"{case.name}: theta_max/alpha = {s['theta_max_over_alpha']:.4f}, impacts = {s['impacts']}"
+        f"{case.name}: theta_max/alpha = {s['theta_max_over_alpha']:.4f}, {events}"
         f", overturned = {s['overturned']} -> {out}"
     )
 
@@ -87,8 +88,7 @@ def demo(
 
     def write(tmp: Path) -> None:
         from murus.config import CaseError
-        from murus.rocking import simulate
-        from murus.rocking.case import build, load_case
+        from murus.rocking.case import build, load_case, run_case
         from murus.rocking.output import write_result_files
 
         lines = ["case,theta_max_over_alpha,impacts,overturned,uplift_time_s"]
@@ -98,15 +98,16 @@ def demo(
                 model, motion, kwargs = build(cfg, path, text)
             except CaseError as exc:
                 fail(str(exc))
-            res = simulate(model, motion, **kwargs)
+            res = run_case(model, motion, kwargs)
             sub = tmp / c.stem
             sub.mkdir()
             write_result_files(res, sub)
             s = res.summary()
-            lines.append(f"{c.stem},{s['theta_max_over_alpha']:.6f},{s['impacts']},"
-                         f"{s['overturned']},{s['uplift_time']}")
+            n = s.get("impacts", s.get("crossings"))
+            lines.append(f"{c.stem},{s['theta_max_over_alpha']:.6f},{n},"
+                         f"{s['overturned']},{s.get('uplift_time')}")
             typer.echo(f"{c.stem}: theta_max/alpha = {s['theta_max_over_alpha']:.4f}, "
-                       f"impacts = {s['impacts']}, overturned = {s['overturned']}")
+                       f"impacts = {n}, overturned = {s['overturned']}")
         (tmp / "demo_summary.csv").write_text("\n".join(lines) + "\n")
 
     atomic_dir(out, write)

@@ -125,3 +125,44 @@ def test_demo_runs_the_new_cases(tmp_path):
     names = {row.split(",")[0] for row in rows[1:]}
     assert {"seed002_block1_restrained_damped", "seed000_short_wall_modified"} <= names
     assert math.isfinite(float(rows[1].split(",")[1]))
+
+
+def test_winkler_base_case(tmp_path):
+    """[base] model = "winkler": the run goes to the elastic-layer model and its outputs carry
+    the contact length; the first row is the static state on the lowered corner."""
+    extra = """
+[base]
+model = "winkler"
+modulus = 1.0e7
+layer_thickness = 0.01
+damping_ratio = 0.05
+"""
+    r = _run(tmp_path, extra)
+    assert r.exit_code == 0, r.output
+    import numpy as np
+
+    ts = np.genfromtxt(tmp_path / "out" / "timeseries.csv", delimiter=",", names=True)
+    from murus.rocking import RigidBlock, WinklerBase
+    from murus.rocking.winkler import initial_settlement
+
+    body = RigidBlock(0.3, 3.0, density=2140.67)
+    v0 = initial_settlement(body, WinklerBase(1e9), theta=0.5 * body.alpha)
+    assert ts["v_m"][0] == pytest.approx(v0, rel=1e-8)
+    assert ts["contact_length_m"].min() < 0.3  # the free rocking from 0.5 alpha lifts the heel
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        ("[base]\nmodel = \"winkler\"\nmodulus = 1e7\n", "layer_thickness"),
+        ("[base]\nmodel = \"winkler\"\nstiffness = 1e9\n[restitution]\nlaw = \"housner\"\n",
+         "does not apply to a Winkler base"),
+        ("[base]\nstiffness = 1e9\n", "rigid base takes no stiffness"),
+    ],
+)
+def test_bad_winkler_cases(tmp_path, extra, message):
+    r = _run(tmp_path, extra)
+    assert r.exit_code == 2, r.output
+    err = r.stderr.strip()
+    assert len(err.splitlines()) == 1 and message in err and "line" in err
+    assert not (tmp_path / "out").exists()

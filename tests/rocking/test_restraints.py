@@ -109,6 +109,9 @@ def test_time_away_from_the_stops_matches_closed_form():
             t_star = 2.0 / w * math.atan(v / (w * delta))
             r = simulate(mdl, omega0=side * v, duration=3 * t_star, rtol=1e-12)
             assert r.impacts[0, 0] == pytest.approx(t_star, rel=1e-4)
+    # seed 002 eq. 9 (h' = 2 R and m g R: its hidden assumptions) against the bed side: 2 %
+    w9 = BLOCK.p * math.sqrt(8 * kp * BLOCK.R**2 / (3 * M * G) - 1)
+    assert w9 == pytest.approx(math.sqrt((kp * H**3 / 3 - M * G * ZG) / I_O), rel=0.02)
 
 
 def test_small_oscillation_frequency_and_eq8():

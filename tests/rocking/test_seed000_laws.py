@@ -79,6 +79,23 @@ def test_housner_with_a_moving_pivot_is_the_momentum_balance():
         np.testing.assert_allclose(ratio, (H**2 - lever**2) / (H**2 + lever**2), rtol=1e-12)
 
 
+def test_momentum_restitution_with_a_moving_pivot():
+    """e = (H^2 - b1 b2) / (H^2 + b2^2) for the mass on top; cos 2 alpha for b1 = b2 = B/2;
+    the uniform block's Housner value 1 - 3/2 sin^2 alpha at its corners."""
+    from murus.rocking import seed002_block
+    from murus.rocking.restitution import momentum_restitution
+
+    for b1, b2 in ((0.36, 0.36), (0.36, 0.12), (0.2, 0.3)):
+        assert momentum_restitution(SHORT, b1, b2) == pytest.approx(
+            (H**2 - b1 * b2) / (H**2 + b2**2), rel=1e-14)
+    assert momentum_restitution(SHORT, B / 2, B / 2) == pytest.approx(
+        math.cos(2 * SHORT.alpha), rel=1e-14)
+    blk = seed002_block("block1")
+    hb = blk.width / 2
+    assert momentum_restitution(blk, hb, hb) == pytest.approx(
+        1 - 1.5 * math.sin(blk.alpha) ** 2, rel=1e-13)
+
+
 def test_coefficient_law_eq14_15():
     """e = 1 - k sin^2(alpha); k = 2 is Housner's top-mass value."""
     for k in (1.5, 2.0):

@@ -26,6 +26,9 @@ Example (every key documented in the README)::
     [restraint.transverse_walls]
     stiffness = 4.5e8    # N/m per m of height, or "rigid"; effective_height (m), z1 (m), x (m)
     effective_height = 6.0
+    [base]               # the support: "rigid" (default) or an elastic layer, e.g. rubber
+    model = "winkler"    # stiffness (N/m3) or modulus (Pa) with layer_thickness (m);
+    stiffness = 1.0e9    # damping (N s/m3) or damping_ratio; kinematics = "corner" | "centre"
     [motion]
     file = "record.csv"  # two columns time [s], acceleration (or one column with dt)
     units = "g"
@@ -223,8 +226,44 @@ class SolverCfg(Strict):
         return self
 
 
+class BaseCfg(Strict):
+    model: Literal["rigid", "winkler"] = "rigid"
+    stiffness: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    modulus: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    layer_thickness: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    damping: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    damping_ratio: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    kinematics: Literal["corner", "centre"] = "corner"
+
+    @model_validator(mode="after")
+    def _layer(self):
+        given = [k for k in ("stiffness", "modulus", "layer_thickness", "damping",
+                             "damping_ratio") if getattr(self, k) is not None]
+        if self.model == "rigid":
+            if given:
+                raise ValueError(f"a rigid base takes no {', '.join(given)} "
+                                 "(set model = 'winkler')")
+            return self
+        if (self.stiffness is None) == (self.modulus is None):
+            raise ValueError("a Winkler base needs stiffness (N/m3) or modulus (Pa) with "
+                             "layer_thickness (m)")
+        if self.modulus is not None and self.layer_thickness is None:
+            raise ValueError("modulus needs layer_thickness (m): stiffness = modulus / thickness")
+        if self.damping is not None and self.damping_ratio is not None:
+            raise ValueError("give damping or damping_ratio, not both")
+        return self
+
+    def build(self):
+        from murus.rocking.winkler import WinklerBase
+
+        k = self.stiffness if self.stiffness is not None else self.modulus / self.layer_thickness
+        return WinklerBase(k, thickness=self.layer_thickness, damping=self.damping or 0.0,
+                           damping_ratio=self.damping_ratio or 0.0, kinematics=self.kinematics)
+
+
 class RockingCase(Strict):
     body: BodyCfg
+    base: BaseCfg = BaseCfg()
     restitution: RestitutionCfg = RestitutionCfg()
     pivot: PivotCfg = PivotCfg()
     restraint: RestraintCfg = RestraintCfg()
@@ -256,7 +295,10 @@ def build(case: RockingCase, path: Path, text: str):
         body = RigidBlock(b.width, b.height, b.thickness, b.density, b.top_mass, name=b.name)
     except BodyError as exc:
         raise fail_at(path, text, ("body",), str(exc)) from None
-    model = _model(case, body, path, text)
+    if case.base.model == "winkler":
+        model = _winkler(case, body, path, text)
+    else:
+        model = _model(case, body, path, text)
     m = case.motion
     kind = m.kind
     if kind == "record":
@@ -286,6 +328,49 @@ def build(case: RockingCase, path: Path, text: str):
     if case.solver.duration is not None and not math.isfinite(case.solver.duration):
         raise fail_at(path, text, ("solver", "duration"), "must be finite")
     return model, motion, kwargs
+
+
+def _winkler(case: RockingCase, body, path: Path, text: str):
+    """A body on an elastic layer: contact, pivot and energy loss follow from the layer, so the
+    restitution, pivot and restraint tables do not apply."""
+    from murus.rocking.winkler import WinklerError
+
+    data = case.model_dump(exclude_unset=True)
+    for key in ("restitution", "pivot", "restraint"):
+        if key in data:
+            raise fail_at(path, text, (key,), f"[{key}] does not apply to a Winkler base: the "
+                          "layer's deformation gives the contact, the pivot and the energy loss")
+    if case.solver.method != "event" or case.solver.linearised:
+        raise fail_at(path, text, ("solver",), "a Winkler base runs with method = 'event' and "
+                      "the full equations only")
+    try:
+        return WinklerModel(body, case.base.build())
+    except WinklerError as exc:
+        raise fail_at(path, text, ("base",), str(exc)) from None
+
+
+class WinklerModel:
+    """A body on a :class:`murus.rocking.winkler.WinklerBase` (what :func:`build` returns for
+    ``[base] model = "winkler"``; :func:`run_case` dispatches on it)."""
+
+    def __init__(self, body, base):
+        self.body = body
+        self.base = base
+
+
+def run_case(model, motion, kwargs):
+    """Run what :func:`build` returned: the rigid-base engine or the Winkler layer."""
+    if isinstance(model, WinklerModel):
+        from murus.rocking.winkler import simulate_winkler
+
+        kw = {k: v for k, v in kwargs.items() if k in ("duration", "out_dt", "omega0",
+                                                        "theta0_over_alpha")}
+        if kwargs.get("rtol") is not None:
+            kw["rtol"] = max(kwargs["rtol"], 1e-10)
+        return simulate_winkler(model.body, model.base, motion, **kw)
+    from murus.rocking.engine import simulate
+
+    return simulate(model, motion, **kwargs)
 
 
 def _model(case: RockingCase, body, path: Path, text: str):

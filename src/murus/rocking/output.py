@@ -33,7 +33,10 @@ def summary_json(result) -> str:
 
 def timeseries_csv(result) -> str:
     """Columns: t [s], ag [m/s2], av [m/s2], rc [-], theta [rad], theta_over_alpha [-],
-    omega [rad/s], pivot [-1, 0, 1]."""
+    omega [rad/s], pivot [-1, 0, 1]; on a Winkler base: t, ag, av, theta, theta_over_alpha,
+    omega, v [m], contact_length [m], centre_of_pressure [m], contact_force [N]."""
+    if hasattr(result, "contact_length"):
+        return _winkler_csv(result)
     cols = np.column_stack([
         result.t, result.ag, result.av, result.rocking_criterion, result.theta,
         result.theta / result.alpha, result.omega, result.pivot,
@@ -44,6 +47,17 @@ def timeseries_csv(result) -> str:
     for row in cols:
         lines.append(fmt.format(*row))
     return "\n".join(lines) + "\n"
+
+
+def _winkler_csv(result) -> str:
+    cols = np.column_stack([
+        result.t, result.ag, result.av, result.theta, result.theta / result.alpha, result.omega,
+        result.v, result.contact_length, result.pivot, result.contact_force,
+    ])
+    header = ("t_s,ag_m_s2,av_m_s2,theta_rad,theta_over_alpha,omega_rad_s,v_m,"
+              "contact_length_m,centre_of_pressure_m,contact_force_n")
+    fmt = ",".join(["{:.6f}"] + ["{:.9g}"] * 9)
+    return "\n".join([header] + [fmt.format(*row) for row in cols]) + "\n"
 
 
 def atomic_dir(out: Path, write: Callable[[Path], None]) -> Path:
@@ -81,9 +95,9 @@ def write_result_files(result, folder: Path, figure: bool = True) -> None:
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
 
-        from murus.rocking.plots import plot_response
+        from murus.rocking.plots import plot_response, plot_winkler
 
-        ax = plot_response(result)
+        ax = plot_winkler(result) if hasattr(result, "contact_length") else plot_response(result)
         fig = ax[0].figure
         fig.savefig(folder / "response.png", dpi=120)
         plt.close(fig)

@@ -65,3 +65,24 @@ def plot_phase(result, ax=None):
     ax.set_xlabel("theta/alpha")
     ax.set_ylabel("theta'/(p alpha)")
     return ax
+
+
+def plot_winkler(result, axes=None):
+    """A body on an elastic layer: ground acceleration, theta/alpha, and the contact length
+    with the lifted length (seed 000 Figures 19-20) against time. Returns the Axes."""
+    ax = _axes(axes, 3)
+    t = result.t
+    ax[0].plot(t, result.ag / 9.81, lw=0.8, color="0.3")
+    ax[0].set_ylabel("a_g [g]")
+    ax[1].plot(t, result.theta / result.alpha, lw=0.9, color="k")
+    ax[1].set_ylabel("theta/alpha [-]")
+    ax[2].plot(t, result.contact_length, lw=0.8, label="contact length")
+    ax[2].plot(t, result.lifted_length, lw=0.8, label="lifted length")
+    ax[2].set_ylabel("length [m]")
+    ax[2].set_xlabel("time [s]")
+    ax[2].legend(loc="upper right", fontsize=7)
+    name = result.meta.get("body", {}).get("name", "") if isinstance(result.meta, dict) else ""
+    ax[0].set_title(f"{name} on an elastic layer: max theta/alpha = "
+                    f"{result.theta_max_over_alpha:.3f}"
+                    + (", overturned" if result.overturned else ""), fontsize=9)
+    return ax

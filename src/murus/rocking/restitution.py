@@ -85,6 +85,20 @@ class Constant:
         P[K.P_E_KIND] = K.E_CONSTANT
 
 
+def momentum_restitution(body: RigidBlock, b1: float, b2: float) -> float:
+    """Coefficient of restitution when the pivot moves at the impact (Housner's angular
+    momentum balance about the new pivot, seed 000 eq. 13 reconstructed) [-].
+
+    ``b1``, ``b2``: lever of the weight about the pivot before and after the impact [m]:
+    ``e = (I_G + m z_G^2 - m b1 b2) / (I_G + m z_G^2 + m b2^2)``, i.e.
+    ``(H^2 - b1 b2) / (H^2 + b2^2)`` for a mass at the height H (``I_G = 0``), ``cos 2 alpha``
+    when ``b1 = b2 = b/2``. The kernel evaluates it with ``b1 = b2`` = the lever of the pivot law
+    at the instant of the impact (the law depends on ``|a_g|``, the same on both sides)."""
+    ig = body.I_O - body.mass * body.R**2
+    j = ig + body.mass * body.z_G**2
+    return (j - body.mass * b1 * b2) / (j + body.mass * b2 * b2)
+
+
 def _coef(owner: str, name: str, v, lo: float = 0.0) -> float:
     try:
         x = float(v)
