@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import time
 from pathlib import Path
 
 import numpy as np
@@ -379,7 +378,6 @@ def run(fig_dir: Path) -> str:
     """Write the figures into ``fig_dir`` and return the Markdown section."""
     fig_dir = Path(fig_dir)
     fig_dir.mkdir(parents=True, exist_ok=True)
-    t0 = time.perf_counter()
     out = [TITLE, "",
            "A rigid wall on a no-tension elastic (Winkler) layer (`murus.rocking.winkler`): the "
            "contact length, the pivot and the energy lost at impacts follow from the deformation "
@@ -390,7 +388,6 @@ def run(fig_dir: Path) -> str:
     out += convergence(fig_dir)
     out += [""]
     out += seed000(fig_dir)
-    out += ["", f"_Computed in {time.perf_counter() - t0:.0f} s._"]
     return "\n".join(out) + "\n"
 
 
