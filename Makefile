@@ -15,7 +15,7 @@ $(STAMP): $(BIN)/python pyproject.toml
 	touch $@
 
 $(TSTAMP): $(STAMP) pyproject.toml
-	$(BIN)/python -m pip install -q -e ".[test,records]"
+	$(BIN)/python -m pip install -q -e ".[test,records,dask]"
 	touch $@
 
 demo: $(STAMP)
