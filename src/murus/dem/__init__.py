@@ -1,0 +1,44 @@
+"""2D distinct elements (UDEC-like) for block masonry: rigid convex polygons, clumps and discs,
+Mohr-Coulomb joints with rounded corners, explicit central differences (seed 001 eqs. 2-4),
+local and mass-proportional damping, kinematic bases driven by ground motions, monitors,
+energy balance and checkpoints.
+
+Conventions (details in :mod:`murus.dem.model`, :mod:`murus.dem.kernels`,
+:mod:`murus.dem.engine`): SI units; x horizontal, y up, gravity -y; angles counter-clockwise;
+per unit out-of-plane thickness unless ``Model(thickness=...)``.
+
+The names below are imported on first use (PEP 562), so that ``murus --help`` does not load
+numba.
+"""
+
+from importlib import import_module
+
+_EXPORTS = {
+    "Joint": "materials",
+    "JointError": "materials",
+    "Model": "model",
+    "ModelError": "model",
+    "polygon_properties": "model",
+    "Probe": "engine",
+    "RunResult": "engine",
+    "SettleResult": "engine",
+    "body_probe": "engine",
+    "relative_probe": "engine",
+    "tilt_probe": "engine",
+    "stop_when": "engine",
+    "run_verification": "verify",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name):
+    if name in _EXPORTS:
+        obj = getattr(import_module(f"murus.dem.{_EXPORTS[name]}"), name)
+        globals()[name] = obj
+        return obj
+    raise AttributeError(f"module 'murus.dem' has no attribute {name!r}")
+
+
+def __dir__():
+    return __all__
