@@ -46,7 +46,7 @@ import math
 from pathlib import Path
 from typing import Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from murus import G
 from murus.config import CaseError, Strict, fail_at, load_toml, validate
@@ -149,10 +149,21 @@ class DamperCfg(Strict):
 
 
 class WallsCfg(Strict):
-    stiffness: float | Literal["rigid"] = Field(gt=0)
+    stiffness: float | Literal["rigid"]
     effective_height: float = Field(gt=0, allow_inf_nan=False)
     z1: float = Field(default=0.0, ge=0, allow_inf_nan=False)
     x: float | None = Field(default=None, allow_inf_nan=False)
+
+    @field_validator("stiffness")
+    @classmethod
+    def _stiffness(cls, v):
+        # a number > 0 (N/m per m of height) or "rigid"; a Field(gt=0) on the union would be
+        # applied to the string too and raise a TypeError instead of a validation error
+        if isinstance(v, str):
+            return v
+        if math.isnan(v) or v <= 0:  # inf is accepted as "rigid"
+            raise ValueError(f"stiffness must be > 0 (N/m per m) or 'rigid', got {v}")
+        return v
 
 
 class RestraintCfg(Strict):
@@ -298,7 +309,7 @@ def build(case: RockingCase, path: Path, text: str):
     if case.base.model == "winkler":
         model = _winkler(case, body, path, text)
     else:
-        model = _model(case, body, path, text)
+        model = build_model(case, body, path, text)
     m = case.motion
     kind = m.kind
     if kind == "record":
@@ -373,7 +384,7 @@ def run_case(model, motion, kwargs):
     return simulate(model, motion, **kwargs)
 
 
-def _model(case: RockingCase, body, path: Path, text: str):
+def build_model(case: RockingCase, body, path: Path, text: str):
     """The rocking model of a case; a bad combination names the table it comes from."""
     from math import inf
 

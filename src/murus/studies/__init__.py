@@ -1,0 +1,68 @@
+"""Sweeps over parameters and record suites: rocking spectra, fragility, study files, executors.
+
+A study is a grid of parameters of a rocking case times a set of ground motions
+(:mod:`murus.studies.study`), resolved into a :class:`~murus.studies.sweep.Plan` and run in
+chunks on a ``concurrent.futures.Executor`` — serial, a local process pool or a Dask cluster
+(:mod:`murus.studies.executors`, the only module that imports Dask) — with each finished chunk
+stored so that an interrupted run resumes (:func:`~murus.studies.sweep.run_plan`). Results are
+xarray Datasets (dims: the swept parameters and ``record``; units in ``attrs``) written to
+NetCDF with h5netcdf.
+
+- :func:`rocking_spectrum`, :func:`plot_rocking_spectrum`, :func:`plot_overturning_map`
+  (seed 002 §4.1);
+- :func:`fragility`, :func:`fit_fragility`, :func:`fit_msa`, :func:`fit_ida`,
+  :func:`plot_fragility`, :func:`seed002_configs`;
+- :func:`load_study`, :func:`make_study`, :func:`run_study`, :func:`run_plan`,
+  :func:`study_status`, :func:`open_result`, :func:`open_executor`.
+
+Names are imported on first use (PEP 562): ``import murus.studies`` loads neither numba, xarray
+nor Dask.
+"""
+
+from importlib import import_module
+
+_EXPORTS = {
+    "open_executor": "executors",
+    "ExecutorHandle": "executors",
+    "SerialExecutor": "executors",
+    "RecordSet": "records",
+    "IntensityMeasure": "records",
+    "Dim": "sweep",
+    "Point": "sweep",
+    "Plan": "sweep",
+    "StudyError": "sweep",
+    "run_plan": "sweep",
+    "study_status": "sweep",
+    "open_result": "sweep",
+    "write_netcdf": "sweep",
+    "Study": "study",
+    "load_study": "study",
+    "make_study": "study",
+    "run_study": "study",
+    "rocking_spectrum": "spectrum",
+    "spectrum_case": "spectrum",
+    "plot_rocking_spectrum": "spectrum",
+    "plot_overturning_map": "spectrum",
+    "FragilityFit": "fragility",
+    "fit_msa": "fragility",
+    "fit_ida": "fragility",
+    "fit_fragility": "fragility",
+    "fragility": "fragility",
+    "fragility_curve": "fragility",
+    "seed002_configs": "fragility",
+    "plot_fragility": "fragility",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        value = getattr(import_module(f"murus.studies.{_EXPORTS[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'murus.studies' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

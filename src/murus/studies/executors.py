@@ -1,0 +1,170 @@
+"""Executors for sweeps: the one place of murus that imports Dask.
+
+A sweep hands independent chunks of cases to a :class:`concurrent.futures.Executor` (GUIDE §1:
+"parallelism is a layer, not a property of kernels"). Three kinds:
+
+- ``"serial"``: the chunks run one after the other in this process (numba still spreads each
+  chunk over the cores with ``prange``);
+- ``"process"`` (default): a local :class:`~concurrent.futures.ProcessPoolExecutor` of ``workers``
+  processes started with ``spawn`` (never ``fork``: the parent may hold numba's thread pool),
+  each limited to one numba thread by the initializer so that processes do not oversubscribe
+  the cores;
+- ``"dask"``: a Dask cluster through :meth:`distributed.Client.get_executor`, either an existing
+  scheduler (``scheduler="tcp://HOST:PORT"``) or a :class:`distributed.LocalCluster` started here
+  (``scheduler="local"``: ``workers`` processes of one thread each, on 127.0.0.1).
+
+:func:`open_executor` returns an :class:`ExecutorHandle` (a context manager) whose ``executor``
+is a plain ``concurrent.futures.Executor``; ``restart()`` replaces a process pool broken by the
+death of a worker (Dask reschedules such tasks on its own).
+"""
+
+from __future__ import annotations
+
+import os
+from concurrent.futures import Executor, Future
+
+__all__ = ["SerialExecutor", "ExecutorHandle", "open_executor", "limit_threads",
+           "EXECUTOR_KINDS", "ExecutorError"]
+
+EXECUTOR_KINDS = ("serial", "process", "dask")
+
+
+class ExecutorError(ValueError):
+    """An executor that cannot be opened (one-line message)."""
+
+
+def limit_threads(n: int | None = 1) -> None:
+    """Limit numba's threads in this thread (``None``: leave them). Used as the process-pool
+    initializer and at the start of every chunk (Dask runs tasks in worker threads and numba's
+    thread count is per thread)."""
+    if n is None:
+        return
+    os.environ.setdefault("NUMBA_NUM_THREADS", str(n))
+    import numba
+
+    numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))
+
+
+class SerialExecutor(Executor):
+    """Runs each submitted call at once, in the calling thread (a completed Future)."""
+
+    def submit(self, fn, /, *args, **kwargs):
+        f: Future = Future()
+        try:
+            f.set_result(fn(*args, **kwargs))
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller through the future
+            f.set_exception(exc)
+        return f
+
+
+class ExecutorHandle:
+    """An open executor: ``.executor`` (a ``concurrent.futures.Executor``), ``.kind``,
+    ``.workers`` (parallel slots), ``.threads`` (numba threads per chunk, ``None``: all),
+    ``.describe()``, ``.restart()``, ``.close()``; a context manager."""
+
+    def __init__(self, kind: str, workers: int | None = None, scheduler: str | None = None,
+                 timeout: float = 20.0):
+        self.kind = kind
+        self.timeout = float(timeout)
+        self.scheduler = scheduler
+        self._client = None
+        self._cluster = None
+        self.executor: Executor
+        if kind == "serial":
+            self.workers = 1
+            self.threads = None
+            self.executor = SerialExecutor()
+        elif kind == "process":
+            self.workers = int(workers or os.cpu_count() or 1)
+            if self.workers < 1:
+                raise ExecutorError(f"workers must be >= 1, got {workers!r}")
+            self.threads = 1
+            self.executor = self._pool()
+        elif kind == "dask":
+            self.threads = 1
+            self._open_dask(workers, scheduler)
+        else:
+            raise ExecutorError(f"unknown executor {kind!r}; expected one of {EXECUTOR_KINDS}")
+
+    # ------------------------------------------------------------------ process pool
+    def _pool(self):
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        return ProcessPoolExecutor(self.workers, mp_context=multiprocessing.get_context("spawn"),
+                                   initializer=limit_threads, initargs=(1,))
+
+    # ------------------------------------------------------------------ dask
+    def _open_dask(self, workers, scheduler):
+        try:
+            from distributed import Client, LocalCluster
+        except ImportError:
+            raise ExecutorError("the Dask executor needs dask[distributed]: "
+                                "pip install murus[dask]") from None
+        if scheduler in (None, "local"):
+            n = int(workers or os.cpu_count() or 1)
+            if n < 1:
+                raise ExecutorError(f"workers must be >= 1, got {workers!r}")
+            self._cluster = LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
+                dashboard_address=None, env={"NUMBA_NUM_THREADS": "1"})
+            self._client = Client(self._cluster)
+            self.scheduler = "local"
+        else:
+            try:
+                self._client = Client(scheduler, timeout=f"{self.timeout}s")
+            except (OSError, TimeoutError, ValueError) as exc:
+                raise ExecutorError(f"cannot reach the Dask scheduler {scheduler}: "
+                                    f"{str(exc).splitlines()[0] if str(exc) else exc!r}") from None
+        info = self._client.scheduler_info()
+        self.workers = max(1, sum(int(w.get("nthreads", 1))
+                                  for w in info.get("workers", {}).values()))
+        self.executor = self._client.get_executor(pure=False)
+
+    # ------------------------------------------------------------------ common
+    def restart(self) -> None:
+        """Replace a broken process pool (a worker died); a no-op for the other kinds."""
+        if self.kind == "process":
+            self.executor.shutdown(wait=False, cancel_futures=True)
+            self.executor = self._pool()
+
+    def describe(self) -> dict:
+        d = {"kind": self.kind, "workers": self.workers}
+        if self.kind == "dask":
+            d["scheduler"] = self.scheduler
+        return d
+
+    def close(self) -> None:
+        try:
+            if self.kind == "process":
+                self.executor.shutdown(wait=True, cancel_futures=True)
+        finally:
+            if self._client is not None:
+                self._client.close()
+                self._client = None
+            if self._cluster is not None:
+                self._cluster.close()
+                self._cluster = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+
+def open_executor(kind: str = "process", workers: int | None = None,
+                  scheduler: str | None = None, timeout: float = 20.0) -> ExecutorHandle:
+    """Open an executor: ``"serial"``, ``"process"`` (``workers`` processes, default the number
+    of cores) or ``"dask"`` (``scheduler="tcp://HOST:PORT"``, or ``"local"``/``None`` to start
+    a LocalCluster of ``workers`` single-threaded processes on 127.0.0.1); ``timeout`` [s] to
+    reach a scheduler."""
+    return ExecutorHandle(kind, workers, scheduler, timeout)
+
+
+def is_broken_pool(exc: BaseException) -> bool:
+    """Whether ``exc`` says that the process pool lost a worker (the pool must be restarted)."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    return isinstance(exc, BrokenProcessPool)

@@ -1,0 +1,560 @@
+"""The sweep runner: a grid of rocking models x a set of ground motions, run in chunks on any
+``concurrent.futures.Executor``, stored chunk by chunk, assembled into an xarray Dataset.
+
+A :class:`Plan` is the resolved study: named dimensions (the swept parameters, in order), one
+:class:`Point` per grid node (a :class:`~murus.rocking.RockingModel` and the scale of each record,
+or an excitation of its own for generated motions), a :class:`~murus.studies.records.RecordSet`,
+and the solver options of :func:`murus.rocking.simulate_batch` (event-driven kernel).
+
+The grid nodes are numbered in C order and cut into chunks of consecutive nodes times all the
+records (``chunk_size`` histories, a few hundred: one :func:`simulate_batch` call per chunk, so
+the cost of a task dwarfs its scheduling). A chunk is a pure function of the plan: whichever
+executor runs it, and however the chunks are spread, the numbers are the same, bit for bit.
+
+Study folder (``out``)::
+
+    out/
+      study.json        the resolved study: spec, digest, chunk layout (written first)
+      chunks/c00000.npz one file per finished chunk: raw summaries (n_nodes, n_records, 16),
+      ...               written atomically (temporary file, then os.replace) as chunks finish
+      failures.json     chunks that failed after their retries: error and attempts
+      result.nc         the Dataset (NetCDF4 via h5netcdf), written when the run ends
+
+Re-running the same study with the same ``out`` computes only the chunks that have no file
+(missing or failed); a folder that holds another study (different digest) is refused.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+from collections import deque
+from collections.abc import Callable, Sequence
+from concurrent.futures import FIRST_COMPLETED, wait
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from murus.studies.records import RecordSet
+
+__all__ = ["Dim", "Point", "Plan", "ChunkTask", "run_chunk", "run_plan", "study_status",
+           "StudyError", "write_netcdf", "open_result", "SUMMARY_VARS"]
+
+FORMAT_VERSION = 1
+
+
+class StudyError(ValueError):
+    """An invalid study or results folder (one-line message)."""
+
+
+# (name, index in the kernel summary, units, long name)
+SUMMARY_VARS = (
+    ("theta_max", 0, "rad", "largest absolute rotation"),
+    ("theta_signed_max", 1, "rad", "signed rotation at the largest absolute rotation"),
+    ("t_theta_max", 2, "s", "time of the largest absolute rotation"),
+    ("n_impacts", 3, "1", "number of impacts"),
+    ("uplift_time", 4, "s", "time of first uplift (NaN: never)"),
+    ("overturned", 5, "1", "1 if the wall overturned, 0 if not (NaN: failed case)"),
+    ("t_overturn", 6, "s", "time of overturning (NaN: none)"),
+    ("t_exceed_alpha", 7, "s", "first time |theta| > alpha (NaN: never)"),
+    ("energy_dissipated", 8, "J", "energy dissipated at impacts"),
+    ("status", 10, "1", "0 ok, 1 step size underflow, 2 step budget exhausted"),
+    ("n_steps", 11, "1", "Runge-Kutta steps"),
+    ("theta_pos", 13, "rad", "largest positive rotation"),
+    ("theta_neg", 14, "rad", "largest negative rotation"),
+)
+
+
+@dataclass(frozen=True)
+class Dim:
+    """A swept parameter: ``name`` (the dimension), ``values`` and ``attrs`` (units, ...)."""
+
+    name: str
+    values: tuple
+    attrs: dict = field(default_factory=dict, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "values", tuple(self.values))
+        if not self.values:
+            raise StudyError(f"sweep parameter {self.name!r} has no values")
+
+
+@dataclass(frozen=True)
+class Point:
+    """A grid node: a rocking ``model``, the factor on each record (``scale``: one number or one
+    per record) or, for generated motions, its own ``excitation``."""
+
+    model: object
+    scale: float | tuple = 1.0
+    excitation: object | None = None
+
+
+@dataclass
+class Plan:
+    """A resolved study (see the module docstring)."""
+
+    name: str
+    dims: list[Dim]
+    points: list[Point]
+    records: RecordSet | None = None
+    spec: dict = field(default_factory=dict)
+    duration: float | None = None
+    rtol: float = 1e-9
+    chunk_size: int = 256
+
+    def __post_init__(self) -> None:
+        if len(self.points) != int(np.prod(self.shape)):
+            raise StudyError(f"the plan has {len(self.points)} points for a grid of shape "
+                             f"{self.shape}")
+        names = [d.name for d in self.dims]
+        if len(set(names)) != len(names) or "record" in names:
+            raise StudyError(f"sweep dimensions must be distinct and not 'record': {names}")
+        if self.records is None and any(p.excitation is None for p in self.points):
+            raise StudyError("a plan without records needs an excitation on every point")
+        if not (isinstance(self.chunk_size, int) and self.chunk_size >= 1):
+            raise StudyError(f"chunk_size must be a positive integer, got {self.chunk_size!r}")
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(d.values) for d in self.dims)
+
+    @property
+    def n_records(self) -> int:
+        return 1 if self.records is None else len(self.records.load())
+
+    @property
+    def n_histories(self) -> int:
+        return len(self.points) * self.n_records
+
+    def chunks(self) -> list[tuple[int, int]]:
+        """``[(start, stop), ...]`` ranges of grid nodes, each run with all the records."""
+        per = max(1, int(round(self.chunk_size / self.n_records)))
+        n = len(self.points)
+        return [(a, min(a + per, n)) for a in range(0, n, per)]
+
+    def digest(self) -> str:
+        """A digest of everything that determines the numbers (models, scales, excitations,
+        records, solver options, chunk layout)."""
+        h = hashlib.sha256()
+        h.update(json.dumps({"v": FORMAT_VERSION, "spec": self.spec, "duration": self.duration,
+                             "rtol": self.rtol, "chunks": self.chunks(),
+                             "dims": [[d.name, [_jsonable(v) for v in d.values]]
+                                      for d in self.dims]},
+                            sort_keys=True, default=str).encode())
+        h.update((self.records.key() if self.records is not None else "none").encode())
+        for p in self.points:
+            h.update(p.model.params().tobytes())
+            h.update(np.asarray(p.scale, dtype=float).tobytes())
+            if p.excitation is not None:
+                h.update(p.excitation.vector().tobytes())
+                for a in p.excitation.arrays():
+                    h.update(np.asarray(a).tobytes())
+        return h.hexdigest()[:20]
+
+
+def _jsonable(v):
+    if isinstance(v, np.generic):
+        return v.item()
+    return v
+
+
+# ----------------------------------------------------------------------------- chunks ----
+@dataclass
+class ChunkTask:
+    """What a worker needs to run one chunk (pickled to it)."""
+
+    index: int
+    points: list[Point]
+    records: RecordSet | None
+    duration: float | None
+    rtol: float
+    threads: int | None = 1
+    hook: Callable | None = None
+
+
+def run_chunk(task: ChunkTask) -> np.ndarray:
+    """Run the histories of one chunk: ``(n_nodes, n_records, S_SIZE)`` kernel summaries."""
+    from murus.rocking import kernels as K
+    from murus.rocking.engine import simulate_batch
+    from murus.studies.executors import limit_threads
+
+    limit_threads(task.threads)
+    if task.hook is not None:
+        task.hook(task.index)
+    pts = task.points
+    recs = task.records.load() if task.records is not None else None
+    n_rec = 1 if recs is None else len(recs)
+    out = np.full((len(pts), n_rec, K.S_SIZE), np.nan)
+    groups: list[tuple[object, list[int]]] = []
+    for i, p in enumerate(pts):
+        key = p.excitation if recs is None else _scale_key(p.scale, n_rec)
+        for gk, members in groups:
+            if _same(gk, key):
+                members.append(i)
+                break
+        else:
+            groups.append((key, [i]))
+    for key, members in groups:
+        if recs is None:
+            motions = [key]
+        else:
+            motions = [r if s == 1.0 else r.scaled(s) for r, s in zip(recs, key, strict=True)]
+        br = simulate_batch([pts[i].model for i in members], motions, duration=task.duration,
+                            rtol=task.rtol)
+        out[members] = br.raw
+    return out
+
+
+def _scale_key(scale, n: int) -> tuple:
+    s = np.broadcast_to(np.asarray(scale, dtype=float), (n,))
+    return tuple(float(x) for x in s)
+
+
+def _same(a, b) -> bool:
+    if a is b:
+        return True
+    try:
+        return bool(a == b)
+    except (TypeError, ValueError):  # arrays inside: compare by identity only
+        return False
+
+
+# ----------------------------------------------------------------------------- storage ---
+def _atomic_write_bytes(path: Path, writer: Callable) -> None:
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        with open(tmp, "wb") as f:
+            writer(f)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def _write_json(path: Path, data) -> None:
+    text = json.dumps(data, indent=1, sort_keys=True, default=str).encode()
+    _atomic_write_bytes(path, lambda f: f.write(text))
+
+
+def _chunk_path(out: Path, index: int) -> Path:
+    return out / "chunks" / f"c{index:05d}.npz"
+
+
+def _save_chunk(out: Path, index: int, digest: str, raw: np.ndarray) -> None:
+    _atomic_write_bytes(_chunk_path(out, index),
+                        lambda f: np.savez(f, raw=raw, digest=np.array(digest)))
+
+
+def _load_chunk(out: Path, index: int, digest: str, shape: tuple) -> np.ndarray | None:
+    p = _chunk_path(out, index)
+    if not p.exists():
+        return None
+    try:
+        with np.load(p, allow_pickle=False) as z:
+            if str(z["digest"]) != digest or z["raw"].shape != shape:
+                return None
+            return z["raw"].copy()
+    except (OSError, ValueError, KeyError):
+        return None  # a damaged file is recomputed
+
+
+def _prepare_folder(out: Path, plan: Plan, digest: str) -> None:
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "chunks").mkdir(exist_ok=True)
+    sj = out / "study.json"
+    if sj.exists():
+        try:
+            old = json.loads(sj.read_text())
+        except (OSError, ValueError):
+            raise StudyError(f"{sj}: unreadable study file; remove the folder or use another "
+                             "--out") from None
+        if old.get("digest") != digest:
+            raise StudyError(f"{out} holds results of a different study (digest "
+                             f"{old.get('digest')} != {digest}); use another output folder")
+        return
+    _write_json(sj, {
+        "format": FORMAT_VERSION, "name": plan.name, "digest": digest, "spec": plan.spec,
+        "dims": [{"name": d.name, "values": [_jsonable(v) for v in d.values], "attrs": d.attrs}
+                 for d in plan.dims],
+        "n_records": plan.n_records, "chunks": plan.chunks(), "n_histories": plan.n_histories,
+    })
+
+
+def study_status(out) -> dict:
+    """Chunks done, missing and failed in a study folder: ``{"name", "digest", "total",
+    "done", "missing", "failed": {index: error}, "complete"}``."""
+    out = Path(out)
+    sj = out / "study.json"
+    if not sj.exists():
+        raise StudyError(f"{out}: not a study folder (no study.json)")
+    meta = json.loads(sj.read_text())
+    chunks = meta["chunks"]
+    done = [i for i in range(len(chunks)) if _chunk_path(out, i).exists()]
+    fj = out / "failures.json"
+    failed = {}
+    if fj.exists():
+        failed = {int(k): v for k, v in json.loads(fj.read_text()).items()
+                  if int(k) not in set(done)}
+    missing = [i for i in range(len(chunks)) if i not in set(done) and i not in failed]
+    return {"name": meta.get("name"), "digest": meta.get("digest"), "total": len(chunks),
+            "done": done, "missing": missing, "failed": failed,
+            "complete": len(done) == len(chunks), "result": (out / "result.nc").exists()}
+
+
+# ----------------------------------------------------------------------------- runner ----
+def run_plan(
+    plan: Plan,
+    executor="process",
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    out=None,
+    retries: int = 2,
+    progress: Callable[[int, int, int], None] | None = None,
+    hook: Callable | None = None,
+    window: int | None = None,
+):
+    """Run a plan and return its Dataset (written to ``out/result.nc`` when ``out`` is given).
+
+    executor:
+        ``"serial"``, ``"process"``, ``"dask"`` (see :func:`murus.studies.executors.
+        open_executor`, with ``workers`` and ``scheduler``) or an open
+        :class:`~murus.studies.executors.ExecutorHandle`.
+    out:
+        Study folder: chunks are stored as they finish and a re-run computes only the missing
+        ones (module docstring).
+    retries:
+        A chunk that raises (or whose worker dies) is submitted again up to ``retries`` times,
+        then recorded as failed (its cases are NaN, its error in ``attrs["failures"]`` and
+        ``failures.json``); the other chunks go on.
+    progress:
+        ``progress(done, total, failed)`` after each finished chunk (counts of chunks).
+    hook:
+        A picklable ``hook(chunk_index)`` called in the worker before the chunk runs (fault
+        injection in tests, see :mod:`murus.studies.faults`).
+    window:
+        Chunks in flight at once (default: 1 for the serial executor, so that each chunk is
+        stored before the next starts; else 64 or 4 per worker, whichever is larger: enough
+        to keep a Dask cluster's queues full, bounded for very long sweeps).
+    """
+    from murus.rocking import kernels as K
+    from murus.studies.executors import ExecutorHandle, is_broken_pool, open_executor
+
+    if not (isinstance(retries, int) and retries >= 0):
+        raise StudyError(f"retries must be a non-negative integer, got {retries!r}")
+    digest = plan.digest()
+    chunks = plan.chunks()
+    n_rec = plan.n_records
+    raw = np.full((len(plan.points), n_rec, K.S_SIZE), np.nan)
+    out = Path(out) if out is not None else None
+    todo = []
+    if out is not None:
+        _prepare_folder(out, plan, digest)
+    for i, (a, b) in enumerate(chunks):
+        got = None if out is None else _load_chunk(out, i, digest, (b - a, n_rec, K.S_SIZE))
+        if got is None:
+            todo.append(i)
+        else:
+            raw[a:b] = got
+    failures: dict[int, dict] = {}
+    done = len(chunks) - len(todo)
+    if progress is not None:
+        progress(done, len(chunks), 0)
+    if todo:
+        handle = executor if isinstance(executor, ExecutorHandle) else open_executor(
+            executor, workers, scheduler)
+        try:
+            attempts = dict.fromkeys(todo, 0)
+
+            def submit(i):
+                a, b = chunks[i]
+                task = ChunkTask(i, plan.points[a:b], plan.records, plan.duration, plan.rtol,
+                                 handle.threads, hook)
+                attempts[i] += 1
+                return handle.executor.submit(run_chunk, task)
+
+            # a window of chunks in flight: memory stays bounded, a serial run stores each
+            # chunk before the next starts, retries go to the front of the queue
+            if window is None:
+                window = 1 if handle.kind == "serial" else max(64, 4 * handle.workers)
+            queue = deque(todo)
+            pending: dict = {}
+
+            def fill():
+                while queue and len(pending) < window:
+                    i = queue.popleft()
+                    pending[submit(i)] = i
+
+            fill()
+            while pending:
+                finished, _ = wait(list(pending), return_when=FIRST_COMPLETED)
+                broken = False
+                retry = []
+                for f in sorted(finished, key=lambda f: pending[f]):
+                    i = pending.pop(f)
+                    try:
+                        res = f.result()
+                    except BaseException as exc:  # noqa: BLE001 - recorded, then retried
+                        if isinstance(exc, KeyboardInterrupt | SystemExit):
+                            raise
+                        broken = broken or is_broken_pool(exc)
+                        if attempts[i] <= retries:
+                            retry.append(i)
+                        else:
+                            failures[i] = {"error": _one_line(exc), "attempts": attempts[i],
+                                           "nodes": list(chunks[i])}
+                            if progress is not None:
+                                progress(done, len(chunks), len(failures))
+                        continue
+                    a, b = chunks[i]
+                    raw[a:b] = res
+                    if out is not None:
+                        _save_chunk(out, i, digest, res)
+                    done += 1
+                    if progress is not None:
+                        progress(done, len(chunks), len(failures))
+                if broken:
+                    # a dead process breaks the whole pool: every chunk in flight comes back
+                    handle.restart()
+                    retry += sorted(pending.values())
+                    pending.clear()
+                queue.extendleft(reversed(retry))
+                fill()
+        finally:
+            if handle is not executor:
+                handle.close()
+    ds = to_dataset(plan, raw, failures, digest)
+    if out is not None:
+        if failures:
+            _write_json(out / "failures.json", {str(k): v for k, v in failures.items()})
+        elif (out / "failures.json").exists():
+            (out / "failures.json").unlink()
+        write_netcdf(ds, out / "result.nc")
+    return ds
+
+
+def _one_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return f"{type(exc).__name__}: {text[0] if text else ''}".rstrip(": ")
+
+
+# ----------------------------------------------------------------------------- dataset ---
+def to_dataset(plan: Plan, raw: np.ndarray, failures: dict, digest: str):
+    """The Dataset of a plan from the kernel summaries ``raw`` (n_points, n_records, S)."""
+    import xarray as xr
+
+    import murus
+
+    shape = plan.shape
+    n_rec = raw.shape[1]
+    dims = [d.name for d in plan.dims] + ["record"]
+    full = shape + (n_rec,)
+    coords = {}
+    for d in plan.dims:
+        vals = list(d.values)
+        arr = np.array(vals, dtype=object if isinstance(vals[0], str) else float)
+        if arr.dtype == object:
+            arr = arr.astype(str)
+        coords[d.name] = xr.Variable((d.name,), arr, dict(d.attrs))
+    if plan.records is not None:
+        names = plan.records.names()
+        coords["record"] = xr.Variable(("record",), np.array(names, dtype=str))
+        for k, (vals, attrs) in plan.records.coords().items():
+            arr = np.array(vals)
+            coords[k] = xr.Variable(("record",), arr.astype(str) if arr.dtype.kind in "OU"
+                                    else arr.astype(float), attrs)
+    else:
+        exc = plan.points[0].excitation
+        coords["record"] = xr.Variable(("record",), np.array([type(exc).__name__]))
+    data = {}
+    alpha = np.array([p.model.body.alpha for p in plan.points])
+    for name, k, units, long in SUMMARY_VARS:
+        data[name] = xr.Variable(dims, raw[..., k].reshape(full),
+                                 {"units": units, "long_name": long})
+    data["theta_max_over_alpha"] = xr.Variable(
+        dims, (raw[..., 0] / alpha[:, None]).reshape(full),
+        {"units": "1", "long_name": "largest absolute rotation over the slenderness angle alpha"})
+    failed = np.isnan(raw[..., 0])
+    data["failed"] = xr.Variable(dims, failed.reshape(full),
+                                 {"long_name": "the chunk of this case failed"})
+    pdims = [d.name for d in plan.dims]
+    per_point = _point_quantities(plan)
+    for name, (vals, attrs) in per_point.items():
+        data[name] = xr.Variable(pdims, np.asarray(vals, float).reshape(shape), attrs)
+    scales = np.stack([np.broadcast_to(np.asarray(p.scale, float), (n_rec,))
+                       for p in plan.points])
+    data["record_scale"] = xr.Variable(dims, scales.reshape(full),
+                                       {"units": "1", "long_name": "factor applied to the record"})
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update({
+        "title": f"murus study {plan.name}",
+        "study": json.dumps(plan.spec, sort_keys=True, default=str),
+        "digest": digest,
+        "murus_version": murus.__version__,
+        "limit_states": json.dumps({"limited": 0.1, "moderate": 0.4}),
+        "failures": json.dumps({str(k): v for k, v in failures.items()}),
+        "n_failed_chunks": len(failures),
+        "solver": json.dumps({"method": "event", "rtol": plan.rtol, "duration": plan.duration}),
+        "conventions": "SI units; theta > 0 clockwise (murus.rocking)",
+    })
+    return ds
+
+
+def _point_quantities(plan: Plan) -> dict:
+    def get(fn):
+        return [fn(p.model) for p in plan.points]
+
+    def bed(m):
+        w = m.transverse_walls
+        return math.nan if w is None else w.stiffness
+
+    return {
+        "alpha": (get(lambda m: m.body.alpha), {"units": "rad", "long_name": "slenderness angle"}),
+        "p": (get(lambda m: m.p), {"units": "rad/s", "long_name": "frequency parameter p"}),
+        "tie_stiffness": (get(lambda m: 0.0 if m.tie is None else m.tie.stiffness),
+                          {"units": "N/m", "long_name": "tie stiffness K (0: no tie)"}),
+        "bed_stiffness": (get(bed), {"units": "N/m/m", "long_name":
+                                     "transverse walls K' (NaN: none, inf: rigid)"}),
+        "damper_coefficient": (get(lambda m: 0.0 if m.damper is None else m.damper.coefficient),
+                               {"units": "N s/m", "long_name": "damper coefficient c"}),
+    }
+
+
+def write_netcdf(ds, path) -> Path:
+    """Write a Dataset to NetCDF4 with the h5netcdf engine, atomically."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        ds.to_netcdf(tmp, engine="h5netcdf")
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+def open_result(path):
+    """Read a result written by :func:`write_netcdf` into memory (the file is closed)."""
+    import xarray as xr
+
+    path = Path(path)
+    if not path.exists():
+        raise StudyError(f"{path}: no such result file")
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            return ds.load()
+    except (OSError, ValueError) as exc:
+        raise StudyError(f"{path.name}: not a readable NetCDF result ({_one_line(exc)})") from None
+
+
+def grid_points(dims: Sequence[Dim]):
+    """The grid nodes in C order as dictionaries ``{name: value}``."""
+    import itertools
+
+    for combo in itertools.product(*[d.values for d in dims]):
+        yield {d.name: v for d, v in zip(dims, combo, strict=True)}

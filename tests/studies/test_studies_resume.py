@@ -1,0 +1,111 @@
+"""Chunks are stored as they finish; a re-run computes only the missing ones and gives the
+Dataset of an uninterrupted run; failing chunks are retried, then recorded (issue 7, item 2)."""
+
+import json
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from murus.studies.faults import FailTimes, Touch
+from murus.studies.sweep import StudyError, open_result, run_plan, study_status
+
+
+class Interrupt:
+    """Stop the whole run (like Ctrl-C) when chunk ``chunk`` starts."""
+
+    def __init__(self, chunk):
+        self.chunk = chunk
+
+    def __call__(self, index):
+        if index == self.chunk:
+            raise KeyboardInterrupt
+
+
+@pytest.fixture(scope="module")
+def clean(records):
+    from studies_inputs import small_study
+
+    plan = small_study(records).plan()
+    return run_plan(plan, "serial")
+
+
+def ran(folder):
+    return sorted({int(p.name.split("-")[1]) for p in folder.glob("ran-*")})
+
+
+def test_interrupted_run_resumes(plan, clean, tmp_path):
+    out = tmp_path / "study"
+    with pytest.raises(KeyboardInterrupt):
+        run_plan(plan, "serial", out=out, hook=Interrupt(3))
+    st = study_status(out)
+    assert st["done"] == [0, 1, 2] and st["missing"] == [3, 4, 5] and not st["result"]
+    assert not list((out / "chunks").glob(".*"))  # no temporary file left behind
+    marks = tmp_path / "marks"
+    marks.mkdir()
+    ds = run_plan(plan, "serial", out=out, hook=Touch(str(marks)))
+    assert ran(marks) == [3, 4, 5]  # only the missing chunks were computed
+    xr.testing.assert_identical(ds, clean)
+    xr.testing.assert_identical(open_result(out / "result.nc"), clean)
+    assert study_status(out)["complete"]
+
+
+def test_rerun_computes_only_deleted_chunks(plan, clean, tmp_path):
+    out = tmp_path / "study"
+    run_plan(plan, "serial", out=out)
+    (out / "chunks" / "c00001.npz").unlink()
+    (out / "chunks" / "c00004.npz").write_bytes(b"damaged")  # a damaged file is recomputed
+    marks = tmp_path / "marks"
+    marks.mkdir()
+    ds = run_plan(plan, "serial", out=out, hook=Touch(str(marks)))
+    assert ran(marks) == [1, 4]
+    xr.testing.assert_identical(ds, clean)
+
+
+def test_retry_then_success(plan, clean, tmp_path):
+    ds = run_plan(plan, "serial", retries=2, hook=FailTimes(str(tmp_path), chunk=2, times=2))
+    assert len(list(tmp_path.glob("fail-2-*"))) == 3
+    xr.testing.assert_identical(ds, clean)
+
+
+def test_failed_chunk_recorded_then_recovered(plan, clean, tmp_path):
+    out = tmp_path / "study"
+    ds = run_plan(plan, "serial", out=out, retries=1,
+                  hook=FailTimes(str(tmp_path), chunk=4, times=-1))
+    assert len(list(tmp_path.glob("fail-4-*"))) == 2  # first attempt + one retry
+    assert ds.attrs["n_failed_chunks"] == 1
+    fails = json.loads(ds.attrs["failures"])
+    assert fails["4"]["attempts"] == 2 and "injected failure" in fails["4"]["error"]
+    assert json.loads((out / "failures.json").read_text())["4"]["nodes"] == [8, 10]
+    # nodes 8, 9 (K/K_d = 0.8, both scales) are NaN and flagged; the rest is the clean run
+    th = ds["theta_max_over_alpha"].stack(node=("K_over_Kd", "motion.scale"))
+    assert np.isnan(th.isel(node=[8, 9])).all() and ds["failed"].sum() == 2 * 4
+    good = ds["failed"] == 0
+    assert ds["theta_max"].where(good).equals(clean["theta_max"].where(good))
+    st = study_status(out)
+    assert list(st["failed"]) == [4] and not st["missing"]
+    again = run_plan(plan, "serial", out=out)  # no fault this time: the failed chunk reruns
+    xr.testing.assert_identical(again, clean)
+    assert not (out / "failures.json").exists()
+
+
+def test_folder_of_another_study_refused(plan, records, tmp_path):
+    from studies_inputs import small_study
+
+    out = tmp_path / "study"
+    run_plan(plan, "serial", out=out)
+    other = small_study(records, n_k=5).plan()
+    with pytest.raises(StudyError, match="different study"):
+        run_plan(other, "serial", out=out)
+
+
+def test_netcdf_round_trip(plan, clean, tmp_path):
+    from murus.studies.sweep import write_netcdf
+
+    p = write_netcdf(clean, tmp_path / "r.nc")
+    back = open_result(p)
+    xr.testing.assert_identical(back, clean)
+    assert back["theta_max"].attrs["units"] == "rad"
+    study = json.loads(back.attrs["study"])
+    assert study["sweep"]["motion.scale"] == [0.6, 1.0]
+    assert study["case"]["restraint"]["transverse_walls"]["stiffness"] == "eq11"
