@@ -24,6 +24,7 @@ RUNS = [
     ("bench_rocking.py", "RESULTS_rocking.md"),
     ("bench_restrained.py", "RESULTS_restrained.md"),
     ("bench_spectra.py", "RESULTS_motion.md"),
+    ("bench_studies.py", "RESULTS_studies.md"),
 ]
 
 

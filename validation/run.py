@@ -27,13 +27,15 @@ def main() -> None:
     import eurocode
     import motion
     import restrained
+    import retaining_pseudostatic
     import rocking
     import seed000_model
+    import studies
     import winkler
 
     parts = [HEADER, rocking.section(), restrained.section(), seed000_model.section(),
              winkler.run(ROOT / "docs" / "figures" / "winkler"), motion.section(),
-             eurocode.section()]
+             eurocode.section(), retaining_pseudostatic.section(), studies.section()]
     Path(args.out).write_text("\n".join(parts))
     print(f"wrote {args.out}")
 

@@ -12,7 +12,9 @@ from pathlib import Path
 import typer
 
 from murus.motion.cli import app as motion_app
+from murus.retaining.cli import app as retaining_app
 from murus.rocking.design_cli import app as design_app
+from murus.studies.cli import app as study_app
 
 app = typer.Typer(
     name="murus",
@@ -23,6 +25,14 @@ app = typer.Typer(
 )
 app.add_typer(motion_app, name="motion")
 app.add_typer(design_app, name="design")
+app.add_typer(retaining_app, name="retaining")
+app.add_typer(study_app, name="study")
+# "studies" is accepted too (hidden), so that either spelling works
+app.add_typer(study_app, name="studies", hidden=True)
+
+verify_app = typer.Typer(help="Verification of the engines against closed forms and published "
+                         "limits.", no_args_is_help=True)
+app.add_typer(verify_app, name="verify")
 
 
 def fail(message: str) -> None:
@@ -112,6 +122,40 @@ def demo(
 
     atomic_dir(out, write)
     typer.echo(f"outputs in {out}/")
+
+
+@verify_app.command("dem")
+def verify_dem(
+    quick: bool = typer.Option(False, "--quick", help="Shorter runs (same tolerances)."),
+    case: list[str] = typer.Option([], "--case", "-c",
+                                   help="Run only these cases (repeatable); default all."),
+) -> None:
+    """Run the distinct-element verification cases and print expected, obtained and tolerance.
+
+    Exits with code 1 when a case fails its tolerance."""
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    from murus.dem.verify import CASES
+
+    unknown = [c for c in case if c not in CASES]
+    if unknown:
+        fail(f"--case {unknown[0]}: unknown case; choose from {', '.join(CASES)}")
+    table = Table(title="murus.dem verification (g = 9.81 m/s2)")
+    for col in ("case", "expected", "obtained", "error", "tolerance", "result"):
+        table.add_column(col, justify="left" if col == "case" else "right")
+    failed = 0
+    for name in case or list(CASES):
+        for r in CASES[name](quick):
+            failed += not r["passed"]
+            table.add_row(escape(r["case"]), f"{r['expected']:.4g}", f"{r['obtained']:.4g}",
+                          f"{r['error']:.3g}", f"{r['tolerance']:.3g}",
+                          "[green]pass" if r["passed"] else "[red]FAIL")
+    Console().print(table)
+    if failed:
+        typer.echo(f"{failed} verification row(s) failed", err=True)
+        raise typer.Exit(code=1)
 
 
 def main() -> None:  # pragma: no cover - entry point
