@@ -17,6 +17,7 @@ from murus.rocking.design_cli import app as design_app
 from murus.studies.cli import app as study_app
 
 app = typer.Typer(
+    rich_markup_mode=None,
     name="murus",
     help="Seismic assessment of masonry walls: rocking, ground motions, Eurocode checks.",
     no_args_is_help=True,
@@ -30,8 +31,9 @@ app.add_typer(study_app, name="study")
 # "studies" is accepted too (hidden), so that either spelling works
 app.add_typer(study_app, name="studies", hidden=True)
 
-verify_app = typer.Typer(help="Verification of the engines against closed forms and published "
-                         "limits.", no_args_is_help=True)
+verify_app = typer.Typer(rich_markup_mode=None, no_args_is_help=True,
+                         help="Verification of the engines against closed forms and "
+                         "published limits.")
 app.add_typer(verify_app, name="verify")
 
 

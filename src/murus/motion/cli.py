@@ -18,13 +18,15 @@ from pathlib import Path
 import typer
 
 app = typer.Typer(
+    rich_markup_mode=None,
     name="motion",
     help="Ground motions: record info, response spectra, EC8 artificial records, ramps.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
 )
-generate_app = typer.Typer(help="Generate ground motions.", no_args_is_help=True)
+generate_app = typer.Typer(rich_markup_mode=None, help="Generate ground motions.",
+                           no_args_is_help=True)
 app.add_typer(generate_app, name="generate")
 
 

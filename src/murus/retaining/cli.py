@@ -16,6 +16,7 @@ import math
 import typer
 
 app = typer.Typer(
+    rich_markup_mode=None,
     name="retaining",
     help="Dry-stone retaining walls (seed 001): pseudo-static resistance A_pseudo, geometry.",
     no_args_is_help=True,

@@ -15,6 +15,7 @@ import math
 import typer
 
 app = typer.Typer(
+    rich_markup_mode=None,
     name="design",
     help="Design of restrained rocking walls (seed 002): tie rod, damper, resonance frequencies.",
     no_args_is_help=True,

@@ -14,6 +14,7 @@ from pathlib import Path
 import typer
 
 app = typer.Typer(
+    rich_markup_mode=None,
     name="study",
     help="Parameter sweeps over record suites: rocking spectra, fragility (Dask or processes).",
     no_args_is_help=True,
