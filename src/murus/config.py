@@ -81,16 +81,21 @@ def validate(model: type[BaseModel], data: dict, path: Path, text: str):
     except ValidationError as exc:
         err = exc.errors()[0]
         loc = tuple(err.get("loc", ()))
-        msg = err.get("msg", "invalid value")
-        if err.get("type") == "extra_forbidden":
-            msg = "unknown key"
-        elif err.get("type") == "missing":
-            msg = "required key is missing"
-        else:
-            msg = msg.removeprefix("Value error, ")
-            if "input" in err and not isinstance(err["input"], dict):
-                msg = f"{msg} (got {err['input']!r})"
-        raise CaseError(f"{_where(path, text, loc)} {msg}") from None
+        raise CaseError(f"{_where(path, text, loc)} {error_message(err)}") from None
+
+
+def error_message(err: dict) -> str:
+    """The message of one pydantic error, in the words of a case file (unknown key, required
+    key is missing, or the validator's message with the offending value)."""
+    msg = err.get("msg", "invalid value")
+    if err.get("type") == "extra_forbidden":
+        return "unknown key"
+    if err.get("type") == "missing":
+        return "required key is missing"
+    msg = msg.removeprefix("Value error, ")
+    if "input" in err and not isinstance(err["input"], dict):
+        msg = f"{msg} (got {err['input']!r})"
+    return msg
 
 
 def fail_at(path: Path, text: str, loc: tuple, msg: str) -> CaseError:

@@ -17,6 +17,9 @@ from pathlib import Path
 
 import typer
 
+from murus.cliutil import fail as _fail
+from murus.cliutil import guard
+
 app = typer.Typer(
     rich_markup_mode=None,
     name="motion",
@@ -30,20 +33,11 @@ generate_app = typer.Typer(rich_markup_mode=None, help="Generate ground motions.
 app.add_typer(generate_app, name="generate")
 
 
-def _fail(msg: str) -> None:
-    typer.echo(f"error: {' '.join(str(msg).split())}", err=True)
-    raise typer.Exit(2)
-
-
-@contextmanager
 def _guard():
     """Turn user errors (bad files, bad values) into exit code 2 with a one-line message."""
     from murus.motion.io import MotionFormatError
 
-    try:
-        yield
-    except (MotionFormatError, ValueError, ImportError, OSError) as exc:
-        _fail(str(exc))
+    return guard(MotionFormatError, ValueError, ImportError, OSError)
 
 
 @contextmanager

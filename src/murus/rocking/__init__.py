@@ -14,7 +14,7 @@ commands do not load numba.
 True
 """
 
-from importlib import import_module
+from murus._lazy import lazy_exports
 
 _EXPORTS = {
     "BodyError": "body",
@@ -54,14 +54,4 @@ _EXPORTS = {
 
 __all__ = sorted(_EXPORTS)
 
-
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        value = getattr(import_module(f"murus.rocking.{_EXPORTS[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'murus.rocking' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

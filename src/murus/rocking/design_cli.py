@@ -14,6 +14,8 @@ import math
 
 import typer
 
+from murus.cliutil import fail as _fail
+
 app = typer.Typer(
     rich_markup_mode=None,
     name="design",
@@ -38,11 +40,6 @@ _TIE_H = typer.Option(None, "--tie-height", help="Tie height above the base [m] 
 _MU = typer.Option(0.2, "--mu", help="Seismic multiplier mu of eq. 12 [-].")
 _FU = typer.Option(430e6, "--fu", help="Ultimate strength f_uk of the tie steel [Pa] (S275).")
 _LENGTH = typer.Option(10.0, "--length", help="Tie rod length L [m].")
-
-
-def _fail(msg: str) -> None:
-    typer.echo(f"error: {' '.join(str(msg).split())}", err=True)
-    raise typer.Exit(code=2)
 
 
 def _errors():

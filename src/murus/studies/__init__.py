@@ -19,7 +19,7 @@ Names are imported on first use (PEP 562): ``import murus.studies`` loads neithe
 nor Dask.
 """
 
-from importlib import import_module
+from murus._lazy import lazy_exports
 
 _EXPORTS = {
     "open_executor": "executors",
@@ -55,14 +55,4 @@ _EXPORTS = {
 
 __all__ = sorted(_EXPORTS)
 
-
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        value = getattr(import_module(f"murus.studies.{_EXPORTS[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'murus.studies' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

@@ -8,10 +8,12 @@ interruption computes only what is missing.
 
 from __future__ import annotations
 
-from contextlib import contextmanager
 from pathlib import Path
 
 import typer
+
+from murus.cliutil import fail as _fail
+from murus.cliutil import guard
 
 app = typer.Typer(
     rich_markup_mode=None,
@@ -23,19 +25,10 @@ app = typer.Typer(
 )
 
 
-def _fail(msg: str) -> None:
-    typer.echo(f"error: {' '.join(str(msg).split())}", err=True)
-    raise typer.Exit(2)
-
-
-@contextmanager
 def _guard():
     from murus.config import CaseError
 
-    try:
-        yield
-    except (CaseError, ValueError, ImportError, OSError) as exc:
-        _fail(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)
+    return guard(CaseError, ValueError, ImportError, OSError, first_line=True)
 
 
 def _progress_bar():

@@ -404,6 +404,7 @@ class Study:
         return cfg, body
 
     def _validate(self, data: dict, node: dict):
+        from murus.config import error_message
         from murus.rocking.case import RockingCase
 
         try:
@@ -418,16 +419,7 @@ class Study:
             err = next((e for e in errs if swept(e)), errs[0])
             loc = tuple(x for x in err.get("loc", ()) if not isinstance(x, int)
                         and not _UNION_TAG.match(str(x)))
-            msg = err.get("msg", "invalid value")
-            if err.get("type") == "extra_forbidden":
-                msg = "unknown key"
-            elif err.get("type") == "missing":
-                msg = "required key is missing"
-            else:
-                msg = msg.removeprefix("Value error, ")
-                if "input" in err and not isinstance(err["input"], dict):
-                    msg = f"{msg} (got {err['input']!r})"
-            raise self._fail(loc, msg, node) from None
+            raise self._fail(loc, error_message(err), node) from None
 
     def _node_model(self, cfg, body, node):
         from murus.rocking.case import build_model
