@@ -47,9 +47,19 @@ def fail(message: str) -> None:
 def run(
     case: Path = typer.Argument(..., help="Case file (TOML)."),
     out: Path = typer.Option(..., "--out", "-o", help="Output folder."),
-    no_figure: bool = typer.Option(False, "--no-figure", help="Skip response.png."),
+    no_figure: bool = typer.Option(False, "--no-figure",
+                                   help="Skip response.png (blocks.png for a DEM case)."),
+    progress: bool = typer.Option(False, "--progress/--no-progress",
+                                  help="Progress bar of a DEM run."),
 ) -> None:
-    """Run a rocking case file: writes summary.json, timeseries.csv and response.png."""
+    """Run a case file: a rocking case writes summary.json, timeseries.csv and response.png;
+    a distinct-element case ([dem] table) writes summary.json, histories.csv, blocks.png and
+    an optional VTK series."""
+    from murus.dem.case import is_dem_case
+
+    if is_dem_case(case):
+        _run_dem(case, out, not no_figure, progress)
+        return
     from murus.config import CaseError
     from murus.rocking.case import build, load_case, run_case
     from murus.rocking.output import write_outputs
@@ -70,6 +80,26 @@ def run(
         f"{case.name}: theta_max/alpha = {s['theta_max_over_alpha']:.4f}, {events}"
         f", overturned = {s['overturned']} -> {out}"
     )
+
+
+def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
+    """The DEM branch of ``murus run``."""
+    from murus.config import CaseError
+    from murus.dem.case import build, load_case, run_case, summary_line, write_outputs
+
+    try:
+        cfg, path, text = load_case(case)
+        built = build(cfg, path, text)
+    except CaseError as exc:
+        fail(str(exc).splitlines()[0])
+    try:
+        res = run_case(built, progress=progress)
+    except ValueError as exc:
+        fail(f"{case.name}: {str(exc).splitlines()[0]}")
+    if res.result.status == "unstable":
+        fail(f"{case.name}: {res.result.message}")
+    write_outputs(res, out, figure=figure and built.figure)
+    typer.echo(f"{summary_line(case.name, res)} -> {out}")
 
 
 def _examples_dir(given: Path | None) -> Path | None:
