@@ -11,6 +11,8 @@ from pathlib import Path
 
 import typer
 
+from murus import cliutil
+from murus.identify.cli import app as lab_app
 from murus.motion.cli import app as motion_app
 from murus.retaining.cli import app as retaining_app
 from murus.rocking.design_cli import app as design_app
@@ -28,6 +30,7 @@ app.add_typer(motion_app, name="motion")
 app.add_typer(design_app, name="design")
 app.add_typer(retaining_app, name="retaining")
 app.add_typer(study_app, name="study")
+app.add_typer(lab_app, name="lab")
 # "studies" is accepted too (hidden), so that either spelling works
 app.add_typer(study_app, name="studies", hidden=True)
 
@@ -37,10 +40,7 @@ verify_app = typer.Typer(rich_markup_mode=None, no_args_is_help=True,
 app.add_typer(verify_app, name="verify")
 
 
-def fail(message: str) -> None:
-    """Print a one-line error and exit with code 2."""
-    typer.echo(f"error: {message}", err=True)
-    raise typer.Exit(code=2)
+fail = cliutil.fail
 
 
 @app.command()

@@ -13,9 +13,10 @@ makes that a least-squares problem:
 - objective (stated): over a time window (the strong-motion window of the input, Arias
   intensity 5-95 %, extended by ``tail`` seconds to keep the free vibration after it; the
   whole record for free vibration), ``objective="peaks"`` (default) takes the ``n_peaks``
-  largest measured half-cycle peaks |theta| and compares each with the largest simulated
-  |theta| within +-``window``/2 of its instant; ``objective="envelope"`` compares the peak
-  |theta| in consecutive windows of ``window`` seconds. Residuals are divided by the largest
+  largest measured half-cycle peaks and compares the extreme rotation (largest |theta|, with
+  its sign) within +-``window``/2 of each instant, measured and simulated;
+  ``objective="envelope"`` compares the signed extremes in consecutive windows of ``window``
+  seconds. Residuals are divided by the largest
   measured |theta| of the history. Rocking is sensitive to small changes (chaotic over long
   records), so peak amplitudes and when they occur, at the resolution of the window, are
   compared rather than the histories point by point. On the synthetic tests of the test suite
@@ -47,7 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = ["CalibrationError", "CalibrationResult", "Measurement", "calibrate",
-           "PARAMETERS"]
+           "measurement_from_test", "plot_calibration", "PARAMETERS"]
 
 #: The parameters that can be fitted, with the bounds used when none are given.
 PARAMETERS: dict[str, tuple[float, float]] = {
@@ -132,15 +133,15 @@ def _window(m: Measurement, tail: float) -> tuple[float, float]:
     return max(t0, float(m.t[0])), min(t1, float(m.t[-1]))
 
 
+def _signed_extreme(x: np.ndarray) -> float:
+    """The value of largest magnitude, with its sign (0 for an empty array)."""
+    return float(x[np.argmax(np.abs(x))]) if x.size else 0.0
+
+
 def _features(t: np.ndarray, theta: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    """Peak |theta| in each window [edges[i], edges[i+1])."""
+    """Signed extreme of theta in each window [edges[i], edges[i+1])."""
     idx = np.searchsorted(t, edges)
-    a = np.abs(theta)
-    out = np.zeros(edges.size - 1)
-    for i in range(edges.size - 1):
-        s = a[idx[i]:idx[i + 1]]
-        out[i] = s.max() if s.size else 0.0
-    return out
+    return np.array([_signed_extreme(theta[idx[i]:idx[i + 1]]) for i in range(edges.size - 1)])
 
 
 def _smooth(theta: np.ndarray, n: int) -> np.ndarray:
@@ -151,9 +152,10 @@ def _smooth(theta: np.ndarray, n: int) -> np.ndarray:
 
 
 def _around(t: np.ndarray, theta: np.ndarray, instants: np.ndarray, window: float):
-    """Largest |theta| within +-window/2 of each instant (the same statistic on the measured
-    and on the simulated history, so that the residual vanishes at a perfect fit)."""
-    return np.array([np.abs(theta[(t >= tp - window / 2) & (t <= tp + window / 2)]).max()
+    """Signed extreme of theta within +-window/2 of each instant (the same statistic on the
+    measured and on the simulated history, so that the residual vanishes at a perfect fit; the
+    sign is kept, so a response of the wrong direction is not mistaken for a good one)."""
+    return np.array([_signed_extreme(theta[(t >= tp - window / 2) & (t <= tp + window / 2)])
                      for tp in instants])
 
 
@@ -307,3 +309,45 @@ def calibrate(model, measurements, params, *, bounds: dict | None = None,
                              rms=rms, sensitivity=_named(names, sens),
                              std_error=_named(names, se), correlation=corr,
                              starts=runs, objective=objective, n_residuals=n)
+
+
+def measurement_from_test(test, channel: str = "rot_bottom", model=None) -> Measurement:
+    """A :class:`Measurement` from a shaking-table test (:mod:`murus.identify.testdata`): the
+    rotation ``channel`` (the rocking rotation at the base joint, ``rot_bottom``, by default)
+    against the table acceleration. The test format takes accelerations positive towards +x
+    and rotations positive clockwise (lifting the left end); in :mod:`murus.rocking` a positive
+    ground acceleration drives a positive (clockwise) rotation, so the ground motion given to
+    the model is minus the table acceleration."""
+    from murus.motion import GroundMotion
+
+    if channel not in test.channels:
+        raise CalibrationError(f"{test.name}: no channel {channel!r} "
+                               f"(have {', '.join(sorted(test.channels))})")
+    gm = GroundMotion(dt=test.dt, acc=-test.channels["table_acc"], name=test.name)
+    return Measurement(test.t, test.channels[channel], motion=gm, name=test.name, model=model)
+
+
+def plot_calibration(model, measurement: Measurement, params: dict, ax=None, rtol: float = 1e-8):
+    """Measured and calibrated rotation histories of one test on ``ax``; returns the Axes."""
+    import dataclasses as dc
+
+    from murus.rocking import simulate
+    from murus.rocking.restitution import AmplitudeDependent
+
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(figsize=(8, 3))
+    mdl = measurement.model if measurement.model is not None else model
+    law = mdl.restitution if isinstance(mdl.restitution, AmplitudeDependent) \
+        else AmplitudeDependent()
+    mdl = dc.replace(mdl, restitution=dc.replace(law, **params))
+    r = simulate(mdl, measurement.motion, theta0=measurement.theta0, omega0=measurement.omega0,
+                 rtol=rtol, out_dt=min(0.005, float(np.median(np.diff(measurement.t)))))
+    ax.plot(measurement.t, measurement.theta * 1e3, color="0.5", lw=0.8, label="measured")
+    ax.plot(r.t, r.theta * 1e3, color="C3", lw=1.0, label="calibrated model")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("rotation [mrad]")
+    ax.set_title(measurement.name)
+    ax.legend(loc="upper right", fontsize=8)
+    return ax

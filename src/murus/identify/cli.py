@@ -1,0 +1,412 @@
+"""``murus lab`` commands: shaking-table test processing (issue 8, items 2-4, 7, 8).
+
+Thin layer over :mod:`murus.identify`: ``frf`` (white-noise identification of one test file),
+``sequence`` (frequency and damping evolution, classification, compressive lengths and one
+Markdown report for a sequence folder) and ``synthesize`` (a virtual sequence in the
+documented format). Bad input exits with code 2 and a one-line ``error:`` message on stderr,
+and nothing is written: outputs are produced in a temporary folder and moved into place only
+when every step has succeeded. The library (scipy, matplotlib) is imported inside the commands.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+import tempfile
+from pathlib import Path
+
+import typer
+
+from murus.cliutil import fail
+
+app = typer.Typer(
+    rich_markup_mode=None,
+    name="lab",
+    help="Shaking-table tests (seed 000 §2): white-noise FRF and modal parameters, evolution "
+         "along a sequence, response classification, compressive length; virtual sequences.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+def _errors():
+    from murus.identify.classify import ClassifyError
+    from murus.identify.compressive import CompressiveError
+    from murus.identify.modal import ModalError
+    from murus.identify.testdata import TestDataError
+
+    return (TestDataError, ModalError, CompressiveError, ClassifyError, ValueError)
+
+
+def _clean(v):
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, dict):
+        return {str(k): _clean(x) for k, x in v.items()}
+    if isinstance(v, list | tuple):
+        return [_clean(x) for x in v]
+    return v
+
+
+def _save(fig, stem: Path) -> None:
+    fig.savefig(stem.with_suffix(".png"), dpi=120)
+    fig.savefig(stem.with_suffix(".svg"))
+
+
+def _publish(tmp: Path, out: Path) -> list[Path]:
+    """Move every file of ``tmp`` into ``out`` (created); returns the new paths."""
+    out.mkdir(parents=True, exist_ok=True)
+    moved = []
+    for p in sorted(tmp.iterdir()):
+        dest = out / p.name
+        shutil.move(str(p), dest)
+        moved.append(dest)
+    return moved
+
+
+def _check_out(out: Path) -> None:
+    if out.exists() and not out.is_dir():
+        fail(f"{out}: exists and is not a folder")
+
+
+_NPERSEG = typer.Option(None, "--nperseg", help="Welch segment length [samples] (default: "
+                        "the power of two nearest to 1/8 of the record).")
+_FMIN = typer.Option(0.0, "--f-min", help="Lowest frequency searched for peaks [Hz].")
+_FMAX = typer.Option(None, "--f-max", help="Highest frequency searched for peaks [Hz] "
+                     "(default 0.8 x Nyquist).")
+
+
+@app.command()
+def frf(
+    test_file: Path = typer.Argument(..., help="Test file (CSV, murus.identify.testdata "
+                                     "format)."),
+    out: Path | None = typer.Option(None, "--out", help="Folder for frf.png/.svg, modes.md, "
+                                    "modes.json (default: print only)."),
+    n_modes: int | None = typer.Option(None, "--modes", help="Keep at most this many modes "
+                                       "(lowest first)."),
+    nperseg: int | None = _NPERSEG,
+    f_min: float = _FMIN,
+    f_max: float | None = _FMAX,
+) -> None:
+    """H1 frequency response (top / table acceleration) with coherence, natural frequencies
+    by peak picking, damping by half-power and by a modal fit (reliability flags)."""
+    from murus.identify.modal import identify
+    from murus.identify.testdata import read_test
+
+    if out is not None:
+        _check_out(out)
+    try:
+        test = read_test(test_file)
+        res = identify(test, nperseg=nperseg, f_min=f_min, f_max=f_max, n_modes=n_modes)
+    except _errors() as exc:
+        fail(exc)
+    table = res.table()
+    typer.echo(f"{test.name}: {len(res.modes)} mode(s), df = {res.frf.df:.4g} Hz, "
+               f"{res.frf.n_averages} averages")
+    typer.echo(table)
+    if out is None:
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from murus.identify.modal import plot_frf
+
+    with tempfile.TemporaryDirectory() as td:
+        tmp = Path(td)
+        axes = plot_frf(res)
+        fig = axes[0].figure
+        fig.tight_layout()
+        _save(fig, tmp / "frf")
+        plt.close(fig)
+        (tmp / "modes.md").write_text(f"# {test.name}\n\n{table}\n", encoding="utf-8")
+        d = res.to_dict()
+        d["file"] = str(test_file)
+        (tmp / "modes.json").write_text(json.dumps(_clean(d), indent=2), encoding="utf-8")
+        for p in _publish(tmp, out):
+            typer.echo(f"wrote {p}")
+
+
+@app.command()
+def sequence(
+    sequence_dir: Path = typer.Argument(..., help="Sequence folder (sequence.toml or NN_*.csv "
+                                        "files)."),
+    out: Path = typer.Option(..., "--out", help="Output folder."),
+    n_modes: int = typer.Option(1, "--modes", help="Modes followed along the sequence."),
+    closure: float = typer.Option(0.0, "--closure", help="Closure of the base joint read as "
+                                  "still in contact [m] (murus.identify.compressive)."),
+    cantilever_below: float = typer.Option(0.3, "--cantilever-below", help="Classification: "
+                                           "peak |rot_bottom| / |rot_top| below this: "
+                                           "cantilever."),
+    rocking_above: float = typer.Option(0.8, "--rocking-above", help="Classification: ratio "
+                                        "at or above this: rocking."),
+    min_rotation: float = typer.Option(1e-5, "--min-rotation", help="Classification: top "
+                                       "rotation under this [rad] is a cantilever."),
+    nperseg: int | None = _NPERSEG,
+    f_min: float = _FMIN,
+    f_max: float | None = _FMAX,
+) -> None:
+    """Frequency and damping evolution (seed 000 Figures 3-4), classification (§2.3) with the
+    rotations (Figures 6-7), compressive lengths (Table 2, Figure 5), lifted lengths
+    (Figures 19-20) and one Markdown report."""
+    from murus.identify.classify import Criterion, classify_sequence
+    from murus.identify.compressive import compressive_table
+    from murus.identify.modal import evolution
+    from murus.identify.testdata import read_sequence
+
+    _check_out(out)
+    try:
+        crit = Criterion(cantilever_below=cantilever_below, rocking_above=rocking_above,
+                         min_rotation=min_rotation)
+        seq = read_sequence(sequence_dir)
+        evo = evolution(seq, n_modes=n_modes, nperseg=nperseg, f_min=f_min, f_max=f_max)
+        classes = classify_sequence(seq, crit)
+        comp = None
+        if any(e.test.has_lvdt for e in seq.seismic):
+            comp = compressive_table(seq, closure=closure)
+    except _errors() as exc:
+        fail(exc)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from murus.identify.classify import plot_lifted_length, plot_rotations
+    from murus.identify.compressive import plot_contact_length
+    from murus.identify.modal import plot_damping_evolution, plot_frequency_evolution
+
+    figs = []
+    with tempfile.TemporaryDirectory() as td:
+        tmp = Path(td)
+        for stem, fn in (("frequency", plot_frequency_evolution),
+                         ("damping", plot_damping_evolution)):
+            ax = fn(evo)
+            ax.figure.tight_layout()
+            _save(ax.figure, tmp / stem)
+            figs.append(f"{stem}.png")
+            plt.close(ax.figure)
+        if comp is not None:
+            ax = plot_contact_length(comp)
+            ax.figure.tight_layout()
+            _save(ax.figure, tmp / "compressive_length")
+            figs.append("compressive_length.png")
+            plt.close(ax.figure)
+            (tmp / "compressive_length.csv").write_text(comp.to_csv(), encoding="utf-8")
+        by_label = {e.label: e for e in seq.seismic}
+        for c in classes:
+            ax = plot_rotations(by_label[c.name].test, classification=c)
+            ax.figure.tight_layout()
+            _save(ax.figure, tmp / f"rotations_{c.name}")
+            plt.close(ax.figure)
+        for e in seq.seismic:
+            if e.test.has_lvdt:
+                ax = plot_lifted_length(e.test, closure=closure)
+                ax.figure.tight_layout()
+                _save(ax.figure, tmp / f"lifted_{e.label}")
+                plt.close(ax.figure)
+        summary = {"sequence": seq.name, "folder": str(sequence_dir),
+                   "table1": seq.table1(), "evolution": evo.rows(),
+                   "classification": [c.to_dict() for c in classes],
+                   "compressive_length": comp.rows if comp is not None else None,
+                   "criterion": {"cantilever_below": cantilever_below,
+                                 "rocking_above": rocking_above,
+                                 "min_rotation_rad": min_rotation},
+                   "closure_m": closure}
+        (tmp / "summary.json").write_text(json.dumps(_clean(summary), indent=2),
+                                          encoding="utf-8")
+        (tmp / "report.md").write_text(_report(seq, evo, classes, comp, crit, closure, figs),
+                                       encoding="utf-8")
+        for p in _publish(tmp, out):
+            typer.echo(f"wrote {p}")
+
+
+def _report(seq, evo, classes, comp, crit, closure, figs) -> str:
+    lines = [f"# Shaking-table sequence: {seq.name}", "",
+             f"Folder `{seq.folder}`, {len(seq)} tests ({len(seq.seismic)} seismic, "
+             f"{len(seq.white_noise)} white noise).", "", "## Seismic tests (seed 000 Table 1)",
+             "", "| No | Test | PGA nominal [g] | PGA measured [g] |", "|---|---|---|---|"]
+    for r in seq.table1():
+        nom = "/" if r["pga_nominal_g"] is None else f"{r['pga_nominal_g']:.4f}"
+        lines.append(f"| {r['no']} | {r['test']} | {nom} | {r['pga_measured_g']:.4f} |")
+    lines += ["", "## Natural frequencies and damping (white-noise tests, seed 000 Figures 3-4)",
+              "", "H1 FRF of top over table acceleration; frequency and damping from a modal "
+              "fit of the base-excitation transmissibility near each peak; (?) marks an "
+              "unreliable estimate (see summary.json for the reasons).", "", evo.table(), "",
+              "![frequency](frequency.png)", "", "![damping](damping.png)", "",
+              "## Classification (seed 000 §2.3)", "",
+              f"ratio = max|rot_bottom| / max|rot_top|: cantilever below "
+              f"{crit.cantilever_below}, rocking at or above {crit.rocking_above}, hybrid in "
+              f"between; cantilever when max|rot_top| < {crit.min_rotation:g} rad.", ""]
+    if classes:
+        lines += ["| Test | Class | Ratio | max rot bottom [mrad] | max rot top [mrad] |",
+                  "|---|---|---|---|---|"]
+        for c in classes:
+            ratio = "/" if not math.isfinite(c.ratio) else f"{c.ratio:.3f}"
+            lines.append(f"| {c.name} | {c.label} | {ratio} | {1e3 * c.peak_bottom:.4f} | "
+                         f"{1e3 * c.peak_top:.4f} |")
+    else:
+        lines.append("No seismic test has both rotation channels.")
+    lines += ["", "## Compressive length (seed 000 Table 2, Figure 5)", ""]
+    if comp is not None:
+        lines += [f"Plane base section fitted to the base transducers; contact where the "
+                  f"opening is at most {closure:g} m. Eurocode 6 assessments: equivalent "
+                  "static load 2.5 x level x m g at the top (murus.eurocode.ec6).", "",
+                  comp.to_markdown(), "", "![compressive length](compressive_length.png)", "",
+                  "Lifted length L - Lc against time (seed 000 Figures 19-20): "
+                  "`lifted_<test>.png`; bottom and top rotations (Figures 6-7): "
+                  "`rotations_<test>.png`."]
+    else:
+        lines.append("No seismic test has base transducers.")
+    return "\n".join(lines) + "\n"
+
+
+@app.command()
+def synthesize(
+    out_dir: Path = typer.Argument(..., help="Folder to create (must not exist or be empty)."),
+    seed: int = typer.Option(0, "--seed", help="Random seed (the output is deterministic)."),
+    levels: str = typer.Option(",".join(f"{a:g}" for a in (0.04, 0.08, 0.08, 0.16, 0.24, 0.32,
+                                                            0.45)),
+                               "--levels", help="Nominal PGAs of the seismic tests [g], "
+                               "comma-separated."),
+    wn_duration: float = typer.Option(120.0, "--wn-duration", help="Duration of each "
+                                      "white-noise test [s]."),
+    fs: float = typer.Option(100.0, "--fs", help="Sampling rate [Hz]."),
+) -> None:
+    """Write a virtual test sequence (cantilever + rigid rocking wall with sensor noise,
+    murus.identify.synth) in the documented format, with sequence.toml and truth.json."""
+    from murus.identify.synth import synthesize_sequence
+
+    if out_dir.exists() and (not out_dir.is_dir() or any(out_dir.iterdir())):
+        fail(f"{out_dir}: exists and is not an empty folder")
+    try:
+        lv = [float(x) for x in levels.split(",") if x.strip()]
+    except ValueError:
+        fail(f"--levels must be comma-separated numbers [g], got {levels!r}")
+    with tempfile.TemporaryDirectory() as td:
+        tmp = Path(td) / "seq"
+        try:
+            synthesize_sequence(tmp, seed=seed, levels=lv, wn_duration=wn_duration, fs=fs)
+        except _errors() as exc:
+            fail(exc)
+        moved = _publish(tmp, out_dir)
+    typer.echo(f"wrote {len(moved)} files to {out_dir}")
+
+
+def _bounds(items: list[str]) -> dict[str, tuple[float, float]]:
+    out = {}
+    for it in items:
+        name, _, rng = it.partition("=")
+        lo, _, hi = rng.partition(":")
+        try:
+            out[name.strip()] = (float(lo), float(hi))
+        except ValueError:
+            raise ValueError(f"--bounds takes NAME=LOW:HIGH, got {it!r}") from None
+    return out
+
+
+@app.command()
+def calibrate(
+    test_files: list[Path] = typer.Argument(..., help="Seismic test files (CSV, "
+                                            "murus.identify.testdata format) with a rotation "
+                                            "channel."),
+    params: str = typer.Option("k0,k1", "--params", help="Parameters to fit, comma-separated, "
+                               "among k0, k1, k0_free, k1_free, A0 (seed 000 eqs. 14-18)."),
+    start: list[str] = typer.Option([], "--start", help="Initial value NAME=VALUE (repeat); "
+                                    "default 1 (A0: 2)."),
+    bounds: list[str] = typer.Option([], "--bounds", help="NAME=LOW:HIGH (repeat); defaults "
+                                     "in murus.identify.calibrate.PARAMETERS."),
+    pivot: str = typer.Option("corner", "--pivot", help="'corner' (Housner) or "
+                              "'compressive-length' (seed 000 eq. 11)."),
+    channel: str = typer.Option("rot_bottom", "--channel", help="Rotation channel compared."),
+    objective: str = typer.Option("peaks", "--objective", help="'peaks' or 'envelope'."),
+    window: float = typer.Option(0.25, "--window", help="Time resolution of the comparison "
+                                 "[s]."),
+    starts: int = typer.Option(4, "--starts", min=1, help="Least-squares starts."),
+    thickness: float = typer.Option(0.138, "--thickness", help="Wall thickness [m] (only with "
+                                    "--density)."),
+    density: float = typer.Option(0.0, "--density", help="Masonry density [kg/m3]; 0: the "
+                                  "self-weight is neglected beside the top mass (seed 000 "
+                                  "§3.1)."),
+    out: Path | None = typer.Option(None, "--out", help="Folder for calibration.md, "
+                                    "calibration.json and calibration.png/.svg."),
+) -> None:
+    """Fit the restitution laws of the modified rocking model (seed 000 §3.3) to measured
+    rotation histories (murus.identify.calibrate): a rigid wall of the test file's length and
+    height with its top mass, least squares on the rotation peaks, with bounds and several
+    starts; prints the fitted values, their standard errors and sensitivities."""
+    from murus.identify.calibrate import PARAMETERS, CalibrationError, measurement_from_test
+    from murus.identify.calibrate import calibrate as fit
+    from murus.identify.testdata import read_test
+    from murus.rocking import RigidBlock, RockingModel
+    from murus.rocking.body import BodyError
+    from murus.rocking.restitution import AmplitudeDependent
+    from murus.rocking.restraints import Pivot, RestraintError
+
+    if out is not None:
+        _check_out(out)
+    names = [p.strip() for p in params.split(",") if p.strip()]
+    try:
+        init = {k: (2.0 if k == "A0" else 1.0) for k in names}
+        for it in start:
+            k, _, v = it.partition("=")
+            try:
+                init[k.strip()] = float(v)
+            except ValueError:
+                raise ValueError(f"--start takes NAME=VALUE, got {it!r}") from None
+            if k.strip() not in names:
+                raise ValueError(f"--start {k.strip()}: not among --params {params!r}")
+        bnd = _bounds(bounds)
+        for k in list(init) + list(bnd):
+            if k not in PARAMETERS:
+                raise ValueError(f"unknown parameter {k!r}; choose from {', '.join(PARAMETERS)}")
+        if pivot not in ("corner", "compressive-length"):
+            raise ValueError(f"--pivot must be 'corner' or 'compressive-length', got {pivot!r}")
+        tests = [read_test(f) for f in test_files]
+        ms = []
+        for t in tests:
+            if t.top_mass is None and density <= 0:
+                raise ValueError(f"{t.name}: the test file gives no top_mass_kg and --density "
+                                 "is 0: the wall has no mass")
+            body = RigidBlock(width=t.wall_length, height=t.wall_height, thickness=thickness,
+                              density=density, top_mass=t.top_mass or 0.0, name=t.name)
+            kw = {} if pivot == "corner" else {"pivot": Pivot("compressive-length")}
+            mdl = RockingModel(body, AmplitudeDependent(k0=1.0, k1=0.0), **kw)
+            ms.append(measurement_from_test(t, channel, model=mdl))
+        res = fit(ms[0].model, ms, init, bounds=bnd or None, objective=objective,
+                  window=window, starts=starts)
+    except (*_errors(), CalibrationError, BodyError, RestraintError) as exc:
+        fail(exc)
+    table = res.table()
+    typer.echo(f"calibrated {', '.join(names)} on {len(ms)} test(s), objective "
+               f"'{res.objective}', {res.n_residuals} residuals, cost {res.cost:.4g}")
+    typer.echo(table)
+    if out is None:
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from murus.identify.calibrate import plot_calibration
+
+    with tempfile.TemporaryDirectory() as td:
+        tmp = Path(td)
+        fig, axes = plt.subplots(len(ms), 1, figsize=(8, 2.6 * len(ms)), squeeze=False)
+        for m, ax in zip(ms, axes[:, 0], strict=True):
+            plot_calibration(m.model, m, res.params, ax=ax)
+        fig.tight_layout()
+        _save(fig, tmp / "calibration")
+        plt.close(fig)
+        (tmp / "calibration.md").write_text(
+            f"# Calibration ({', '.join(t.name for t in tests)})\n\n{table}\n",
+            encoding="utf-8")
+        d = {"params": res.params, "std_error": res.std_error,
+             "sensitivity": res.sensitivity, "rms": res.rms, "cost": res.cost,
+             "objective": res.objective, "pivot": pivot, "starts": res.starts,
+             "files": [str(f) for f in test_files]}
+        (tmp / "calibration.json").write_text(json.dumps(_clean(d), indent=2), encoding="utf-8")
+        for p in _publish(tmp, out):
+            typer.echo(f"wrote {p}")
