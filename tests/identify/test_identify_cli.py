@@ -54,6 +54,12 @@ def test_sequence_report(seq, tmp_path):
     assert "Table 2" in rep and "| S01 | cantilever |" in rep and "| S02 | rocking |" in rep
     s = json.loads((out / "summary.json").read_text())
     assert len(s["evolution"]) == 3 and s["classification"][0]["class"] == "cantilever"
+    # the cantilever section: E_eff = E (f1 / f1,model)^2 for each white-noise test
+    c = s["cantilever"]
+    assert "## Cantilever model" in rep
+    for row, ev in zip(c["tests"], s["evolution"], strict=True):
+        assert row["E_eff_pa"] == pytest.approx(
+            c["modulus_pa"] * (ev["f1_hz"] / c["f1_model_hz"]) ** 2, rel=1e-9)
 
 
 def _one_line_error(r):

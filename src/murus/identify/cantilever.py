@@ -39,7 +39,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Cantilever", "CantileverError", "CantileverModes", "CantileverResponse"]
+__all__ = ["Cantilever", "CantileverError", "CantileverModes", "CantileverResponse",
+           "equivalent_moduli"]
 
 
 class CantileverError(ValueError):
@@ -318,3 +319,13 @@ class Cantilever:
         f_meas = _positive("frequency_hz", frequency_hz)
         f0 = self.frequencies(mode)[mode - 1]
         return self.modulus * (f_meas / f0) ** 2
+
+
+def equivalent_moduli(cantilever: Cantilever, frequencies_hz) -> np.ndarray:
+    """Young's modulus [Pa] that makes the first frequency of ``cantilever`` equal to each
+    identified frequency (NaN where the frequency is not finite): the reading of a frequency
+    drop along a test sequence as a loss of stiffness, E_eff / E_0 = (f / f_0)^2 (G/E fixed).
+    """
+    f = np.asarray(frequencies_hz, dtype=float)
+    f0 = cantilever.frequencies(1)[0]
+    return np.where(np.isfinite(f) & (f > 0), cantilever.modulus * (f / f0) ** 2, np.nan)

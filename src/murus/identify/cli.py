@@ -148,10 +148,18 @@ def sequence(
     nperseg: int | None = _NPERSEG,
     f_min: float = _FMIN,
     f_max: float | None = _FMAX,
+    modulus: float = typer.Option(6.5e9, "--modulus", help="Cantilever model: Young's modulus "
+                                  "E [Pa] (default 1000 fk with the seed's fk = 6.5 MPa, EN "
+                                  "1996-1-1 §3.7.2); G = 0.4 E."),
+    density: float = typer.Option(1800.0, "--density", help="Cantilever model: masonry "
+                                  "density [kg/m3]."),
+    thickness: float = typer.Option(0.138, "--thickness", help="Cantilever model: wall "
+                                    "thickness [m]."),
 ) -> None:
     """Frequency and damping evolution (seed 000 Figures 3-4), classification (§2.3) with the
     rotations (Figures 6-7), compressive lengths (Table 2, Figure 5), lifted lengths
-    (Figures 19-20) and one Markdown report."""
+    (Figures 19-20), the Timoshenko cantilever model against the identified frequencies, and
+    one Markdown report."""
     from murus.identify.classify import Criterion, classify_sequence
     from murus.identify.compressive import compressive_table
     from murus.identify.modal import evolution
@@ -167,6 +175,7 @@ def sequence(
         comp = None
         if any(e.test.has_lvdt for e in seq.seismic):
             comp = compressive_table(seq, closure=closure)
+        cant = _cantilever_rows(seq, evo, modulus, density, thickness)
     except _errors() as exc:
         fail(exc)
     import matplotlib
@@ -214,13 +223,54 @@ def sequence(
                    "criterion": {"cantilever_below": cantilever_below,
                                  "rocking_above": rocking_above,
                                  "min_rotation_rad": min_rotation},
-                   "closure_m": closure}
+                   "closure_m": closure, "cantilever": cant}
         (tmp / "summary.json").write_text(json.dumps(_clean(summary), indent=2),
                                           encoding="utf-8")
-        (tmp / "report.md").write_text(_report(seq, evo, classes, comp, crit, closure, figs),
-                                       encoding="utf-8")
+        (tmp / "report.md").write_text(_report(seq, evo, classes, comp, crit, closure, figs)
+                                       + _cantilever_report(cant), encoding="utf-8")
         for p in _publish(tmp, out):
             typer.echo(f"wrote {p}")
+
+
+def _cantilever_rows(seq, evo, modulus, density, thickness) -> dict | None:
+    """The Timoshenko cantilever of the sequence's wall (length, height and top mass of its
+    first test) against the identified first frequencies: model f1 and E_eff per test."""
+    import numpy as np
+
+    from murus.identify.cantilever import Cantilever, equivalent_moduli
+
+    if not len(seq):
+        return None
+    t0 = seq.entries[0].test
+    c = Cantilever(height=t0.wall_height, length=t0.wall_length, thickness=thickness,
+                   modulus=modulus, density=density, tip_mass=t0.top_mass or 0.0)
+    f = evo.frequency[:, 0] if evo.frequency.size else np.zeros(0)
+    E = equivalent_moduli(c, f)
+    return {"modulus_pa": modulus, "density": density, "thickness_m": thickness,
+            "length_m": c.length, "height_m": c.height, "top_mass_kg": c.tip_mass,
+            "f1_model_hz": float(c.frequencies(1)[0]),
+            "tests": [{"test": lab, "f1_hz": _clean(float(fi)), "E_eff_pa": _clean(float(e))}
+                      for lab, fi, e in zip(evo.labels, f, E, strict=True)]}
+
+
+def _cantilever_report(cant: dict | None) -> str:
+    if cant is None:
+        return ""
+    lines = ["", "## Cantilever model (low-amplitude regime)", "",
+             f"Timoshenko cantilever (murus.identify.cantilever): L = {cant['length_m']:g} m, "
+             f"H = {cant['height_m']:g} m, t = {cant['thickness_m']:g} m, E = "
+             f"{cant['modulus_pa'] / 1e9:.3g} GPa, G = 0.4 E, {cant['density']:g} kg/m3, top "
+             f"mass {cant['top_mass_kg']:g} kg: f1 = {cant['f1_model_hz']:.3f} Hz. E_eff is the "
+             "modulus that gives each identified f1 (E_eff / E = (f1 / f1,model)^2).", "",
+             "| test | f1 identified [Hz] | f1 / f1,model | E_eff [GPa] |", "|---|---|---|---|"]
+    for r in cant["tests"]:
+        f1 = r["f1_hz"]
+        if f1 is None:
+            lines.append(f"| {r['test']} | / | / | / |")
+            continue
+        lines.append(f"| {r['test']} | {f1:.3f} | {f1 / cant['f1_model_hz']:.3f} | "
+                     f"{r['E_eff_pa'] / 1e9:.3f} |")
+    return "\n".join(lines) + "\n"
 
 
 def _report(seq, evo, classes, comp, crit, closure, figs) -> str:
