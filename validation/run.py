@@ -25,6 +25,7 @@ def main() -> None:
     ap.add_argument("--out", default=str(ROOT / "VALIDATION.md"))
     args = ap.parse_args()
     import eurocode
+    import identify
     import motion
     import restrained
     import retaining_pseudostatic
@@ -35,7 +36,8 @@ def main() -> None:
 
     parts = [HEADER, rocking.section(), restrained.section(), seed000_model.section(),
              winkler.run(ROOT / "docs" / "figures" / "winkler"), motion.section(),
-             eurocode.section(), retaining_pseudostatic.section(), studies.section()]
+             eurocode.section(), retaining_pseudostatic.section(), studies.section(),
+             identify.section()]
     Path(args.out).write_text("\n".join(parts))
     print(f"wrote {args.out}")
 
