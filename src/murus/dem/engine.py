@@ -22,8 +22,16 @@ it does not brake a rigid-body collapse; optional local damping on the same rela
 Energy balance (all terms in J, from the reference state): kinetic (half-step velocities),
 gravitational ``-m g . x``, elastic ``0.5 Fn²/(kn A) + 0.5 Fs²/(ks A) + 0.5 Mr²/kr``; work of the
 kinematic base (``-F_on_base . v_base dt``), work of the damping forces, frictional (slip) and
-rolling dissipation, energy released by opening/breaking sub-contacts. ``error = (kinetic +
-gravity + elastic) - E0 - (base + damping - slip - rolling - breaking)``.
+rolling dissipation, energy released by opening/breaking sub-contacts, work of the external
+forces. ``error = (kinetic + gravity + elastic) - E0 - (base + external + damping - slip -
+rolling - breaking)``.
+
+External forces: ``model.bext (nbody, 3)`` holds a force (Fx, Fy) [N] and a moment about the
+centroid [N m] applied to each dynamic body (ignored on kinematic bodies), zero by default.
+It stays as set between calls; ``settle`` and ``run`` also accept ``external``, a callable
+``external(model)`` that updates ``model.bext`` in place, called before the first step and then
+every ``external_every`` steps (the force is constant between calls: an explicit load history
+sampled at that interval). The kernels see it as a plain array.
 
 Checkpoints: :meth:`Model.save` / :meth:`Model.load`. Runs are deterministic: a run stopped by
 ``max_steps`` or Ctrl-C (caught between chunks of steps, the state is always consistent), saved,
@@ -251,8 +259,10 @@ def energy(m) -> dict:
     E = m.E
     out = {"kinetic": ke, "gravity": pe, "elastic": el, "base_work": float(E[K.E_WBASE]),
            "damping_work": float(E[K.E_WDAMP]), "slip": float(E[K.E_DSLIP]),
-           "rolling": float(E[K.E_DROLL]), "breaking": float(E[K.E_DBREAK])}
-    out["error"] = (ke + pe + el - m.E0 - (out["base_work"] + out["damping_work"] - out["slip"]
+           "rolling": float(E[K.E_DROLL]), "breaking": float(E[K.E_DBREAK]),
+           "external_work": float(E[K.E_WEXT])}
+    out["error"] = (ke + pe + el - m.E0 - (out["base_work"] + out["external_work"]
+                                           + out["damping_work"] - out["slip"]
                                            - out["rolling"] - out["breaking"]))
     return out
 
@@ -271,7 +281,7 @@ def _chunk(m, n: int, moving: bool) -> None:
     out = K.run_chunk(n, m.P, m.E, m.C, m.S, vhalf, vfull, grav, m.bpos, m.bang, m.bvel,
                       m.bomg, m.bmass, m.binert, m.bkin, m.brad, m.blast, m.bsnap, m.sbody, m.skind,
                       m.svs, m.svn, m.srad, m.sgroup, m.lv, m.wv, m.jprops, m.jtab, m.pairs,
-                      m.pj, m.pbond, m.sid, m.sf, m.sbr)
+                      m.pj, m.pbond, m.sid, m.sf, m.sbr, m.bext)
     m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr = out
     m.snap_time = m.time - m.dt
 
@@ -305,29 +315,32 @@ def unbalanced_ratio(m) -> float:
 
 
 def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
-           check_every: int = 100, dt: float | None = None, reset: bool = True) -> SettleResult:
-    """Static solution under gravity (at the current tilt) with local damping ``alpha``: step
-    until the unbalanced-force ratio is below ``tol`` (module doc). The base does not move and
-    the model time does not advance."""
+           check_every: int = 100, dt: float | None = None, reset: bool = True,
+           external: Callable | None = None) -> SettleResult:
+    """Static solution under gravity (at the current tilt) and the external forces
+    ``model.bext`` with local damping ``alpha``: step until the unbalanced-force ratio is below
+    ``tol`` (module doc). ``external(model)``, if given, updates ``model.bext`` every
+    ``check_every`` steps. The base does not move and the model time does not advance."""
     if not (0 <= alpha < 1):
         raise ValueError(f"alpha must be in [0, 1), got {alpha!r}")
     _set_dt(m, dt)
     m.P[K.P_ALOCAL] = alpha
     m.P[K.P_AMASS] = 0.0
-    n0 = int(m.C[K.C_STEP])
     done = 0
     ratio = math.inf
     converged = False
     with _SigInt() as sig:
         while done < max_steps and not sig.hit:
             n = min(check_every, max_steps - done)
+            if external is not None:
+                external(m)
             _chunk(m, n, moving=False)
+            m.step_offset += n  # settling does not advance the model time
             done += n
             ratio = unbalanced_ratio(m)
             if ratio < tol:
                 converged = True
                 break
-    m.step_offset += int(m.C[K.C_STEP]) - n0
     m.bvel[:] = 0.0
     m.bomg[:] = 0.0
     detect(m)
@@ -343,7 +356,8 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         dt: float | None = None, xi: float = 0.0, freq: float | None = None,
         local_damping: float = 0.0, probes: dict | None = None, every: int | None = None,
         sample_dt: float = 0.01, stop=None, max_steps: int | None = None,
-        progress: bool = False) -> RunResult:
+        progress: bool = False, external: Callable | None = None,
+        external_every: int | None = None) -> RunResult:
     """Dynamic run up to ``t_end`` (or ``duration`` from now) [s].
 
     xi, freq : mass-proportional damping, fraction of critical at frequency [Hz];
@@ -353,7 +367,10 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         survive a checkpoint);
     stop : callable(model) -> bool (or a list), checked at each sample;
     max_steps : stop after that many steps of this call (status ``max_steps``);
-    progress : show a rich progress bar.
+    progress : show a rich progress bar;
+    external : callable(model) updating ``model.bext`` (external forces and moments) in place,
+        called before the first step and every ``external_every`` steps (default: at each
+        sample) of the model's step count.
     """
     _set_dt(m, dt)
     if (duration is None) == (t_end is None):
@@ -370,6 +387,11 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         m.probes.update(probes)
     if every is None:
         every = max(1, int(round(sample_dt / m.dt)))
+    if external_every is None:
+        external_every = every
+    external_every = int(external_every)
+    if external is not None and external_every < 1:
+        raise ValueError(f"external_every must be >= 1, got {external_every!r}")
     stops = [] if stop is None else (list(stop) if isinstance(stop, (list, tuple)) else [stop])
     moving = m._motion_kind != "none" or m.tilt_rate != 0.0
     remaining = int(round((t_end - m.time) / m.dt))
@@ -395,6 +417,10 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
             while remaining > 0:
                 rel = int(m.C[K.C_STEP]) - m.step_offset
                 n = min(every - rel % every, remaining)
+                if external is not None:
+                    if rel % external_every == 0 or done == 0:
+                        external(m)
+                    n = min(n, external_every - rel % external_every)
                 if budget is not None:
                     n = min(n, budget - done)
                     if n <= 0:

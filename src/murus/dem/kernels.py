@@ -99,6 +99,7 @@ E_WDAMP = 1  # work of the damping forces (negative) [J]
 E_DSLIP = 2  # frictional (slip) dissipation [J]
 E_DROLL = 3  # rolling-resistance dissipation [J]
 E_DBREAK = 4  # elastic energy released by breaking or opening sub-contacts [J]
+E_WEXT = 5  # work of the external (applied) body forces ``bext`` [J]
 NE = 8
 
 # ---- counters ----------------------------------------------------------------------------------
@@ -757,14 +758,16 @@ def body_forces(pairs, sid, sf, sbody, bpos, nb, fb):
 def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav,
               bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap,
               sbody, skind, svs, svn, srad, sgroup, lv, wv, jprops, jtab,
-              pairs, pj, pbond, sid, sf, sbr):
+              pairs, pj, pbond, sid, sf, sbr, bext):
     """Advance ``nsteps`` central-difference steps (seed 001 eq. 2).
 
     ``vhalf[i]`` / ``vfull[i]``: base-motion velocity [m/s] at t_i + dt/2 and t_i; ``grav[i]``
-    the gravity vector [m/s²] at t_i. ``bsnap`` receives the state at the time of the last force
-    evaluation (x, y, angle, and the mid-step velocities vx, vy, omega), the time at which the
-    contact forces and the work accumulators are consistent (energy snapshots). Returns the
-    (possibly rebuilt) pair arrays."""
+    the gravity vector [m/s²] at t_i; ``bext (nb, 3)`` an external force (Fx, Fy) [N] and
+    moment about the centroid [N m] on each dynamic body, constant over the chunk (its work is
+    accumulated in ``E[E_WEXT]``; ignored on kinematic bodies). ``bsnap`` receives the state at
+    the time of the last force evaluation (x, y, angle, and the mid-step velocities vx, vy,
+    omega), the time at which the contact forces and the work accumulators are consistent
+    (energy snapshots). Returns the (possibly rebuilt) pair arrays."""
     dt = P[P_DT]
     thick = P[P_THICK]
     alocal = P[P_ALOCAL]
@@ -832,13 +835,14 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav,
         unbal = 0.0
         wdamp = 0.0
         wbase = 0.0
+        wext = 0.0
         for b in range(nb):
             kin = bkin[b]
             if kin == 0:
                 m = bmass[b]
-                fx = fb[b, 0] + m * gx
-                fy = fb[b, 1] + m * gy
-                mz = fb[b, 2]
+                fx = fb[b, 0] + m * gx + bext[b, 0]
+                fy = fb[b, 1] + m * gy + bext[b, 1]
+                mz = fb[b, 2] + bext[b, 2]
                 un = math.sqrt(fx * fx + fy * fy + (mz / brad[b]) ** 2)
                 if un > unbal:
                     unbal = un
@@ -869,6 +873,7 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav,
                 wdamp += dt * ((dfx - amass * m * (vmx - ubx)) * vmx
                                + (dfy - amass * m * (vmy - uby)) * vmy
                                + (dmz - amass * I * wm) * wm)
+                wext += dt * (bext[b, 0] * vmx + bext[b, 1] * vmy + bext[b, 2] * wm)
                 bsnap[b, 0] = bpos[b, 0]
                 bsnap[b, 1] = bpos[b, 1]
                 bsnap[b, 2] = bang[b]
@@ -897,6 +902,7 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav,
                 bpos[b, 1] += vhalf[i, 1] * dt
         E[E_WDAMP] += wdamp
         E[E_WBASE] += wbase
+        E[E_WEXT] += wext
         C[C_STEP] += 1
         S[S_UNBAL] = unbal
         S[S_NACTIVE] = nactive

@@ -364,6 +364,7 @@ class Model:
         self.brad = brad
         self.blen = blen
         self.blast = np.column_stack([bpos, np.zeros(nb)])
+        self.bext = np.zeros((nb, 3))  # external force (Fx, Fy) [N] and moment [N m]
         self.bref = np.column_stack([bpos, np.zeros(nb)])
         self.sbody = np.array(sbody, np.int64)
         self.skind = np.array(skind, np.int64)
@@ -546,6 +547,7 @@ class Model:
         saved: set them again after :meth:`load`)."""
         self.build()
         arrays = {name.lstrip("_"): getattr(self, name) for name in self._ARRAYS}
+        arrays["bext"] = self.bext
         for i, o in enumerate(self._outer):
             arrays[f"outer_{i}"] = o
         for name, h in self.history.items():
@@ -575,6 +577,8 @@ class Model:
                     rounding=meta["rounding"], margin=meta["margin"])
             for name in cls._ARRAYS:
                 setattr(m, name, z[name.lstrip("_")].copy())
+            nb = m.bpos.shape[0]
+            m.bext = z["bext"].copy() if "bext" in z.files else np.zeros((nb, 3))
             m._outer = [z[f"outer_{i}"].copy() for i in range(meta["nouter"])]
             m.history = {k: list(z[f"hist__{k}"]) for k in meta["history"]}
         m.dt = meta["dt"]
