@@ -6,7 +6,12 @@
 - :mod:`murus.retaining.pseudostatic`: sliding and overturning above every bed joint, the
   pseudo-static resistance ``A_pseudo`` (seed 001 §4.4, Table 8) and the tilting-table
   equivalence;
-- :mod:`murus.retaining.cli`: ``murus retaining pseudo-static`` and ``geometry``.
+- :mod:`murus.retaining.dem_wall`: the distinct-element model of the wall (stones in running
+  bond on the inclined beds) with the equivalent EN 1998-5 Annex E thrust;
+- :mod:`murus.retaining.collapse`: the collapse protocol (S2 ramps, ``A_col``, S1 checks) and
+  the behaviour factor ``r`` (seed 001 §4.2-4.4, Tables 7-8);
+- :mod:`murus.retaining.cli`: ``murus retaining pseudo-static``, ``geometry``, ``collapse``,
+  ``behaviour-factor``.
 
 The EN 1998-5 Annex E earth pressure itself is in :mod:`murus.eurocode.ec8_5`. The names below
 are imported on first use (PEP 562), so that the command line stays light.
@@ -38,6 +43,14 @@ _EXPORTS = {
     "safety_curves": "pseudostatic",
     "tilt_coefficients": "pseudostatic",
     "tilt_from_coefficients": "pseudostatic",
+    "DemWall": "dem_wall",
+    "EquivalentThrust": "dem_wall",
+    "build_wall": "dem_wall",
+    "BehaviourTable": "collapse",
+    "CollapseResult": "collapse",
+    "behaviour_factor": "collapse",
+    "collapse_run": "collapse",
+    "peak_ratio_check": "collapse",
     "WedgeError": "wedge",
     "WedgeResult": "wedge",
     "trial_wedge": "wedge",

@@ -158,3 +158,184 @@ def geometry(
                f"{wall.centroid[1]:.4f}) m, weight = {wall.weight:.1f} N/m")
     typer.echo(f"  {len(joints)} bed joints; front edges at z = "
                + ", ".join(f"{j.height:.3f}" for j in wall.joints) + " m")
+
+
+def _dem_wall(name: str, base: str | None, stone_height: float | None):
+    kw = {}
+    if base is not None:
+        kw["base"] = base
+    if stone_height is not None:
+        kw["stone_height"] = stone_height
+    from murus.retaining.geometry import preset
+
+    return preset(name, **kw)
+
+
+def _collapse_errors():
+    from murus.dem.materials import JointError
+    from murus.dem.model import ModelError
+    from murus.retaining.collapse import CollapseError
+    from murus.retaining.dem_wall import DemWallError
+
+    return (*_errors(), CollapseError, DemWallError, ModelError, JointError)
+
+
+def _prepare_out(out) -> None:
+    from pathlib import Path
+
+    p = Path(out)
+    if p.exists() and not p.is_dir():
+        raise ValueError(f"--out {out}: exists and is not a directory")
+
+
+_STONE_H = typer.Option(None, "--stone-height", help="Course height [m] (needed for the "
+                        "mock-ups, whose courses seed 001 does not give).")
+_STIFF = typer.Option(1e-3, "--stiffness-scale", help="Multiplies the joint stiffness of "
+                      "seed 001 Table 6 (2.8e12 Pa/m); the time step grows as its inverse "
+                      "square root.")
+_XI = typer.Option(0.10, "--xi", help="Mass-proportional damping ratio at the input "
+                   "frequency (seed 001 Table 6: 10 %).")
+_THR = typer.Option(None, "--threshold", help="Collapse when d_top exceeds this fraction of H "
+                    "(default 0.2; 0.05 for mock-ups).")
+_TMAX = typer.Option(None, "--t-max", help="End of an S2 run without collapse [s] (default "
+                     "15 s: the envelope at 6 A_pseudo).")
+
+
+@app.command()
+def collapse(
+    preset_name: str = _PRESET,
+    frequency: float = typer.Option(5.0, "--frequency", help="Input frequency [Hz]."),
+    vertical: str = typer.Option("none", "--vertical", help="Vertical component: none, "
+                                 "in_phase or opposition (half the horizontal amplitude)."),
+    out: str = typer.Option(..., "--out", help="Output directory."),
+    check_peak: bool = typer.Option(False, "--check-peak", help="Also run S1 at 0.6 and 0.7 "
+                                    "A_col (seed 001 Figure 14)."),
+    stone_height: float | None = _STONE_H,
+    stiffness_scale: float = _STIFF,
+    xi: float = _XI,
+    threshold: float | None = _THR,
+    t_max: float | None = _TMAX,
+    base: str | None = _BASE,
+) -> None:
+    """S2 collapse run of the DEM wall with the equivalent thrust (seed 001 §4.2): writes
+    d_top.csv (history), summary.json (A_col, t_col, A_pseudo, r) and collapse.png (the blocks
+    at the end of the run, coloured by their displacement relative to the base)."""
+    from pathlib import Path
+
+    from murus.retaining.collapse import collapse_run, peak_ratio_check
+
+    try:
+        _prepare_out(out)
+        wall = _dem_wall(preset_name, base, stone_height)
+        kw = dict(stiffness_scale=stiffness_scale, xi=xi, threshold=threshold, t_max=t_max)
+        res = collapse_run(wall, frequency, vertical, **kw)
+        checks = {}
+        if check_peak and res.collapsed:
+            checks = peak_ratio_check(wall, frequency, res.A_col, vertical=vertical,
+                                      A_rate=res.A_rate, A_pseudo=res.A_pseudo, **kw)
+    except _collapse_errors() as exc:
+        _fail(exc)
+    summary = res.summary()
+    if check_peak:
+        summary["peak_checks"] = {f"{r:g}": {"a_peak": c.a_peak, "stable": c.stable,
+                                             "d_top_max": float(max(c.d_top)),
+                                             "wall_time": c.wall_time}
+                                  for r, c in checks.items()}
+    # everything computed: write
+    import matplotlib
+
+    matplotlib.use("Agg", force=True)
+    import matplotlib.pyplot as plt
+
+    from murus.dem.plots import plot_blocks
+
+    d = Path(out)
+    d.mkdir(parents=True, exist_ok=True)
+    res.history_csv(d / "d_top.csv")
+    with open(d / "summary.json", "w") as fh:
+        fh.write(_dumps(summary))
+    ax = plot_blocks(res.polygons, values=res.displacement,
+                     label="displacement relative to the base [m]")
+    state = f"collapse at t = {res.t_col:.2f} s" if res.collapsed else "no collapse"
+    ax.set_title(f"{wall.name}, {frequency:g} Hz, vertical {res.vertical}: {state}")
+    ax.figure.savefig(d / "collapse.png", dpi=120)
+    plt.close(ax.figure)
+    if res.collapsed:
+        typer.echo(f"{wall.name} {frequency:g} Hz ({res.vertical}): A_col = {res.A_col:.3f} "
+                   f"m/s2 at t_col = {res.t_col:.2f} s; A_pseudo = {res.A_pseudo:.3f} m/s2, "
+                   f"r = {summary['r']:.2f}; {res.wall_time:.1f} s")
+    else:
+        typer.echo(f"{wall.name} {frequency:g} Hz ({res.vertical}): no collapse up to "
+                   f"t = {res.t_end:.2f} s; {res.wall_time:.1f} s")
+    for r, c in checks.items():
+        typer.echo(f"  S1 at {r:g} A_col: {'stable' if c.stable else 'collapsed'}")
+    typer.echo(f"wrote {d / 'd_top.csv'}, {d / 'summary.json'}, {d / 'collapse.png'}")
+
+
+def _dumps(obj) -> str:
+    def clean(v):
+        if isinstance(v, float) and not math.isfinite(v):
+            return None
+        if isinstance(v, dict):
+            return {str(k): clean(x) for k, x in v.items()}
+        if isinstance(v, list | tuple):
+            return [clean(x) for x in v]
+        if hasattr(v, "item"):
+            return clean(v.item())
+        return v
+
+    return json.dumps(clean(obj), indent=2)
+
+
+@app.command("behaviour-factor")
+def behaviour_factor_cmd(
+    preset_name: str = _PRESET,
+    out: str = typer.Option(..., "--out", help="Output directory."),
+    frequencies: str = typer.Option("3,5,10", "--frequencies", help="Input frequencies [Hz], "
+                                    "comma-separated."),
+    vertical: str = typer.Option("none", "--vertical", help="Vertical modes, comma-separated: "
+                                 "none, in_phase, opposition."),
+    workers: int = typer.Option(1, "--workers", help="Parallel processes (1: serial)."),
+    stone_height: float | None = _STONE_H,
+    stiffness_scale: float = _STIFF,
+    xi: float = _XI,
+    threshold: float | None = _THR,
+    t_max: float | None = _TMAX,
+    base: str | None = _BASE,
+) -> None:
+    """Behaviour factor r = 0.6 A_col / A_pseudo (seed 001 Tables 7 and 8): S2 collapse runs
+    for each frequency and vertical mode; writes behaviour_factor.csv and .md."""
+    from pathlib import Path
+
+    from murus.retaining.collapse import behaviour_factor
+
+    try:
+        _prepare_out(out)
+        try:
+            freqs = [float(x) for x in frequencies.split(",") if x.strip()]
+        except ValueError:
+            raise ValueError(f"--frequencies must be numbers separated by commas, got "
+                             f"{frequencies!r}") from None
+        if not freqs or any(not (f > 0 and math.isfinite(f)) for f in freqs):
+            raise ValueError(f"--frequencies must be positive numbers, got {frequencies!r}")
+        if workers < 1:
+            raise ValueError(f"--workers must be >= 1, got {workers}")
+        modes = [x.strip() for x in vertical.split(",") if x.strip()]
+        wall = _dem_wall(preset_name, base, stone_height)
+        kw = dict(stiffness_scale=stiffness_scale, xi=xi, threshold=threshold, t_max=t_max)
+        if workers > 1:
+            from concurrent.futures import ProcessPoolExecutor
+
+            with ProcessPoolExecutor(max_workers=workers) as ex:
+                table = behaviour_factor(wall, freqs, modes, executor=ex, **kw)
+        else:
+            table = behaviour_factor(wall, freqs, modes, **kw)
+    except _collapse_errors() as exc:
+        _fail(exc)
+    d = Path(out)
+    d.mkdir(parents=True, exist_ok=True)
+    table.to_csv(d / "behaviour_factor.csv")
+    md = table.to_markdown()
+    (d / "behaviour_factor.md").write_text(md)
+    typer.echo(md, nl=False)
+    typer.echo(f"wrote {d / 'behaviour_factor.csv'}, {d / 'behaviour_factor.md'}")

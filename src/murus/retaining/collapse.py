@@ -1,0 +1,377 @@
+"""Collapse protocol and seismic behaviour factor of a dry-stone retaining wall (seed 001 §4.2-4.4,
+Tables 7 and 8; issue 6 item 4), on the DEM wall with the equivalent thrust
+(:mod:`murus.retaining.dem_wall`).
+
+Protocol (seed 001 §4.2-4.3):
+
+- input S2: the harmonic ramp ``S(t) = A t sin(2 pi f t)`` (seed 001 eq. 5) whose envelope
+  reaches the pseudo-static resistance ``A_pseudo`` at ``t_pseudo = 2.5 s``: ``A = A_pseudo /
+  2.5`` [m/s³] ("the slope is defined so that its pseudo-static resistance is always reached at
+  2.5 s"); ``A_pseudo`` from :func:`murus.retaining.pseudostatic.critical_acceleration` (with
+  ``kv_ratio = 0.5`` when a vertical component is applied: "the slope of S2 is recomputed,
+  accounting for the vertical acceleration");
+- collapse when ``d_top``, the horizontal displacement of the top stone relative to the base
+  (positive out of the slope), exceeds 20 % of the wall height (5 % for the mock-ups, §3.1);
+  ``t_col`` is that instant (linear interpolation between samples) and ``A_col = A t_col`` the
+  amplitude of the input (its envelope) at that instant;
+- ``A_peak = 0.6 A_col`` (§4.2): the ratio is checked with two S1 signals (same slope, peak
+  ``0.6 A_col`` and ``0.7 A_col``, decreasing part twice as long as the increasing one; seed
+  Figure 14: stable at 0.6, collapsed at 0.7): :func:`peak_ratio_check`; an S1 run is "stable"
+  when d_top stays below the threshold during the signal and a free tail after it (default
+  1 s, gravity and the static thrust only);
+- ``r = A_peak / A_pseudo`` (§4.4, Table 8);
+- vertical component (§4.3): the same shape with half the amplitude, in phase (its positive
+  peaks, upwards, with the positive horizontal peaks, i.e. with the horizontal inertia out of
+  the slope: the effective gravity is largest then) or in opposition (the critical case of the
+  seed).
+
+Sign of the horizontal input: ``a_x > 0`` is a base acceleration into the backfill, whose
+inertia on the wall acts out of the slope (``kh = a_x / g``); S(t) starts with that sign.
+
+Numerics (documented choices): mass-proportional damping ``xi = 10 %`` (seed 001 Table 6: 5 %
+doubled because only the mass-proportional part is used) at the input frequency, on the
+velocity relative to the base; joint stiffness of Table 6 times ``stiffness_scale`` (default
+1e-3, so that a full-scale run takes about a minute: the stones are nearly rigid either way,
+the elastic joint closure under the wall's weight is 2e-5 m at the default against a collapse
+threshold of 0.5 m); a kinematic backstop along the back face (the backfill cannot be
+entered, :func:`~murus.retaining.dem_wall.build_wall`). Units: SI (m, s, m/s², m/s³, Hz).
+
+Check of the thrust model: DSRW1 under a monotonic base acceleration ``a = 0.75 t`` (no
+carrier, 1e-3 stiffness) starts a mechanism near 1.5-1.65 m/s² (d_top 1 cm at 1.5, 2.2 cm at
+1.65, 22 cm at 2.25 m/s²), i.e. at the pseudo-static ``A_pseudo = 1.59 m/s²``: the DEM wall
+and the limit analysis agree when the load is quasi-static.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from collections.abc import Sequence
+from concurrent.futures import Executor
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from murus.retaining.geometry import RetainingWall
+
+__all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES",
+           "pseudo_static_resistance", "ramp_rate", "collapse_run", "peak_ratio_check",
+           "behaviour_factor", "SEED_TABLE7"]
+
+#: Vertical components: none, in phase, in opposition (seed 001 §4.3, ratio 0.5).
+VERTICAL_MODES = ("none", "in_phase", "opposition")
+
+#: Seed 001 Table 7 / Table 8 for DSRW1: (frequency [Hz], vertical) -> (t_col [s],
+#: A_col [m/s²], A_pseudo [m/s²], r).
+SEED_TABLE7 = {
+    (3.0, "none"): (7.6, 4.83, 1.58, 1.83),
+    (5.0, "none"): (8.5, 5.38, 1.58, 2.04),
+    (10.0, "none"): (9.5, 6.03, 1.58, 2.29),
+    (5.0, "in_phase"): (8.9, 5.34, 1.50, 2.14),
+    (5.0, "opposition"): (8.6, 5.19, 1.50, 2.07),
+}
+
+
+class CollapseError(ValueError):
+    """Invalid collapse-protocol input (one-line message)."""
+
+
+def _vertical(kv_mode: str) -> str:
+    k = str(kv_mode).strip().lower().replace("-", "_")
+    aliases = {"none": "none", "": "none", "-": "none", "in_phase": "in_phase",
+               "phase": "in_phase", "opposition": "opposition", "opposite": "opposition"}
+    if k not in aliases:
+        raise CollapseError(f"vertical mode must be one of {', '.join(VERTICAL_MODES)}, got "
+                            f"{kv_mode!r}")
+    return aliases[k]
+
+
+def pseudo_static_resistance(wall: RetainingWall, kv_mode: str = "none",
+                             assumptions=None, vertical_ratio: float = 0.5) -> float:
+    """``A_pseudo`` [m/s²] of ``wall`` (horizontal component), with ``kv = +-0.5 kh`` when a
+    vertical component is applied (both signs, the worse: the seed prints one value)."""
+    from murus.retaining.pseudostatic import critical_acceleration
+
+    r = 0.0 if _vertical(kv_mode) == "none" else vertical_ratio
+    return critical_acceleration(wall, r, assumptions).A_pseudo
+
+
+def ramp_rate(A_pseudo: float, t_pseudo: float = 2.5) -> float:
+    """Slope ``A`` [m/s³] of the envelope reaching ``A_pseudo`` at ``t_pseudo`` (§4.3)."""
+    if not (A_pseudo > 0 and t_pseudo > 0):
+        raise CollapseError("A_pseudo and t_pseudo must be positive")
+    return A_pseudo / t_pseudo
+
+
+@dataclass
+class CollapseResult:
+    """One DEM run of the protocol.
+
+    ``signal`` "S2" or "S1"; ``A_rate`` [m/s³]; ``a_peak`` [m/s²] (S1) ; ``threshold`` [m];
+    ``collapsed``; ``t_col`` [s] and ``A_col = A_rate t_col`` [m/s²] (nan if no collapse);
+    histories ``t`` [s], ``d_top`` [m] (out of the slope positive), ``acc`` and ``acc_v``
+    (input, [m/s²]), ``kh``, ``kv``; ``polygons`` the stones and foundation at the end (the
+    collapse instant when stopped there) and ``displacement`` their displacement magnitude
+    relative to the base [m]; ``wall_time`` [s], ``steps``, ``dt`` [s]; ``options`` the
+    numerical settings.
+    """
+
+    wall: str
+    frequency: float
+    vertical: str
+    signal: str
+    A_rate: float
+    A_pseudo: float
+    a_peak: float
+    threshold: float
+    height: float
+    collapsed: bool
+    t_col: float
+    A_col: float
+    t_end: float
+    t: np.ndarray
+    d_top: np.ndarray
+    acc: np.ndarray
+    acc_v: np.ndarray
+    kh: np.ndarray
+    kv: np.ndarray
+    polygons: list = field(default_factory=list, repr=False)
+    displacement: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    wall_time: float = 0.0
+    steps: int = 0
+    dt: float = 0.0
+    status: str = ""
+    options: dict = field(default_factory=dict)
+
+    @property
+    def stable(self) -> bool:
+        return not self.collapsed
+
+    def summary(self) -> dict:
+        """JSON-ready scalars (nan as None is left to the writer)."""
+        d = {k: v for k, v in asdict(self).items()
+             if k not in ("t", "d_top", "acc", "acc_v", "kh", "kv", "polygons", "displacement")}
+        d["d_top_max"] = float(np.nanmax(self.d_top)) if self.d_top.size else math.nan
+        d["A_peak"] = 0.6 * self.A_col if self.collapsed else math.nan
+        d["r"] = d["A_peak"] / self.A_pseudo if self.collapsed else math.nan
+        return d
+
+    def history_csv(self, path) -> None:
+        """``t, d_top, acc, acc_v, kh, kv`` to a CSV file (SI units)."""
+        arr = np.column_stack([self.t, self.d_top, self.acc, self.acc_v, self.kh, self.kv])
+        np.savetxt(path, arr, delimiter=",", fmt="%.9g",
+                   header="t_s,d_top_m,acc_m_s2,acc_v_m_s2,kh,kv", comments="")
+
+
+def _threshold(wall: RetainingWall, fraction: float | None) -> float:
+    if fraction is None:
+        fraction = 0.05 if wall.name.lower().startswith("mockup") else 0.20
+    if not 0 < fraction < 10:
+        raise CollapseError(f"threshold fraction must be positive, got {fraction!r}")
+    return fraction * wall.height
+
+
+def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", *,
+                 signal: str = "S2", A_rate: float | None = None, a_peak: float | None = None,
+                 t_pseudo: float = 2.5, t_max: float | None = None, tail: float = 1.0,
+                 threshold: float | None = None, xi: float = 0.10,
+                 stiffness_scale: float = 1e-3, safety: float = 0.2, update_dt: float = 1e-3,
+                 sample_dt: float = 0.01, motion_dt: float = 1e-3, thrust_scale: float = 1.0,
+                 vertical_ratio: float = 0.5, assumptions=None, build: dict | None = None,
+                 A_pseudo: float | None = None) -> CollapseResult:
+    """Run the DEM wall under S2 (or S1 with ``a_peak``) until collapse (module docstring).
+
+    frequency [Hz]; vertical: "none", "in_phase", "opposition"; A_rate [m/s³] (default
+    ``A_pseudo / t_pseudo``); t_max [s]: end of an S2 run without collapse (default
+    ``6 t_pseudo``, the envelope at six times A_pseudo); tail [s]: free time after an S1 signal;
+    threshold: fraction of H (default 0.2, 0.05 for mock-ups); xi: mass-proportional damping
+    ratio at ``frequency``; stiffness_scale, safety, ``build``: passed to
+    :func:`~murus.retaining.dem_wall.build_wall`; update_dt [s]: thrust update interval;
+    thrust_scale: 0 removes the backfill, 1 the Annex E thrust; A_pseudo: skip its computation.
+    """
+    from murus.dem.engine import stop_when
+    from murus.motion.synthetic import harmonic_ramp, two_ramp
+    from murus.retaining.dem_wall import EquivalentThrust, build_wall
+
+    f = float(frequency)
+    if not (f > 0 and math.isfinite(f)):
+        raise CollapseError(f"frequency must be positive [Hz], got {frequency!r}")
+    vmode = _vertical(vertical)
+    sig = str(signal).upper()
+    if sig not in ("S1", "S2"):
+        raise CollapseError(f"signal must be 'S1' or 'S2', got {signal!r}")
+    if A_pseudo is None:
+        A_pseudo = pseudo_static_resistance(wall, vmode, assumptions, vertical_ratio)
+    A = ramp_rate(A_pseudo, t_pseudo) if A_rate is None else float(A_rate)
+    if not (A > 0 and math.isfinite(A)):
+        raise CollapseError(f"A_rate must be positive [m/s3], got {A_rate!r}")
+    thr = _threshold(wall, threshold)
+    vert = None if vmode == "none" else vmode
+    if sig == "S2":
+        t_end = 6.0 * t_pseudo if t_max is None else float(t_max)
+        gm = harmonic_ramp(A, f, t_end, motion_dt, vert, vertical_ratio)
+        ap = math.nan
+    else:
+        if a_peak is None or not a_peak > 0:
+            raise CollapseError("an S1 run needs a_peak > 0 [m/s2]")
+        ap = float(a_peak)
+        gm = two_ramp(A, f, ap, motion_dt, vert, vertical_ratio)
+        t_end = (gm.acc.size - 1) * gm.dt + float(tail)
+    tt = np.arange(gm.acc.size) * gm.dt
+    accv = gm.acc_v if gm.acc_v is not None else np.zeros_like(gm.acc)
+
+    def acc_at(t):
+        return (float(np.interp(t, tt, gm.acc, right=0.0)),
+                float(np.interp(t, tt, accv, right=0.0)))
+
+    dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety, **(build or {}))
+    m = dw.model
+    thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=thrust_scale)
+    t0 = _time.perf_counter()
+    st = m.settle(external=thrust)
+    if not st.converged:
+        raise CollapseError(f"{wall.name}: the DEM wall does not settle under gravity and the "
+                            f"static thrust ({st.message})")
+    m.set_base_motion(gm)
+    every = max(1, int(round(update_dt / m.dt)))
+
+    def d_top(model):
+        return dw.d_top()
+
+    probes = {"d_top": d_top,
+              "kh": lambda model: thrust.last[1], "kv": lambda model: thrust.last[2]}
+    res = m.run(t_end=t_end, xi=xi, freq=f, probes=probes, sample_dt=sample_dt,
+                stop=stop_when(d_top, ">", thr), external=thrust, external_every=every)
+    wall_time = _time.perf_counter() - t0
+    t = res.t
+    d = res["d_top"]
+    collapsed = res.status == "stopped"
+    t_col = A_col = math.nan
+    if collapsed:
+        i = int(np.argmax(d > thr))
+        if i > 0 and d[i] > d[i - 1]:
+            t_col = float(t[i - 1] + (thr - d[i - 1]) * (t[i] - t[i - 1]) / (d[i] - d[i - 1]))
+        else:
+            t_col = float(t[i])
+        if sig == "S2":
+            A_col = A * t_col
+        else:
+            tp = ap / A
+            A_col = A * t_col if t_col <= tp else max(ap * (1 - (t_col - tp) / (2 * tp)), 0.0)
+    elif res.status not in ("completed",):
+        raise CollapseError(f"{wall.name}: DEM run ended with status {res.status}: "
+                            f"{res.message}")
+    acc = np.interp(t, tt, gm.acc, right=0.0)
+    acc_v = np.interp(t, tt, accv, right=0.0)
+    polys = m.world_polygons()
+    disp = m.body_displacement() - m.body_displacement()[dw.foundation]
+    bodies = m.body_of_polygon()
+    dmag = np.hypot(disp[bodies, 0], disp[bodies, 1])
+    opts = dict(dw.options, xi=xi, update_dt=update_dt, sample_dt=sample_dt,
+                motion_dt=motion_dt, thrust_scale=thrust_scale, t_pseudo=t_pseudo,
+                threshold_fraction=thr / wall.height, vertical_ratio=vertical_ratio,
+                settle_steps=st.steps)
+    return CollapseResult(wall.name, f, vmode, sig, A, float(A_pseudo), ap, thr, wall.height,
+                          collapsed, t_col, A_col, float(m.time), t, d, acc, acc_v,
+                          res["kh"], res["kv"], polys, dmag, wall_time, res.steps, res.dt,
+                          res.status, opts)
+
+
+def peak_ratio_check(wall: RetainingWall, frequency: float, A_col: float,
+                     ratios: Sequence[float] = (0.6, 0.7), vertical: str = "none",
+                     executor: Executor | None = None, **kw) -> dict[float, CollapseResult]:
+    """S1 runs with ``A_peak = ratio A_col`` and the S2 slope (seed 001 §4.2, Figure 14: stable
+    at 0.6, collapsed at 0.7). Returns ``{ratio: CollapseResult}`` (``.stable``)."""
+    if not (A_col > 0 and math.isfinite(A_col)):
+        raise CollapseError(f"A_col must be positive, got {A_col!r}")
+    jobs = [(wall, frequency, vertical, dict(kw, signal="S1", a_peak=r * A_col))
+            for r in ratios]
+    results = _map(executor, jobs)
+    return dict(zip(ratios, results, strict=True))
+
+
+def _case(job):
+    wall, f, v, kw = job
+    return collapse_run(wall, f, v, **kw)
+
+
+def _map(executor: Executor | None, jobs):
+    if executor is None:
+        return [_case(j) for j in jobs]
+    futs = [executor.submit(_case, j) for j in jobs]
+    return [fu.result() for fu in futs]
+
+
+@dataclass
+class BehaviourTable:
+    """Seed 001 Tables 7 and 8 layout: one row per case (wall, frequency, vertical) with
+    ``t_col`` [s], ``A_col``, ``A_peak = ratio A_col``, ``A_pseudo`` [m/s²], ``r`` and the run
+    time; ``results`` the runs; ``peak_checks`` optional S1 checks per case."""
+
+    rows: list[dict]
+    results: list[CollapseResult] = field(default_factory=list, repr=False)
+    peak_ratio: float = 0.6
+
+    COLUMNS = ("wall", "frequency_Hz", "vertical", "t_col_s", "A_col_m_s2", "A_peak_m_s2",
+               "A_pseudo_m_s2", "r", "collapsed", "wall_time_s", "seed_A_col_m_s2", "seed_r")
+
+    def to_csv(self, path) -> None:
+        import csv
+
+        with open(path, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(self.COLUMNS)
+            for row in self.rows:
+                w.writerow(["" if (isinstance(row[c], float) and not math.isfinite(row[c]))
+                            else (f"{row[c]:.6g}" if isinstance(row[c], float) else row[c])
+                            for c in self.COLUMNS])
+
+    def to_markdown(self) -> str:
+        """Tables 7 and 8 in one: a column per case."""
+        def fmt(v, nd=2):
+            if isinstance(v, float):
+                return "-" if not math.isfinite(v) else f"{v:.{nd}f}"
+            return str(v)
+
+        heads = [f"{r['wall']} {r['frequency_Hz']:g} Hz" for r in self.rows]
+        lines = ["| | " + " | ".join(heads) + " |", "|---" * (len(heads) + 1) + "|"]
+        spec = [("Vertical acceleration", "vertical", None),
+                ("t_col (s)", "t_col_s", 2), ("A_col (m/s²)", "A_col_m_s2", 2),
+                (f"A_peak = {self.peak_ratio:g} A_col (m/s²)", "A_peak_m_s2", 2),
+                ("A_pseudo (m/s²)", "A_pseudo_m_s2", 2), ("r = A_peak/A_pseudo", "r", 2),
+                ("seed A_col (m/s²)", "seed_A_col_m_s2", 2), ("seed r", "seed_r", 2),
+                ("run time (s)", "wall_time_s", 1)]
+        for label, key, nd in spec:
+            vals = [(r[key] if r[key] != "none" else "-") if nd is None else fmt(r[key], nd)
+                    for r in self.rows]
+            lines.append(f"| {label} | " + " | ".join(vals) + " |")
+        return "\n".join(lines) + "\n"
+
+
+def behaviour_factor(wall: RetainingWall, freqs: Sequence[float] = (3.0, 5.0, 10.0),
+                     kv_modes: Sequence[str] = ("none",), executor: Executor | None = None,
+                     peak_ratio: float = 0.6, **kw) -> BehaviourTable:
+    """S2 collapse runs of ``wall`` for every frequency and vertical mode (through
+    ``executor``, default serial) and the behaviour factor ``r = peak_ratio A_col / A_pseudo``
+    (seed 001 Tables 7-8). ``kw`` go to :func:`collapse_run`."""
+    freqs = [float(f) for f in freqs]
+    modes = [_vertical(v) for v in kv_modes]
+    if not freqs or not modes:
+        raise CollapseError("give at least one frequency and one vertical mode")
+    cases = [(f, v) for v in modes for f in freqs]
+    # A_pseudo once per vertical mode
+    aps = {v: pseudo_static_resistance(wall, v, kw.get("assumptions"),
+                                       kw.get("vertical_ratio", 0.5)) for v in modes}
+    jobs = [(wall, f, v, dict(kw, A_pseudo=aps[v])) for f, v in cases]
+    results = _map(executor, jobs)
+    rows = []
+    for (f, v), r in zip(cases, results, strict=True):
+        A_peak = peak_ratio * r.A_col if r.collapsed else math.nan
+        seed = SEED_TABLE7.get((f, v)) if wall.name == "DSRW1" else None
+        rows.append({"wall": wall.name, "frequency_Hz": f, "vertical": v,
+                     "t_col_s": r.t_col, "A_col_m_s2": r.A_col, "A_peak_m_s2": A_peak,
+                     "A_pseudo_m_s2": r.A_pseudo, "r": A_peak / r.A_pseudo,
+                     "collapsed": r.collapsed, "wall_time_s": r.wall_time,
+                     "seed_A_col_m_s2": seed[1] if seed else math.nan,
+                     "seed_r": seed[3] if seed else math.nan})
+    return BehaviourTable(rows, results, peak_ratio)

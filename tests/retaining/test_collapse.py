@@ -1,0 +1,146 @@
+"""Collapse protocol and behaviour factor (murus.retaining.collapse) on a cheap mock-up.
+
+The mock-up of seed 001 §3 with H/B = 1.3 and 11 mm courses (four courses and a top course);
+the joint stiffness of seed 001 Table 1 is scaled by 1e-5 (2.6e7 Pa/m: the joint closure under
+the wall's weight, 2.5e-5 m, is 1 % of the 5 % H collapse threshold) and the ramp reaches
+A_pseudo at 0.5 s instead of 2.5 s, so that each run takes a few seconds.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from murus.retaining.collapse import (
+    BehaviourTable,
+    CollapseError,
+    behaviour_factor,
+    collapse_run,
+    pseudo_static_resistance,
+    ramp_rate,
+)
+from murus.retaining.geometry import preset
+
+KW = dict(stiffness_scale=1e-5, t_pseudo=0.5)
+
+
+@pytest.fixture(scope="module")
+def wall():
+    return preset("mockup-1.3", stone_height=0.011)
+
+
+@pytest.fixture(scope="module")
+def a_pseudo(wall):
+    return pseudo_static_resistance(wall)
+
+
+@pytest.fixture(scope="module")
+def strong(wall, a_pseudo):
+    return collapse_run(wall, 5.0, A_pseudo=a_pseudo, t_max=2.0, **KW)
+
+
+def test_strong_ramp_collapses(strong, wall, a_pseudo):
+    r = strong
+    assert r.collapsed and r.status == "stopped"
+    assert r.threshold == pytest.approx(0.05 * wall.height)  # mock-ups: 5 % H (§3.1)
+    assert r.A_rate == pytest.approx(ramp_rate(a_pseudo, 0.5))
+    assert r.A_col == pytest.approx(r.A_rate * r.t_col)
+    # dynamic capacity above the pseudo-static one (seed 001 Table 8: r > 1)
+    assert 1.0 < r.A_col / a_pseudo < 3.0
+    # d_top crosses the threshold at t_col
+    assert r.d_top[-1] > r.threshold
+    assert np.interp(r.t_col, r.t, r.d_top) == pytest.approx(r.threshold, rel=1e-6)
+    # the thrust followed the input: kh = a / g at the samples
+    i = len(r.t) // 2
+    assert r.kh[i] == pytest.approx(r.acc[i] / 9.81, abs=0.02 * abs(r.acc).max() / 9.81)
+    s = r.summary()
+    assert s["A_peak"] == pytest.approx(0.6 * r.A_col)
+    assert s["r"] == pytest.approx(0.6 * r.A_col / a_pseudo)
+    assert len(r.polygons) == len(r.displacement)
+
+
+def test_weak_ramp_does_not_collapse(wall, a_pseudo):
+    # the same slope stopped when the envelope reaches A_pseudo / 2
+    r = collapse_run(wall, 5.0, A_pseudo=a_pseudo, t_max=0.25, **KW)
+    assert not r.collapsed and r.status == "completed"
+    assert np.isnan(r.A_col)
+    assert r.d_top.max() < 0.25 * r.threshold
+
+
+def test_A_col_decreases_with_the_thrust(wall, a_pseudo, strong):
+    # more earth thrust, earlier collapse: A_col(no backfill) > A_col(Annex E) > A_col(2 x)
+    free = collapse_run(wall, 5.0, A_pseudo=a_pseudo, t_max=2.0, thrust_scale=0.0, **KW)
+    double = collapse_run(wall, 5.0, A_pseudo=a_pseudo, t_max=2.0, thrust_scale=2.0, **KW)
+    assert free.A_col > strong.A_col > double.A_col
+
+
+def test_behaviour_table_and_writers(wall, a_pseudo, strong, tmp_path):
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=1) as ex:
+        tab = behaviour_factor(wall, [5.0], ["none"], executor=ex, t_max=2.0, **KW)
+    assert isinstance(tab, BehaviourTable)
+    row = tab.rows[0]
+    assert row["A_col_m_s2"] == pytest.approx(strong.A_col, rel=1e-9)  # deterministic
+    assert row["r"] == pytest.approx(0.6 * strong.A_col / a_pseudo)
+    tab.to_csv(tmp_path / "t.csv")
+    text = (tmp_path / "t.csv").read_text().splitlines()
+    assert text[0].startswith("wall,frequency_Hz,vertical,t_col_s,A_col_m_s2")
+    md = tab.to_markdown()
+    assert "A_peak = 0.6 A_col" in md and "r = A_peak/A_pseudo" in md
+
+
+def test_errors(wall):
+    with pytest.raises(CollapseError, match="vertical mode"):
+        collapse_run(wall, 5.0, "sideways", **KW)
+    with pytest.raises(CollapseError, match="a_peak"):
+        collapse_run(wall, 5.0, signal="S1", **KW)
+    with pytest.raises(CollapseError, match="frequency"):
+        collapse_run(wall, -1.0, **KW)
+
+
+def test_cli_collapse_and_errors(tmp_path):
+    from murus.cli import app
+
+    runner = CliRunner()
+    out = tmp_path / "run"
+    args = ["retaining", "collapse", "--preset", "mockup-1.3", "--stone-height", "0.011",
+            "--stiffness-scale", "1e-5", "--t-max", "0.3", "--frequency", "5", "--out",
+            str(out)]
+    res = runner.invoke(app, args)
+    assert res.exit_code == 0, res.output
+    s = json.loads((out / "summary.json").read_text())
+    assert s["collapsed"] is False and s["A_col"] is None and s["wall"].startswith("mockup")
+    hist = np.loadtxt(out / "d_top.csv", delimiter=",", skiprows=1)
+    assert hist.shape[1] == 6 and hist[-1, 0] == pytest.approx(0.3, abs=0.011)
+    assert (out / "collapse.png").stat().st_size > 1000
+    # errors: one line, exit code 2, nothing written
+    bad = tmp_path / "bad"
+    res = runner.invoke(app, ["retaining", "collapse", "--preset", "mockup-1.3", "--out",
+                              str(bad)])
+    assert res.exit_code == 2
+    assert "courses are unknown" in res.output and len(res.output.strip().splitlines()) == 1
+    assert not bad.exists()
+    res = runner.invoke(app, ["retaining", "behaviour-factor", "--preset", "DSRW1",
+                              "--frequencies", "5,x", "--out", str(bad)])
+    assert res.exit_code == 2 and "--frequencies" in res.output
+    assert not bad.exists()
+    assert math.isfinite(1.0)
+
+
+def test_peak_ratio_check_runs_s1_with_the_same_slope(wall, a_pseudo, strong):
+    from murus.retaining.collapse import peak_ratio_check
+
+    checks = peak_ratio_check(wall, 5.0, strong.A_col, (0.6, 1.2), A_pseudo=a_pseudo,
+                              tail=0.2, **KW)
+    low, high = checks[0.6], checks[1.2]
+    for ratio, c in checks.items():
+        assert c.signal == "S1" and c.a_peak == pytest.approx(ratio * strong.A_col)
+        assert c.A_rate == pytest.approx(strong.A_rate)
+    # seed 001 Figure 14: stable at 0.6 A_col; a peak above A_col collapses
+    assert low.stable and low.t_end == pytest.approx(3 * low.a_peak / low.A_rate + 0.2, abs=2e-3)
+    assert high.collapsed
