@@ -1,0 +1,472 @@
+"""Speed of the 2D distinct-element engine (issue 5, item 7): steps and contact updates per second
+for (a) a 50-block dry running-bond wall on a base shaken by a harmonic ramp and (b) the same wall
+retaining 5000 backfill discs, on 1 and 2 numba threads; peak memory; where the time goes (each
+kernel timed in isolation on the state of the run); extrapolation to a full-scale retaining wall
+(10 simulated seconds) against the issue's goal of 2e7 contact updates per second.
+
+UDEC (the seed's tool, commercial) cannot run here: its figure from seed 001 (12 hours of
+computation per simulated second for the scaled-down wall model) is quoted as the peer point.
+
+``python benchmarks/bench_dem.py [--out benchmarks/RESULTS_dem.md] [--quick]``
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import os
+import platform
+import resource
+import sys
+import time
+from pathlib import Path
+
+import numba
+import numpy as np
+from numba import njit
+
+from murus.dem import Joint, Model
+from murus.dem import kernels as K
+from murus.motion.synthetic import ramp_velocity
+
+HERE = Path(__file__).resolve().parent
+GOAL = 2e7  # contact updates per second (issue 5, item 7)
+RAMP_A, RAMP_F = 0.5, 2.0  # harmonic ramp S(t) = A t sin(2 pi f t) [m/s³, Hz] (seed 001 eq. 5)
+UDEC_H_PER_S = 12.0  # seed 001: 12 h of computation per simulated second (scaled-down model)
+
+
+def _rss_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: kB
+
+
+def _model_mb(m: Model) -> float:
+    return sum(v.nbytes for v in vars(m).values() if isinstance(v, np.ndarray)) / 2**20
+
+
+def build_wall(backfill: int = 0, seed: int = 0) -> tuple[Model, dict]:
+    """10 courses x 5 blocks 0.4 x 0.2 m (half-block bond: courses shifted by +-0.1 m), kn = ks
+    = 1e9 Pa/m, friction 35 deg, on a kinematic base; with ``backfill`` discs (radii 0.02-0.03 m
+    on a grid without overlap, friction 30 deg, rolling 0.1) behind it, held by a kinematic
+    back wall."""
+    m = Model(joint=Joint(kn=1e9, ks=1e9, friction_deg=35.0))
+    info = {}
+    x_back = 1.1  # back face of the wall [m]
+    if backfill:
+        pitch = 2 * 0.03 * 1.001  # hexagonal grid: centre distances >= pitch > r1 + r2
+        rows = 40
+        cols = int(math.ceil(backfill / rows))
+        width = (cols + 0.5) * pitch
+        m.set_joint(Joint(kn=1e9, ks=1e9, friction_deg=30.0, rolling=0.1), "fill", "fill")
+        m.add_rectangle(width + 3.0, 0.2, center=(x_back + width / 2 - 0.5, -0.1),
+                        kinematic="base")
+        m.add_rectangle(0.2, 2.6, center=(x_back + width + 0.1, 1.3), kinematic="base")
+    else:
+        m.add_rectangle(3.0, 0.2, center=(0.0, -0.1), kinematic="base")
+    for c in range(10):
+        off = 0.1 if c % 2 == 0 else -0.1
+        for i in range(5):
+            m.add_rectangle(0.4, 0.2, center=(-0.8 + 0.4 * i + off, 0.1 + 0.2 * c))
+    if backfill:
+        rng = np.random.default_rng(seed)
+        r = rng.uniform(0.02, 0.03, backfill)
+        k = np.arange(backfill)
+        row = k % rows
+        x = x_back + (k // rows + 0.5 + 0.5 * (row % 2)) * pitch
+        y = (row + 0.5) * pitch * math.sqrt(3) / 2
+        for xi, yi, ri in zip(x, y, r, strict=True):
+            m.add_disc((xi, yi), ri, group="fill")
+        info["backfill_width"] = width
+    m.set_base_motion(velocity=lambda t: ramp_velocity(RAMP_A, RAMP_F, t))
+    return m, info
+
+
+# timing loops inside numba: no Python dispatch overhead (~10-30 us for 20+ array arguments)
+@njit(cache=True)
+def _loop_wv(reps, bpos, bang, sbody, svs, svn, lv, wv):
+    for _ in range(reps):
+        K.world_vertices(bpos, bang, sbody, svs, svn, lv, wv)
+
+
+@njit(cache=True)
+def _loop_rebuild(reps, wv, svs, svn, srad, sbody, bkin, margin, pairs, sid, sf, sbr, pbond, ns,
+                  jtab, sgroup):
+    for _ in range(reps):
+        newp = K.broad_phase(wv, svs, svn, srad, sbody, bkin, margin)
+        K.transfer(pairs, sid, sf, sbr, pbond, newp, ns, jtab, sgroup, 0)
+
+
+@njit(cache=True)
+def _loop_serial(reps, pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad, sbody,
+                 bpos, bvel, bomg, jprops, dt, thick, reach, nact, scr_i, scr_f):
+    for _ in range(reps):
+        K._contacts_serial(pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad,
+                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact, scr_i,
+                           scr_f)
+
+
+@njit(cache=True)
+def _loop_parallel(reps, pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad, sbody,
+                   bpos, bvel, bomg, jprops, dt, thick, reach, nact, scr_i, scr_f):
+    for _ in range(reps):
+        K._contacts_parallel(pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad,
+                             sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact, scr_i,
+                             scr_f)
+
+
+@njit(cache=True)
+def _loop_forces(reps, pairs, sid, sf, sbody, bpos, nb, fb):
+    for _ in range(reps):
+        K.body_forces(pairs, sid, sf, sbody, bpos, nb, fb)
+
+
+def _contact_args(m: Model) -> tuple:
+    n = m.pairs.shape[0]
+    return (m.pairs, m.pj, m.pbond.copy(), m.sid.copy(), m.sf.copy(), m.sbr.copy(),
+            np.zeros((n, 3)), m.wv, m.svs, m.svn, m.skind, m.srad, m.sbody, m.bpos, m.bvel,
+            m.bomg, m.jprops, m.dt, m.thickness, m.P[K.P_REACH], np.zeros(n, np.int64),
+            np.empty((n, 8), np.int64), np.empty((n, 2, 6 + K.NSF)))
+
+
+def _timed(loop, args, reps, repeat=3):
+    """Best of ``repeat`` timings of ``reps`` calls [s per call]."""
+    loop(1, *args)  # compile / load the cache
+    best = math.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        loop(reps, *args)
+        best = min(best, (time.perf_counter() - t0) / reps)
+    return best
+
+
+def kernel_split(m: Model, step_time: float, rebuild_rate: float, parallel: bool) -> dict:
+    """Each kernel of a step timed in isolation (in a numba loop) on the current state (copies
+    of the contact arrays): seconds per call."""
+    n = m.pairs.shape[0]
+    reps = max(5, min(2000, int(4e5 / max(n, 1))))
+    out = {}
+    out["world vertices"] = _timed(_loop_wv, (m.bpos, m.bang, m.sbody, m.svs, m.svn, m.lv,
+                                              m.wv.copy()), reps)
+    c = _contact_args(m)
+    t_rb = _timed(_loop_rebuild, (m.wv, m.svs, m.svn, m.srad, m.sbody, m.bkin, m.margin,
+                                  m.pairs, c[3], c[4], c[5], c[2], m.sbody.size, m.jtab,
+                                  m.sgroup), max(3, reps // 10))
+    out["broad phase + transfer (per rebuild)"] = t_rb
+    out["broad phase + transfer (amortised per step)"] = t_rb * rebuild_rate
+    use_par = parallel and n >= m.P[K.P_PARMIN]
+    loop = _loop_parallel if use_par else _loop_serial
+    out["narrow phase + joint law (contacts)"] = _timed(loop, c, reps)
+    out["contact loop used"] = "_contacts_parallel" if use_par else "_contacts_serial"
+    fb = np.zeros((m.nbody, 3))
+    out["body forces (sum)"] = _timed(_loop_forces, (m.pairs, m.sid, m.sf, m.sbody, m.bpos,
+                                                     m.nbody, fb), reps)
+    parts = (out["world vertices"] + out["broad phase + transfer (amortised per step)"]
+             + out["narrow phase + joint law (contacts)"] + out["body forces (sum)"])
+    out["body update + damping + rebuild check + run overhead (remainder)"] = (
+        step_time - parts)
+    return out
+
+
+@njit(cache=True)
+def _alloc_like_process_pair(n, out):
+    """The six small arrays that process_pair allocates per pair and step, and nothing else."""
+    for k in range(n):
+        oid = np.empty(2, np.int64)
+        match = np.full(2, -1, np.int64)
+        newid = np.full(2, -1, np.int64)
+        newbr = np.zeros(2, np.int64)
+        og = np.empty((2, 6))
+        newsf = np.zeros((2, K.NSF))
+        oid[0] = k
+        og[0, 0] = 1.0
+        out[k] = oid[0] + match[0] + newid[1] + newbr[0] + og[0, 0] + newsf[1, 3]
+
+
+@njit(cache=True)
+def _alloc_loop(reps, n, out):
+    for _ in range(reps):
+        _alloc_like_process_pair(n, out)
+
+
+def timed_run(m0: Model, steps: int, threads: int, repeat: int = 3) -> dict:
+    """Best of ``repeat`` runs of ``steps`` steps, each from a copy of the state ``m0``."""
+    runs = [_one_run(copy.deepcopy(m0), steps, threads) for _ in range(repeat)]
+    best = min(runs, key=lambda r: r["wall"])
+    best["walls"] = [r["wall"] for r in runs]
+    return best
+
+
+def _one_run(m: Model, steps: int, threads: int) -> dict:
+    numba.set_num_threads(threads)
+    sample = steps * m.dt  # one sample at the end: no monitor overhead inside the timing
+    c0 = int(m.C[K.C_REBUILD])
+    p0 = 0
+    t0 = time.perf_counter()
+    res = m.run(duration=sample, sample_dt=sample)
+    wall = time.perf_counter() - t0
+    p0 = m.pairs.shape[0]
+    return {"threads": threads, "steps": res.steps, "wall": wall, "updates": res.contact_updates,
+            "steps_per_s": res.steps / wall, "updates_per_s": res.contact_updates / wall,
+            "pairs": p0, "pairs_per_s": p0 * res.steps / wall,
+            "rebuild_rate": (int(m.C[K.C_REBUILD]) - c0) / max(res.steps, 1),
+            "status": res.status, "t_end": m.time, "model": m}
+
+
+def main(out: Path, quick: bool = False) -> None:
+    load0 = os.getloadavg()
+    t_start = time.perf_counter()
+    cmd = "python benchmarks/bench_dem.py --out benchmarks/RESULTS_dem.md"
+    nthreads = [1, 2] if numba.config.NUMBA_NUM_THREADS >= 2 else [1]
+    cases = {}
+    rss = {"start": _rss_mb()}
+    # ---- (a) the wall alone
+    m, _ = build_wall()
+    t0 = time.perf_counter()
+    st = m.settle(tol=1e-4, max_steps=100_000)
+    settle_a = (st, time.perf_counter() - t0)
+    m.run(0.05)  # compile / load cache of the dynamic path
+    dur_steps = int((0.6 if quick else 2.0) / m.dt)
+    rows = [timed_run(m, dur_steps, th) for th in nthreads]  # from the same settled state
+    m = rows[0]["model"]
+    split = kernel_split(m, rows[0]["wall"] / rows[0]["steps"], rows[0]["rebuild_rate"], False)
+    cases["a"] = {"name": "(a) 50-block wall", "model": m, "rows": rows, "split": split,
+                  "settle": settle_a, "nbody": m.nbody, "model_mb": _model_mb(m)}
+    rss["a"] = _rss_mb()
+    # ---- (b) the wall with 5000 backfill discs
+    nfill = 1500 if quick else 5000
+    m, info = build_wall(nfill)
+    numba.set_num_threads(nthreads[-1])
+    t0 = time.perf_counter()
+    # settling: the discs first fall into place under 8 g with light local damping, then 1 g
+    m.gravity = 8 * 9.81
+    st = m.settle(tol=1e-3, alpha=0.2, max_steps=2500 if quick else 3500)
+    m.gravity = 9.81
+    st = m.settle(tol=1e-3, max_steps=1000 if quick else 2000)
+    settle_b = (st, time.perf_counter() - t0)
+    dur_steps = 300 if quick else 1000
+    rows = [timed_run(m, dur_steps, th) for th in nthreads]
+    m = rows[0]["model"]
+    splits = {}
+    for th, r in zip(nthreads, rows, strict=True):
+        numba.set_num_threads(th)
+        splits[th] = kernel_split(m, r["wall"] / r["steps"], r["rebuild_rate"], True)
+    cases["b"] = {"name": f"(b) wall + {nfill} backfill discs", "model": m, "rows": rows,
+                  "split": splits, "settle": settle_b, "nbody": m.nbody,
+                  "model_mb": _model_mb(m), "info": info}
+    rss["b"] = _rss_mb()
+    numba.set_num_threads(1)
+    # ---- allocation overhead of process_pair (measured estimate of a safe speed-up)
+    npair = cases["b"]["model"].pairs.shape[0]
+    buf = np.zeros(npair)
+    t_alloc = _timed(_alloc_loop, (npair, buf), 20)
+    t_contacts_b = None  # serial loop time, below
+    # parallel loop on 1 thread against the serial loop, same state
+    cargs = _contact_args(cases["b"]["model"])
+    t_ser = _timed(_loop_serial, cargs, 20)
+    t_contacts_b = t_ser
+    par = {}
+    for th in nthreads:
+        numba.set_num_threads(th)
+        par[th] = _timed(_loop_parallel, cargs, 20)
+    numba.set_num_threads(1)
+    load1 = os.getloadavg()
+    total = time.perf_counter() - t_start
+    write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_contacts_b,
+          t_ser, par)
+
+
+def write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_contacts_b,
+          t_ser, par) -> None:
+    a = cases["a"]
+    b = cases["b"]
+    best_b = max(b["rows"], key=lambda r: r["updates_per_s"])
+    best_a = max(a["rows"], key=lambda r: r["updates_per_s"])
+    mb = b["model"]
+    ndisc = len(mb.disc_shape)
+    upd_per_step_b = best_b["updates"] / best_b["steps"]
+    # ---- extrapolation to the full-scale wall (assumed sizes)
+    H, L_fill = 4.0, 5.0  # wall height, backfill width [m]
+    courses = int(round(H / 0.1))
+    n_blocks = int(round(courses * 2.5))  # courses of 2 and 3 stones 0.35 m, alternately
+    rmean = 0.025
+    packing = 0.82  # area fraction of a dense disc packing
+    n_disc_fs = int(round(packing * H * L_fill / (math.pi * rmean**2)))
+    upd_per_disc = upd_per_step_b / max(ndisc, 1)  # sub-contacts per disc (and its share of
+    # the wall) in case (b)
+    upd_fs = upd_per_disc * n_disc_fs
+    dt_b = mb.dt
+    steps_fs = 10.0 / dt_b
+    t_fs = steps_fs * upd_fs / best_b["updates_per_s"]
+    t_goal = steps_fs * upd_fs / GOAL
+    L = []
+    w = L.append
+    w("# Distinct-element engine speed (issue 5, item 7)")
+    w("")
+    w(f"Machine: {os.cpu_count()} cores ({platform.processor() or platform.machine()}), "
+      f"Python {platform.python_version()}, numba {numba.__version__} "
+      f"(NUMBA_NUM_THREADS={numba.config.NUMBA_NUM_THREADS}); load average (1, 5, 15 min) "
+      f"at the start {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}, at the end "
+      f"{load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f} (other jobs share the CPU).")
+    w(f"Command: `{cmd}`{' --quick' if quick else ''}; total benchmark time {total:.0f} s. "
+      "Numba kernels compiled (cache) before timing; each timed run is one `Model.run` call "
+      "with a single sample at its end (no monitor overhead inside).")
+    w("")
+    w("Cases: (a) 10 courses x 5 blocks 0.4 x 0.2 m, half-block bond (courses shifted by "
+      "+-0.1 m), kn = ks = 1e9 Pa/m, friction 35 deg, on a kinematic base moved by the "
+      f"harmonic ramp S(t) = A t sin(2 pi f t), A = {RAMP_A} m/s³, f = {RAMP_F} Hz (seed 001 "
+      "eq. 5), settled under gravity first; (b) the same wall with "
+      f"{ndisc} discs (radii uniform 0.02-0.03 m, generated on a grid without overlap, "
+      f"{b['info']['backfill_width']:.1f} m wide, 40 rows of a hexagonal grid of pitch 0.06 m; "
+      "disc joint friction 30 deg, rolling "
+      "0.1) behind it and a kinematic back wall; settled under gravity "
+      f"(3500 steps under 8 g with local damping 0.2, then at 1 g: {b['settle'][0].message}; "
+      f"{b['settle'][1]:.0f} s), only the dynamic phase timed (best of 3 runs from the same "
+      "state for each thread count). "
+      "A contact update is one active sub-contact processed in one step (the engine's "
+      "`RunResult.contact_updates`); a pair is a candidate pair of the broad phase (the narrow "
+      "phase runs on every pair every step).")
+    w("")
+    w("| case | threads | bodies | steps | wall [s] | steps/s | candidate pairs | pairs/s | "
+      "contact updates/s | ratio to the goal 2e7/s | rebuilds per step |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    for c in (a, b):
+        for r in c["rows"]:
+            w(f"| {c['name']} | {r['threads']} | {c['nbody']} | {r['steps']} | "
+              f"{r['wall']:.2f} | {r['steps_per_s']:.0f} | {r['pairs']} | "
+              f"{r['pairs_per_s']:.3g} | {r['updates_per_s']:.3g} | "
+              f"{r['updates_per_s'] / GOAL:.3f} (x{GOAL / r['updates_per_s']:.0f} to go) | "
+              f"{r['rebuild_rate']:.3f} |")
+    if len(b["rows"]) > 1:
+        w("")
+        if max(load0[0], load1[0]) > 0.8:
+            w(f"Note: the load average was {load0[0]:.1f}-{load1[0]:.1f} during this run: "
+              "other jobs held about one of the two cores, so the 2-thread runs (a parallel "
+              "loop waits for its slowest thread at every step) are a lower bound of what two "
+              "free cores give.")
+            w("")
+        w(f"Speed-up of 2 threads over 1 on case (b): "
+          f"{b['rows'][1]['updates_per_s'] / b['rows'][0]['updates_per_s']:.2f}; on case (a): "
+          f"{a['rows'][1]['updates_per_s'] / a['rows'][0]['updates_per_s']:.2f} (case (a) has "
+          f"{a['rows'][0]['pairs']} pairs, below the engine's parallel threshold of "
+          f"{int(a['model'].P[K.P_PARMIN])} pairs: it always runs the serial loop).")
+    w("")
+    w("## Memory")
+    w("")
+    w(f"Peak resident set size of the process (`ru_maxrss`): {rss['start']:.0f} MB after the "
+      f"imports, {rss['a']:.0f} MB after case (a), {rss['b']:.0f} MB after case (b). Arrays "
+      f"held by the models: {a['model_mb']:.2f} MB (a), {b['model_mb']:.2f} MB (b) "
+      f"({b['model_mb'] * 2**20 / b['nbody']:.0f} bytes per body in (b)). The engine's memory "
+      "is small; the process peak is the Python + numba runtime.")
+    w("")
+    w("## Where the time goes")
+    w("")
+    w("Each kernel timed in isolation on the state at the end of the timed run (copies of the "
+      "contact arrays); the remainder is the measured step time minus the isolated kernels: "
+      "the body update (central differences, damping, energy sums), the rebuild check, the "
+      "per-step bookkeeping in `run_chunk` and the Python layer of `Model.run` (base velocity "
+      "and gravity arrays per chunk).")
+    w("")
+    w("| kernel | (a) 1 thread [us/step] | share | " + " | ".join(
+        f"(b) {th} thread{'s' if th > 1 else ''} [us/step] | share" for th in b["split"]) + " |")
+    w("|---|---|---|" + "---|---|" * len(b["split"]))
+    sa = a["split"]
+    keys = [k for k in sa if k not in ("contact loop used",
+                                       "broad phase + transfer (per rebuild)")]
+    step_a = a["rows"][0]["wall"] / a["rows"][0]["steps"]
+    steps_b = {th: r["wall"] / r["steps"] for th, r in
+               zip(b["split"], b["rows"], strict=True)}
+    def cell(v, step):
+        if v < 0:  # the isolated kernels add up to more than the step: timing noise
+            return ["~0", "~0 %"]
+        return [f"{1e6 * v:.1f}", f"{100 * v / step:.0f} %"]
+
+    for k in keys:
+        cells = cell(sa[k], step_a)
+        for th, s in b["split"].items():
+            cells += cell(s[k], steps_b[th])
+        w(f"| {k} | " + " | ".join(cells) + " |")
+    cells = [f"{1e6 * step_a:.1f}", "100 %"]
+    for th in b["split"]:
+        cells += [f"{1e6 * steps_b[th]:.1f}", "100 %"]
+    w("| **measured step** | " + " | ".join(cells) + " |")
+    w("")
+    s1 = b["split"][1]
+    w(f"One rebuild of the pair list (broad phase + transfer of the contact state) costs "
+      f"{1e6 * sa['broad phase + transfer (per rebuild)']:.0f} us in (a) and "
+      f"{1e6 * s1['broad phase + transfer (per rebuild)']:.0f} us in (b); contact loop used: "
+      f"{sa['contact loop used']} (a), {s1['contact loop used']} (b). Per candidate pair the "
+      f"narrow phase + joint law costs "
+      f"{1e9 * sa['narrow phase + joint law (contacts)'] / a['rows'][0]['pairs']:.0f} ns (a) and "
+      f"{1e9 * t_ser / npair:.0f} ns (b, serial loop).")
+    w("")
+    w("## Distance to the goal and extrapolation to a full-scale wall")
+    w("")
+    w(f"Best measured rate on the backfill case: {best_b['updates_per_s']:.3g} contact "
+      f"updates/s ({best_b['threads']} thread(s)), i.e. {best_b['updates_per_s'] / GOAL:.3f} of "
+      f"the goal of 2e7/s (a factor {GOAL / best_b['updates_per_s']:.0f} short); the wall "
+      f"alone: {best_a['updates_per_s']:.3g}/s (x{GOAL / best_a['updates_per_s']:.0f}).")
+    w("")
+    w(f"Assumed full-scale model (DSRW1-like, seed 001): a wall {H:g} m high of 0.1 x 0.35 m "
+      f"stones, {courses} courses of 2 and 3 stones alternately = {n_blocks} blocks, and a "
+      f"backfill "
+      f"{L_fill:g} m wide x {H:g} m high of discs of mean radius {rmean} m (radii 0.02-0.03 m as "
+      f"here) at an area fraction of {packing}: N = {n_disc_fs:,} discs. Measured in (b): "
+      f"{upd_per_disc:.2f} contact updates per step per disc (wall included), time step "
+      f"{dt_b:.2e} s (same joint stiffness and disc sizes at full scale), hence "
+      f"{upd_fs:,.0f} updates per step and {steps_fs:,.0f} steps for 10 simulated seconds.")
+    w("")
+    upd_c4 = 2.0 * n_disc_fs + 4.0 * n_blocks  # coordination 4 per disc, 4 per block
+    t_c4 = steps_fs * upd_c4 / best_b["updates_per_s"]
+    w(f"- at the measured rate: {t_fs / 60:,.0f} min ({t_fs / 3600:.1f} h) for 10 s of shaking;")
+    w(f"- the same with a fully settled backfill of coordination number 4 (2 sub-contacts per "
+      f"disc, 4 per block: {upd_c4:,.0f} updates per step, the per-update cost unchanged): "
+      f"{t_c4 / 60:,.0f} min ({t_c4 / 3600:.1f} h), {t_c4 / 600:.0f} x the 10-minute goal;")
+    w(f"- at the goal of 2e7 updates/s: {t_goal / 60:.1f} min (the goal's 10 minutes "
+      f"{'are' if t_goal <= 600 else 'are NOT'} met at that rate with these sizes);")
+    w(f"- peer point, UDEC (seed 001): {UDEC_H_PER_S:g} h of computation per simulated second "
+      f"for the scaled-down wall model, i.e. {10 * UDEC_H_PER_S:g} h for 10 s: the measured "
+      f"extrapolation is {10 * UDEC_H_PER_S * 3600 / t_fs:.1f} x faster than that figure "
+      "(different model sizes and machines: an order-of-magnitude comparison only).")
+    w("")
+    w("## Safe speed-ups found (not applied: the kernels belong to another change)")
+    w("")
+    w(f"1. **Allocations in `process_pair`.** Each pair allocates six small NumPy arrays per "
+      f"step (`oid`, `match`, `newid`, `newbr`, `og`, `newsf`). A numba loop doing only these "
+      f"allocations over the {npair} pairs of (b) takes {1e6 * t_alloc:.0f} us, "
+      f"{100 * t_alloc / t_contacts_b:.0f} % of the serial contact loop "
+      f"({1e6 * t_contacts_b:.0f} us), {1e9 * t_alloc / npair:.0f} ns per pair. Replacing them "
+      "by scalars (two slots: `oid0, oid1`, ...) or by per-pair rows of the already allocated "
+      "`scr_i`/`scr_f` scratch (indexing `scr_f[k, c, j]` directly, never taking a view) "
+      "removes that cost without changing a single result.")
+    pcells = ", ".join(f"{th} thread(s) {1e6 * t:.0f} us" for th, t in par.items())
+    w(f"2. **The parallel contact loop.** Same state of (b), serial loop {1e6 * t_ser:.0f} us; "
+      f"parallel loop: {pcells}. The allocations above inside a `prange` body go through "
+      "numba's thread-safe allocator and atomic reference counts; with them removed the "
+      "parallel loop should approach the serial time divided by the thread count.")
+    upd_pair = best_b["updates"] / best_b["steps"] / max(best_b["pairs"], 1)
+    w(f"3. **Where 2e7/s would have to come from.** At 2e7 updates/s an update may cost 50 ns; "
+      f"in (b) there are {upd_pair:.2f} active sub-contacts per candidate pair (the broad "
+      "phase margin keeps near neighbours in the list), so the narrow phase would have to "
+      f"cost about {50 * upd_pair:.0f} ns per pair on one core, against "
+      f"{1e9 * t_ser / npair:.0f} ns measured. Items 1 and 2 give about "
+      f"{t_ser / max(t_ser - t_alloc, 1e-12):.1f} x (allocations) and up to 2 x (two free "
+      "cores); the rest needs a leaner pair record (the 11-float slot record is read and "
+      "written whole for every pair, in contact or not) and a cheaper disc-disc path (an early "
+      "exit before the slot matching when both discs are apart and the pair held no "
+      "sub-contact).")
+    w(f"4. **Rebuilds are not the problem here**: {best_b['rebuild_rate']:.3f} rebuilds per "
+      f"step at {1e6 * s1['broad phase + transfer (per rebuild)']:.0f} us each, "
+      f"{100 * s1['broad phase + transfer (amortised per step)'] / steps_b[1]:.1f} % of the "
+      "step. (The rebuild test adds `|d angle| x R_b` to the displacement of every body, "
+      "which is conservative for discs, whose shape does not move when they spin; dropping "
+      "that term for single-disc bodies would save part of this small share.)")
+    w("")
+    out.write_text("\n".join(L) + "\n")
+    print("\n".join(L))
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    target = HERE / "RESULTS_dem.md"
+    if "--out" in args:
+        target = Path(args[args.index("--out") + 1])
+    main(target, quick="--quick" in args)
