@@ -61,3 +61,29 @@ def test_levels_default_and_left_out():
 def test_bad_input(hist, w, word):
     with pytest.raises(SectionsError, match=word):
         weighted_response(hist, w)
+
+
+def test_cli_weighted_response(tmp_path):
+    """Through the CLI on d_top files in the format of 'murus retaining collapse': the global
+    time at 5 mm is the weighted mean of the section times (Table 2)."""
+    from typer.testing import CliRunner
+
+    from murus.cli import app
+
+    w, times, _ = table2()
+    t = np.linspace(0.0, 30.0, 3001)
+    files = []
+    for k, ti in enumerate(times):
+        f = tmp_path / f"s{k}.csv"
+        np.savetxt(f, np.column_stack([t, 0.005 * t / ti, 0 * t]), delimiter=",",
+                   header="t_s,d_top_m,acc_m_s2", comments="")
+        files.append(str(f))
+    out = tmp_path / "global.csv"
+    r = CliRunner().invoke(app, ["retaining", "weighted-response", *files, "--weights",
+                                 "7,7,7,2", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    g = np.loadtxt(out, delimiter=",", skiprows=1)
+    t5 = np.interp(0.005, g[:, 1], g[:, 0])
+    assert t5 == pytest.approx(sum(a * b for a, b in zip(w, times, strict=True)), rel=1e-6)
+    r = CliRunner().invoke(app, ["retaining", "weighted-response", files[0], "--weights", "1,2"])
+    assert r.exit_code == 2 and "weights" in r.output

@@ -339,3 +339,146 @@ def behaviour_factor_cmd(
     (d / "behaviour_factor.md").write_text(md)
     typer.echo(md, nl=False)
     typer.echo(f"wrote {d / 'behaviour_factor.csv'}, {d / 'behaviour_factor.md'}")
+
+
+@app.command("calibrate-backfill")
+def calibrate_backfill(
+    target: float | None = typer.Option(None, "--target", help="Target peak friction angle "
+                                        "[deg] (seed 001: 37.7 full scale, 45 mock-ups): finds "
+                                        "the rolling resistance; without it, one test at "
+                                        "--rolling."),
+    rolling: float = typer.Option(0.167, "--rolling", help="Rolling resistance coefficient "
+                                  "mu_r of a single test [-]."),
+    friction: float = typer.Option(30.0, "--friction", help="Interparticle friction [deg]."),
+    n: int = typer.Option(200, "--discs", min=4, help="Discs in the sample."),
+    sigma3: float = typer.Option(50e3, "--sigma3", help="Confining stress [Pa]."),
+    seeds: int = typer.Option(1, "--seeds", min=1, help="Assemblies averaged per evaluation."),
+    kn: float = typer.Option(1e9, "--kn", help="Normal and shear contact stiffness [Pa/m]."),
+    out: str | None = typer.Option(None, "--out", help="Folder for biaxial.png/.svg, "
+                                   "biaxial.csv and biaxial.json."),
+) -> None:
+    """Biaxial test of the disc backfill (murus.dem.biaxial): peak and critical-state friction
+    angles, with a stress-strain figure; with --target, the rolling resistance that gives it
+    (seed 001 §2: 37.7 deg)."""
+    from dataclasses import replace
+    from pathlib import Path
+
+    from murus.dem.biaxial import biaxial_test, calibrate_rolling
+    from murus.dem.materials import Joint, JointError
+
+    try:
+        if out is not None:
+            _prepare_out(out)
+        if target is not None and not (0.0 < target < 90.0):
+            raise ValueError(f"--target must be an angle in (0, 90) deg, got {target!r}")
+        joint = Joint(kn=kn, ks=kn, friction_deg=friction, rolling=rolling)
+        if target is None:
+            res = biaxial_test(joint, n=n, sigma3=sigma3)
+            cal = None
+        else:
+            cal = calibrate_rolling(target, joint=replace(joint, rolling=0.0), n=n,
+                                    sigma3=sigma3, seeds=tuple(range(seeds)))
+            res = cal.result
+    except (*_errors(), JointError) as exc:
+        _fail(exc)
+    typer.echo(f"biaxial test: {res.n} discs, friction {res.friction_deg:g} deg, mu_r = "
+               f"{res.rolling:.4g}, sigma3 = {res.sigma3_target / 1e3:g} kPa: phi_peak = "
+               f"{res.phi_peak_deg:.2f} deg at {100 * res.strain_at_peak:.2f} % strain, "
+               f"phi_cs = {res.phi_cs_deg:.2f} deg, porosity {res.porosity0:.3f}")
+    if cal is not None:
+        runs = ", ".join(f"{m:.3f} -> {p:.1f}" for m, p in cal.history)
+        state = "converged" if cal.converged else "NOT converged"
+        typer.echo(f"calibration to {target:g} deg: mu_r = {cal.rolling:.4f} gives "
+                   f"{cal.phi_peak_deg:.2f} deg ({state}; runs mu_r -> phi: {runs})")
+    if out is None:
+        return
+    import tempfile
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from murus.dem.biaxial import plot_biaxial
+
+    dest = Path(out)
+    with tempfile.TemporaryDirectory() as td:
+        tmp = Path(td)
+        ax = plot_biaxial(res)
+        ax.figure.tight_layout()
+        ax.figure.savefig(tmp / "biaxial.png", dpi=120)
+        ax.figure.savefig(tmp / "biaxial.svg")
+        plt.close(ax.figure)
+        rows = ["axial_strain,sigma1_pa,sigma3_pa,volumetric_strain,phi_deg"]
+        rows += [f"{a:.6g},{s1:.6g},{s3:.6g},{v:.6g},{p:.4f}" for a, s1, s3, v, p in
+                 zip(res.axial_strain, res.sigma1, res.sigma3, res.volumetric_strain,
+                     res.phi_deg, strict=True)]
+        (tmp / "biaxial.csv").write_text("\n".join(rows) + "\n", encoding="utf-8")
+        summary = {"discs": res.n, "friction_deg": res.friction_deg, "rolling": res.rolling,
+                   "sigma3_pa": res.sigma3_target, "phi_peak_deg": res.phi_peak_deg,
+                   "phi_cs_deg": res.phi_cs_deg, "strain_at_peak": res.strain_at_peak,
+                   "porosity0": res.porosity0}
+        if cal is not None:
+            summary["calibration"] = {"target_deg": target, "rolling": cal.rolling,
+                                      "phi_peak_deg": cal.phi_peak_deg,
+                                      "converged": cal.converged, "runs": cal.history}
+        (tmp / "biaxial.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
+        dest.mkdir(parents=True, exist_ok=True)
+        for p in sorted(tmp.iterdir()):
+            p.replace(dest / p.name)
+    typer.echo(f"wrote {dest}/biaxial.png, .svg, .csv, .json")
+
+
+@app.command("weighted-response")
+def weighted_response_cmd(
+    histories: list[str] = typer.Argument(..., help="d_top histories of the cross-sections: "
+                                          "CSV files with columns t_s and d_top_m (as written "
+                                          "by 'murus retaining collapse')."),
+    weights: str = typer.Option(..., "--weights", help="Proportion of each section along the "
+                                "wall, comma-separated (seed 001 Table 2: 7,7,7,2)."),
+    levels: int = typer.Option(200, "--levels", min=2, help="Displacement levels."),
+    out: str | None = typer.Option(None, "--out", help="CSV file of the global response "
+                                   "(t_s, d_top_m and the time of each section)."),
+) -> None:
+    """Global response of a wall from several cross-sections (seed 001 §3.2, Table 2): for
+    each d_top level, the times at which the sections reach it, weighted by their proportions
+    along the wall."""
+    from pathlib import Path
+
+    import numpy as np
+
+    from murus.retaining.sections import SectionsError, weighted_response
+
+    try:
+        w = [float(x) for x in weights.split(",") if x.strip()]
+    except ValueError:
+        _fail(f"--weights must be comma-separated numbers, got {weights!r}")
+    try:
+        hs = []
+        for f in histories:
+            p = Path(f)
+            if not p.is_file():
+                raise ValueError(f"{f}: no such file")
+            head = p.read_text(encoding="utf-8").splitlines()[0].split(",")
+            if "t_s" not in head or "d_top_m" not in head:
+                raise ValueError(f"{f}: needs columns t_s and d_top_m (got {','.join(head)})")
+            try:
+                arr = np.loadtxt(p, delimiter=",", skiprows=1, ndmin=2)
+            except ValueError as exc:
+                raise ValueError(f"{f}: not a numeric CSV ({exc})") from None
+            hs.append((arr[:, head.index("t_s")], arr[:, head.index("d_top_m")]))
+        res = weighted_response(hs, w, n_levels=levels)
+    except (SectionsError, ValueError) as exc:
+        _fail(exc)
+    if res.levels.size == 0:
+        _fail("no displacement level is reached by every section")
+    i = np.searchsorted(res.levels, res.levels[-1] / 2)
+    typer.echo(f"{len(hs)} sections, weights {', '.join(f'{x:.3f}' for x in res.weights)}: "
+               f"d_top = {1e3 * res.levels[i]:.2f} mm at {res.time[i]:.3f} s (sections "
+               f"{', '.join(f'{t:.3f}' for t in res.section_times[:, i])} s); up to "
+               f"{1e3 * res.levels[-1]:.2f} mm at {res.time[-1]:.3f} s")
+    if out is not None:
+        cols = np.column_stack([res.time, res.levels, res.section_times.T])
+        header = "t_s,d_top_m," + ",".join(f"t_section{k + 1}_s" for k in range(len(hs)))
+        np.savetxt(out, cols, delimiter=",", fmt="%.9g", header=header, comments="")
+        typer.echo(f"wrote {out}")
