@@ -25,6 +25,7 @@ RUNS = [
     ("bench_restrained.py", "RESULTS_restrained.md"),
     ("bench_spectra.py", "RESULTS_motion.md"),
     ("bench_studies.py", "RESULTS_studies.md"),
+    ("bench_dem.py", "RESULTS_dem.md"),
 ]
 
 
