@@ -7,6 +7,8 @@ Every command group uses these, so that a bad input gives the same shape of mess
 
 from __future__ import annotations
 
+import json
+import math
 from contextlib import contextmanager
 
 import typer
@@ -31,3 +33,22 @@ def guard(*errors: type[BaseException], first_line: bool = False):
         if first_line and msg:
             msg = msg.splitlines()[0]
         fail(msg or type(exc).__name__)
+
+
+def json_safe(v):
+    """``v`` with NaN and infinities replaced by None (JSON has no such numbers), numpy
+    scalars made Python numbers, dict keys made strings; lists, tuples and dicts recursively."""
+    if hasattr(v, "item") and not isinstance(v, dict | list | tuple):
+        v = v.item()
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, dict):
+        return {str(k): json_safe(x) for k, x in v.items()}
+    if isinstance(v, list | tuple):
+        return [json_safe(x) for x in v]
+    return v
+
+
+def dumps(obj) -> str:
+    """Indented JSON of :func:`json_safe` ``(obj)``."""
+    return json.dumps(json_safe(obj), indent=2)

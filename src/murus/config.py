@@ -6,8 +6,9 @@ from __future__ import annotations
 import re
 import tomllib
 from pathlib import Path
+from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 
 class CaseError(ValueError):
@@ -20,35 +21,56 @@ class Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
-_TABLE = re.compile(r"^\s*\[\s*([A-Za-z0-9_.\-\"' ]+?)\s*\]\s*(#.*)?$")
+class MotionFields(Strict):
+    """The ``[motion]`` keys shared by every kind of case file: a record (file, units, dt,
+    scale, format) or an analytic signal (amplitude or amplitude_g, frequency, cycles). Each
+    case schema adds its own motion types and keys."""
+
+    file: str | None = None
+    units: Literal["g", "m/s2", "cm/s2"] | None = None
+    dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    scale: float = Field(default=1.0, allow_inf_nan=False)
+    format: Literal["at2", "esm", "cosmos", "csv"] | None = None
+    amplitude: float | None = Field(default=None, allow_inf_nan=False)
+    amplitude_g: float | None = Field(default=None, allow_inf_nan=False)
+    frequency: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    cycles: float = Field(default=1.0, gt=0, allow_inf_nan=False)
+
+
+_HEAD = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.\-\"' ]+?)\s*\]\]?\s*(#.*)?$")
+_KEY = re.compile(r"^\s*([A-Za-z0-9_\-\"']+)\s*=")
 
 
 def key_line(text: str, loc: tuple) -> int | None:
     """1-based line of the key ``loc`` (a pydantic location such as ``("body", "width")``) in the
-    TOML ``text``, or of its table when the key is absent; ``None`` when neither is found."""
-    names = [str(x) for x in loc if not isinstance(x, int)]
-    if not names:
-        return None
-    lines = text.splitlines()
-    table: list[str] = []
-    table_line: dict[str, int] = {}
-    for i, raw in enumerate(lines, start=1):
-        m = _TABLE.match(raw)
+    TOML ``text``, with array-of-table entries: ``("blocks", 2, "width")`` is the key ``width``
+    of the third ``[[blocks]]``; the line of the closest enclosing table when the key itself is
+    absent (a default or a missing key); ``None`` when nothing matches."""
+    counts: dict[tuple, int] = {}
+    table: tuple = ()
+    heads: dict[tuple, int] = {}
+    keys: dict[tuple, int] = {}
+    for i, raw in enumerate(text.splitlines(), start=1):
+        m = _HEAD.match(raw)
         if m:
-            table = [p.strip().strip("\"'") for p in m.group(1).split(".")]
-            table_line.setdefault(".".join(table), i)
+            names = tuple(p.strip().strip("\"'") for p in m.group(2).split("."))
+            if m.group(1) == "[[":
+                n = counts.get(names, -1) + 1
+                counts[names] = n
+                table = names + (n,)
+            else:
+                table = names
+            heads.setdefault(table, i)
             continue
-        km = re.match(r"^\s*([A-Za-z0-9_\-\"']+)\s*=", raw)
-        if not km:
-            continue
-        key = km.group(1).strip("\"'")
-        if table + [key] == names:
-            return i
-    # the table of a missing key, or its parent
-    for k in range(len(names), 0, -1):
-        dotted = ".".join(names[:k])
-        if dotted in table_line:
-            return table_line[dotted]
+        km = _KEY.match(raw)
+        if km:
+            keys.setdefault(table + (km.group(1).strip("\"'"),), i)
+    loc = tuple(loc)
+    for k in range(len(loc), 0, -1):
+        if loc[:k] in keys:
+            return keys[loc[:k]]
+        if loc[:k] in heads:
+            return heads[loc[:k]]
     return None
 
 

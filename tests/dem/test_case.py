@@ -14,7 +14,8 @@ from typer.testing import CliRunner
 
 from murus.cli import app
 from murus.config import CaseError
-from murus.dem.case import build, load_case, locate
+from murus.config import key_line as locate
+from murus.dem.case import build, load_case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "dem"
 

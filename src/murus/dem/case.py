@@ -76,14 +76,20 @@ Errors are one line naming the file, the line and the key (:class:`murus.config.
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
 from pydantic import Field, ValidationError, model_validator
 
-from murus.config import CaseError, Strict, error_message, key_line, load_toml
+from murus.config import (
+    CaseError,
+    MotionFields,
+    Strict,
+    error_message,
+    key_line,
+    load_toml,
+)
 
 Pos = float
 Point = tuple[float, float]
@@ -217,17 +223,8 @@ class WallCfg(Strict):
 MotionKind = Literal["none", "record", "sine-pulse", "cosine-pulse", "harmonic-ramp", "tilt"]
 
 
-class MotionCfg(Strict):
+class MotionCfg(MotionFields):
     type: MotionKind | None = None
-    file: str | None = None
-    units: Literal["g", "m/s2", "cm/s2"] | None = None
-    dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    scale: float = Field(default=1.0, allow_inf_nan=False)
-    format: Literal["at2", "esm", "cosmos", "csv"] | None = None
-    amplitude: float | None = Field(default=None, allow_inf_nan=False)
-    amplitude_g: float | None = Field(default=None, allow_inf_nan=False)
-    frequency: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    cycles: float = Field(default=1.0, gt=0, allow_inf_nan=False)
     A: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     rate_deg_per_s: float | None = Field(default=None, allow_inf_nan=False)
     start_deg: float = Field(default=0.0, gt=-90.0, lt=90.0)
@@ -315,42 +312,6 @@ class DemCase(Strict):
 
 
 # ---------------------------------------------------------------------- locations
-_HEAD = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.\-\"' ]+?)\s*\]\]?\s*(#.*)?$")
-_KEY = re.compile(r"^\s*([A-Za-z0-9_\-\"']+)\s*=")
-
-
-def locate(text: str, loc: tuple) -> int | None:
-    """1-based line of the key ``loc`` in ``text``, with array-of-table entries: ``("blocks", 2,
-    "width")`` is the key ``width`` of the third ``[[blocks]]``; the line of the closest table
-    found when the key itself is absent (a default or a missing key)."""
-    counts: dict[tuple, int] = {}
-    table: tuple = ()
-    heads: dict[tuple, int] = {}
-    keys: dict[tuple, int] = {}
-    for i, raw in enumerate(text.splitlines(), start=1):
-        m = _HEAD.match(raw)
-        if m:
-            names = tuple(p.strip().strip("\"'") for p in m.group(2).split("."))
-            if m.group(1) == "[[":
-                n = counts.get(names, -1) + 1
-                counts[names] = n
-                table = names + (n,)
-            else:
-                table = names
-            heads.setdefault(table, i)
-            continue
-        km = _KEY.match(raw)
-        if km:
-            keys.setdefault(table + (km.group(1).strip("\"'"),), i)
-    loc = tuple(loc)
-    for k in range(len(loc), 0, -1):
-        if loc[:k] in keys:
-            return keys[loc[:k]]
-        if loc[:k] in heads:
-            return heads[loc[:k]]
-    return key_line(text, loc)
-
-
 def _key_name(loc: tuple) -> str:
     out = ""
     for x in loc:
@@ -364,7 +325,7 @@ def _key_name(loc: tuple) -> str:
 def fail_at(path: Path, text: str, loc: tuple, msg: str) -> CaseError:
     """A one-line CaseError naming file, line and key (``blocks[2].material``: the third
     ``[[blocks]]`` entry, counted from 0)."""
-    line = locate(text, loc)
+    line = key_line(text, loc)
     return CaseError(f"{path.name}{f' line {line}' if line else ''}: [{_key_name(loc)}] {msg}")
 
 

@@ -117,6 +117,17 @@ class CalibrationResult:
         return "\n".join(lines)
 
 
+def with_params(model, params: dict):
+    """``model`` with its restitution law replaced by the AmplitudeDependent law (seed 000
+    eqs. 14-18) of ``params``; the other parameters are kept from the model's law if it is
+    one, else they take the law's defaults."""
+    from murus.rocking.restitution import AmplitudeDependent
+
+    law = model.restitution if isinstance(model.restitution, AmplitudeDependent) \
+        else AmplitudeDependent()
+    return dataclasses.replace(model, restitution=dataclasses.replace(law, **params))
+
+
 def _named(names, values) -> dict[str, float]:
     return {k: float(v) for k, v in zip(names, values, strict=True)}
 
@@ -186,7 +197,6 @@ def calibrate(model, measurements, params, *, bounds: dict | None = None,
     from scipy.optimize import least_squares
 
     from murus.rocking import simulate
-    from murus.rocking.restitution import AmplitudeDependent
 
     ms = [measurements] if isinstance(measurements, Measurement) else list(measurements)
     if not ms:
@@ -210,9 +220,6 @@ def calibrate(model, measurements, params, *, bounds: dict | None = None,
     x0 = np.array([params[k] for k in names], dtype=float)
     if ((x0 < lo) | (x0 > hi)).any():
         raise CalibrationError("an initial value lies outside its bounds")
-    def law_of(mdl):
-        return mdl.restitution if isinstance(mdl.restitution, AmplitudeDependent) \
-            else AmplitudeDependent()
 
     # what each history contributes: windows (envelope) or peak instants (peaks), on the
     # measured rotation smoothed by a centred moving average of ``smooth`` seconds (sensor
@@ -241,8 +248,7 @@ def calibrate(model, measurements, params, *, bounds: dict | None = None,
             plans.append((m, tp, _around(m.t, m.theta, tp, window), scale, nav))
 
     def model_for(x, mdl):
-        values = {k: float(v) for k, v in zip(names, x, strict=True)}
-        return dataclasses.replace(mdl, restitution=dataclasses.replace(law_of(mdl), **values))
+        return with_params(mdl, _named(names, x))
 
     def simulated(x, m):
         mdl = model_for(x, m.model if m.model is not None else model)
@@ -329,19 +335,13 @@ def measurement_from_test(test, channel: str = "rot_bottom", model=None) -> Meas
 
 def plot_calibration(model, measurement: Measurement, params: dict, ax=None, rtol: float = 1e-8):
     """Measured and calibrated rotation histories of one test on ``ax``; returns the Axes."""
-    import dataclasses as dc
-
     from murus.rocking import simulate
-    from murus.rocking.restitution import AmplitudeDependent
 
     if ax is None:
         import matplotlib.pyplot as plt
 
         _, ax = plt.subplots(figsize=(8, 3))
-    mdl = measurement.model if measurement.model is not None else model
-    law = mdl.restitution if isinstance(mdl.restitution, AmplitudeDependent) \
-        else AmplitudeDependent()
-    mdl = dc.replace(mdl, restitution=dc.replace(law, **params))
+    mdl = with_params(measurement.model if measurement.model is not None else model, params)
     r = simulate(mdl, measurement.motion, theta0=measurement.theta0, omega0=measurement.omega0,
                  rtol=rtol, out_dt=min(0.005, float(np.median(np.diff(measurement.t)))))
     ax.plot(measurement.t, measurement.theta * 1e3, color="0.5", lw=0.8, label="measured")

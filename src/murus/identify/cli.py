@@ -10,7 +10,6 @@ when every step has succeeded. The library (scipy, matplotlib) is imported insid
 
 from __future__ import annotations
 
-import json
 import math
 import shutil
 import tempfile
@@ -18,7 +17,7 @@ from pathlib import Path
 
 import typer
 
-from murus.cliutil import fail
+from murus.cliutil import dumps, fail, json_safe
 
 app = typer.Typer(
     rich_markup_mode=None,
@@ -40,16 +39,6 @@ def _errors():
     return (TestDataError, ModalError, CompressiveError, ClassifyError, ValueError)
 
 
-def _clean(v):
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    if isinstance(v, dict):
-        return {str(k): _clean(x) for k, x in v.items()}
-    if isinstance(v, list | tuple):
-        return [_clean(x) for x in v]
-    return v
-
-
 def _save(fig, stem: Path) -> None:
     fig.savefig(stem.with_suffix(".png"), dpi=120)
     fig.savefig(stem.with_suffix(".svg"))
@@ -64,6 +53,31 @@ def _publish(tmp: Path, out: Path) -> list[Path]:
         shutil.move(str(p), dest)
         moved.append(dest)
     return moved
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _write_outputs(out: Path, figures: dict, files: dict[str, str]) -> None:
+    """Save ``figures`` (stem -> Figure, PNG and SVG) and ``files`` (name -> text) in a
+    temporary folder, then move them all into ``out``: nothing is written if a step fails."""
+    plt = _pyplot()
+    with tempfile.TemporaryDirectory() as td:
+        tmp = Path(td)
+        for stem, fig in figures.items():
+            fig.tight_layout()
+            _save(fig, tmp / stem)
+            plt.close(fig)
+        for name, text in files.items():
+            (tmp / name).write_text(text, encoding="utf-8")
+        for p in _publish(tmp, out):
+            typer.echo(f"wrote {p}")
 
 
 def _check_out(out: Path) -> None:
@@ -108,26 +122,13 @@ def frf(
     typer.echo(table)
     if out is None:
         return
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    _pyplot()
     from murus.identify.modal import plot_frf
 
-    with tempfile.TemporaryDirectory() as td:
-        tmp = Path(td)
-        axes = plot_frf(res)
-        fig = axes[0].figure
-        fig.tight_layout()
-        _save(fig, tmp / "frf")
-        plt.close(fig)
-        (tmp / "modes.md").write_text(f"# {test.name}\n\n{table}\n", encoding="utf-8")
-        d = res.to_dict()
-        d["file"] = str(test_file)
-        (tmp / "modes.json").write_text(json.dumps(_clean(d), indent=2), encoding="utf-8")
-        for p in _publish(tmp, out):
-            typer.echo(f"wrote {p}")
+    d = res.to_dict()
+    d["file"] = str(test_file)
+    _write_outputs(out, {"frf": plot_frf(res)[0].figure},
+                   {"modes.md": f"# {test.name}\n\n{table}\n", "modes.json": dumps(d)})
 
 
 @app.command()
@@ -225,7 +226,7 @@ def sequence(
                                  "rocking_above": rocking_above,
                                  "min_rotation_rad": min_rotation},
                    "closure_m": closure, "cantilever": cant}
-        (tmp / "summary.json").write_text(json.dumps(_clean(summary), indent=2),
+        (tmp / "summary.json").write_text(dumps(summary),
                                           encoding="utf-8")
         (tmp / "report.md").write_text(_report(seq, evo, classes, comp, crit, closure, figs)
                                        + _cantilever_report(cant), encoding="utf-8")
@@ -250,7 +251,8 @@ def _cantilever_rows(seq, evo, modulus, density, thickness) -> dict | None:
     return {"modulus_pa": modulus, "density": density, "thickness_m": thickness,
             "length_m": c.length, "height_m": c.height, "top_mass_kg": c.tip_mass,
             "f1_model_hz": float(c.frequencies(1)[0]),
-            "tests": [{"test": lab, "f1_hz": _clean(float(fi)), "E_eff_pa": _clean(float(e))}
+            "tests": [{"test": lab, "f1_hz": json_safe(float(fi)),
+                       "E_eff_pa": json_safe(float(e))}
                       for lab, fi, e in zip(evo.labels, f, E, strict=True)]}
 
 
@@ -436,28 +438,15 @@ def calibrate(
     typer.echo(table)
     if out is None:
         return
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = _pyplot()
     from murus.identify.calibrate import plot_calibration
 
-    with tempfile.TemporaryDirectory() as td:
-        tmp = Path(td)
-        fig, axes = plt.subplots(len(ms), 1, figsize=(8, 2.6 * len(ms)), squeeze=False)
-        for m, ax in zip(ms, axes[:, 0], strict=True):
-            plot_calibration(m.model, m, res.params, ax=ax)
-        fig.tight_layout()
-        _save(fig, tmp / "calibration")
-        plt.close(fig)
-        (tmp / "calibration.md").write_text(
-            f"# Calibration ({', '.join(t.name for t in tests)})\n\n{table}\n",
-            encoding="utf-8")
-        d = {"params": res.params, "std_error": res.std_error,
-             "sensitivity": res.sensitivity, "rms": res.rms, "cost": res.cost,
-             "objective": res.objective, "pivot": pivot, "starts": res.starts,
-             "files": [str(f) for f in test_files]}
-        (tmp / "calibration.json").write_text(json.dumps(_clean(d), indent=2), encoding="utf-8")
-        for p in _publish(tmp, out):
-            typer.echo(f"wrote {p}")
+    fig, axes = plt.subplots(len(ms), 1, figsize=(8, 2.6 * len(ms)), squeeze=False)
+    for m, ax in zip(ms, axes[:, 0], strict=True):
+        plot_calibration(m.model, m, res.params, ax=ax)
+    d = {"params": res.params, "std_error": res.std_error, "sensitivity": res.sensitivity,
+         "rms": res.rms, "cost": res.cost, "objective": res.objective, "pivot": pivot,
+         "starts": res.starts, "files": [str(f) for f in test_files]}
+    _write_outputs(out, {"calibration": fig}, {
+        "calibration.md": f"# Calibration ({', '.join(t.name for t in tests)})\n\n{table}\n",
+        "calibration.json": dumps(d)})

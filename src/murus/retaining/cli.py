@@ -10,10 +10,12 @@ matplotlib), so that ``murus --help`` stays fast.
 
 from __future__ import annotations
 
-import json
 import math
 
 import typer
+
+from murus.cliutil import dumps
+from murus.cliutil import fail as _fail
 
 app = typer.Typer(
     rich_markup_mode=None,
@@ -31,11 +33,6 @@ _BASE = typer.Option(None, "--base", help="Base joint: 'inclined' (parallel to t
 _JSON = typer.Option(False, "--json", help="Print JSON instead of text.")
 
 
-def _fail(msg) -> None:
-    typer.echo(f"error: {' '.join(str(msg).split())}", err=True)
-    raise typer.Exit(code=2)
-
-
 def _errors():
     from murus.eurocode.ec8_5 import EC85Error
     from murus.retaining.geometry import GeometryError
@@ -45,16 +42,7 @@ def _errors():
 
 
 def _json(obj) -> None:
-    def clean(v):
-        if isinstance(v, float) and not math.isfinite(v):
-            return None
-        if isinstance(v, dict):
-            return {str(k): clean(x) for k, x in v.items()}
-        if isinstance(v, list | tuple):
-            return [clean(x) for x in v]
-        return v
-
-    typer.echo(json.dumps(clean(obj), indent=2))
+    typer.echo(dumps(obj))
 
 
 def _wall(name: str, base: str | None):
@@ -253,7 +241,7 @@ def collapse(
     d.mkdir(parents=True, exist_ok=True)
     res.history_csv(d / "d_top.csv")
     with open(d / "summary.json", "w") as fh:
-        fh.write(_dumps(summary))
+        fh.write(dumps(summary))
     ax = plot_blocks(res.polygons, values=res.displacement,
                      label="displacement relative to the base [m]")
     state = f"collapse at t = {res.t_col:.2f} s" if res.collapsed else "no collapse"
@@ -270,21 +258,6 @@ def collapse(
     for r, c in checks.items():
         typer.echo(f"  S1 at {r:g} A_col: {'stable' if c.stable else 'collapsed'}")
     typer.echo(f"wrote {d / 'd_top.csv'}, {d / 'summary.json'}, {d / 'collapse.png'}")
-
-
-def _dumps(obj) -> str:
-    def clean(v):
-        if isinstance(v, float) and not math.isfinite(v):
-            return None
-        if isinstance(v, dict):
-            return {str(k): clean(x) for k, x in v.items()}
-        if isinstance(v, list | tuple):
-            return [clean(x) for x in v]
-        if hasattr(v, "item"):
-            return clean(v.item())
-        return v
-
-    return json.dumps(clean(obj), indent=2)
 
 
 @app.command("behaviour-factor")
@@ -422,7 +395,7 @@ def calibrate_backfill(
             summary["calibration"] = {"target_deg": target, "rolling": cal.rolling,
                                       "phi_peak_deg": cal.phi_peak_deg,
                                       "converged": cal.converged, "runs": cal.history}
-        (tmp / "biaxial.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
+        (tmp / "biaxial.json").write_text(dumps(summary), encoding="utf-8")
         dest.mkdir(parents=True, exist_ok=True)
         for p in sorted(tmp.iterdir()):
             p.replace(dest / p.name)

@@ -49,7 +49,7 @@ from typing import Literal
 from pydantic import Field, field_validator, model_validator
 
 from murus import G
-from murus.config import CaseError, Strict, fail_at, load_toml, validate
+from murus.config import CaseError, MotionFields, Strict, fail_at, load_toml, validate
 
 
 class BodyCfg(Strict):
@@ -176,17 +176,8 @@ class RestraintCfg(Strict):
 MotionType = Literal["record", "sine-pulse", "cosine-pulse", "rectangular-pulse", "free"]
 
 
-class MotionCfg(Strict):
+class MotionCfg(MotionFields):
     type: MotionType | None = None
-    file: str | None = None
-    units: Literal["g", "m/s2", "cm/s2"] | None = None
-    dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    scale: float = Field(default=1.0, allow_inf_nan=False)
-    format: Literal["at2", "esm", "cosmos", "csv"] | None = None
-    amplitude: float | None = Field(default=None, allow_inf_nan=False)
-    amplitude_g: float | None = Field(default=None, allow_inf_nan=False)
-    frequency: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    cycles: float = Field(default=1.0, gt=0, allow_inf_nan=False)
     duration: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     theta0_over_alpha: float | None = Field(default=None, gt=-1, lt=1, allow_inf_nan=False)
     omega0: float = Field(default=0.0, allow_inf_nan=False)

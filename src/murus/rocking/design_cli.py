@@ -9,11 +9,11 @@ table (name, value, unit, equation) or, with ``--json``, a JSON object. Bad inpu
 
 from __future__ import annotations
 
-import json
 import math
 
 import typer
 
+from murus.cliutil import dumps
 from murus.cliutil import fail as _fail
 
 app = typer.Typer(
@@ -82,16 +82,7 @@ def _table(title: str, rows: list[tuple], notes: list[str] = ()) -> None:
 
 
 def _json(obj) -> None:
-    def clean(v):
-        if isinstance(v, float) and not math.isfinite(v):
-            return None
-        if isinstance(v, dict):
-            return {k: clean(x) for k, x in v.items()}
-        if isinstance(v, list | tuple):
-            return [clean(x) for x in v]
-        return v
-
-    typer.echo(json.dumps(clean(obj), indent=2))
+    typer.echo(dumps(obj))
 
 
 def _title(body) -> str:
