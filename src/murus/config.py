@@ -36,6 +36,16 @@ class MotionFields(Strict):
     frequency: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     cycles: float = Field(default=1.0, gt=0, allow_inf_nan=False)
 
+    def check_source(self, kind: str, pulses: tuple[str, ...]) -> None:
+        """The checks every motion table shares: a record has a file and nothing else does;
+        an analytic pulse of ``pulses`` has exactly one of amplitude, amplitude_g."""
+        if kind == "record" and not self.file:
+            raise ValueError("a record needs file = '...'")
+        if kind != "record" and self.file:
+            raise ValueError(f"type '{kind}' takes no file")
+        if kind in pulses and (self.amplitude is None) == (self.amplitude_g is None):
+            raise ValueError(f"type '{kind}' needs exactly one of amplitude, amplitude_g")
+
 
 _HEAD = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.\-\"' ]+?)\s*\]\]?\s*(#.*)?$")
 _KEY = re.compile(r"^\s*([A-Za-z0-9_\-\"']+)\s*=")

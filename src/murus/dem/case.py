@@ -239,13 +239,8 @@ class MotionCfg(MotionFields):
     @model_validator(mode="after")
     def _kind(self):
         kind = self.kind
-        if kind == "record" and not self.file:
-            raise ValueError("a record needs file = '...'")
-        if kind != "record" and self.file:
-            raise ValueError(f"type '{kind}' takes no file")
+        self.check_source(kind, ("sine-pulse", "cosine-pulse"))
         if kind in ("sine-pulse", "cosine-pulse"):
-            if (self.amplitude is None) == (self.amplitude_g is None):
-                raise ValueError(f"type '{kind}' needs exactly one of amplitude, amplitude_g")
             if self.frequency is None:
                 raise ValueError(f"type '{kind}' needs frequency (Hz)")
         if kind == "harmonic-ramp" and (self.A is None or self.frequency is None):

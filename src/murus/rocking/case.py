@@ -185,13 +185,7 @@ class MotionCfg(MotionFields):
     @model_validator(mode="after")
     def _kind(self):
         kind = self.kind
-        if kind == "record" and not self.file:
-            raise ValueError("a record needs file = '...'")
-        if kind != "record" and self.file:
-            raise ValueError(f"type '{kind}' takes no file")
-        if kind in ("sine-pulse", "cosine-pulse", "rectangular-pulse"):
-            if (self.amplitude is None) == (self.amplitude_g is None):
-                raise ValueError(f"type '{kind}' needs exactly one of amplitude, amplitude_g")
+        self.check_source(kind, ("sine-pulse", "cosine-pulse", "rectangular-pulse"))
         if kind in ("sine-pulse", "cosine-pulse") and self.frequency is None:
             raise ValueError(f"type '{kind}' needs frequency (Hz)")
         if kind == "rectangular-pulse" and self.duration is None:
