@@ -81,13 +81,13 @@ def build_wall(backfill: int = 0, seed: int = 0) -> tuple[Model, dict]:
 
 
 # timing loops inside numba: no Python dispatch overhead (~10-30 us for 20+ array arguments)
-@njit(cache=True)
+@njit(cache=False)  # never a stale cache of the kernels it calls
 def _loop_wv(reps, bpos, bang, sbody, svs, svn, lv, wv):
     for _ in range(reps):
         K.world_vertices(bpos, bang, sbody, svs, svn, lv, wv)
 
 
-@njit(cache=True)
+@njit(cache=False)  # never a stale cache of the kernels it calls
 def _loop_rebuild(reps, wv, svs, svn, srad, sbody, bkin, margin, pairs, sid, sf, sbr, pbond, ns,
                   jtab, sgroup):
     for _ in range(reps):
@@ -95,25 +95,23 @@ def _loop_rebuild(reps, wv, svs, svn, srad, sbody, bkin, margin, pairs, sid, sf,
         K.transfer(pairs, sid, sf, sbr, pbond, newp, ns, jtab, sgroup, 0)
 
 
-@njit(cache=True)
+@njit(cache=False)  # never a stale cache of the kernels it calls
 def _loop_serial(reps, pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad, sbody,
-                 bpos, bvel, bomg, jprops, dt, thick, reach, nact, scr_i, scr_f):
+                 bpos, bvel, bomg, jprops, dt, thick, reach, nact):
     for _ in range(reps):
         K._contacts_serial(pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad,
-                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact, scr_i,
-                           scr_f)
+                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact)
 
 
-@njit(cache=True)
+@njit(cache=False)  # never a stale cache of the kernels it calls
 def _loop_parallel(reps, pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad, sbody,
-                   bpos, bvel, bomg, jprops, dt, thick, reach, nact, scr_i, scr_f):
+                   bpos, bvel, bomg, jprops, dt, thick, reach, nact):
     for _ in range(reps):
         K._contacts_parallel(pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad,
-                             sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact, scr_i,
-                             scr_f)
+                             sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact)
 
 
-@njit(cache=True)
+@njit(cache=False)  # never a stale cache of the kernels it calls
 def _loop_forces(reps, pairs, sid, sf, sbody, bpos, nb, fb):
     for _ in range(reps):
         K.body_forces(pairs, sid, sf, sbody, bpos, nb, fb)
@@ -122,9 +120,8 @@ def _loop_forces(reps, pairs, sid, sf, sbody, bpos, nb, fb):
 def _contact_args(m: Model) -> tuple:
     n = m.pairs.shape[0]
     return (m.pairs, m.pj, m.pbond.copy(), m.sid.copy(), m.sf.copy(), m.sbr.copy(),
-            np.zeros((n, 3)), m.wv, m.svs, m.svn, m.skind, m.srad, m.sbody, m.bpos, m.bvel,
-            m.bomg, m.jprops, m.dt, m.thickness, m.P[K.P_REACH], np.zeros(n, np.int64),
-            np.empty((n, 8), np.int64), np.empty((n, 2, 6 + K.NSF)))
+            np.zeros((n, K.NW)), m.wv, m.svs, m.svn, m.skind, m.srad, m.sbody, m.bpos, m.bvel,
+            m.bomg, m.jprops, m.dt, m.thickness, m.P[K.P_REACH], np.zeros(n, np.int64))
 
 
 def _timed(loop, args, reps, repeat=3):
@@ -166,7 +163,7 @@ def kernel_split(m: Model, step_time: float, rebuild_rate: float, parallel: bool
     return out
 
 
-@njit(cache=True)
+@njit(cache=False)  # never a stale cache of the kernels it calls
 def _alloc_like_process_pair(n, out):
     """The six small arrays that process_pair allocates per pair and step, and nothing else."""
     for k in range(n):
@@ -181,7 +178,7 @@ def _alloc_like_process_pair(n, out):
         out[k] = oid[0] + match[0] + newid[1] + newbr[0] + og[0, 0] + newsf[1, 3]
 
 
-@njit(cache=True)
+@njit(cache=False)  # never a stale cache of the kernels it calls
 def _alloc_loop(reps, n, out):
     for _ in range(reps):
         _alloc_like_process_pair(n, out)

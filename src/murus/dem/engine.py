@@ -47,6 +47,7 @@ import time as _time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+import numba
 import numpy as np
 
 from murus.dem import kernels as K
@@ -76,7 +77,7 @@ class Probe:
             _, b, r, q = self.spec
             return float(_body_q(m, b, q) - _body_q(m, r, q))
         if kind == "tilt":
-            return math.degrees(m.tilt0 + m.tilt_rate * m.time)
+            return math.degrees(float(m.tilt_angle(m.time)))
         if kind == "time":
             return float(m.time)
         raise ValueError(f"unknown probe kind {kind!r}")
@@ -180,12 +181,11 @@ def detect(m) -> None:
     m.build()
     K.world_vertices(m.bpos, m.bang, m.sbody, m.svs, m.svn, m.lv, m.wv)
     n = m.pairs.shape[0]
-    dis = np.zeros((n, 3))
+    dis = np.zeros((n, K.NW))
     nact = np.zeros(n, np.int64)
     K._contacts_serial(m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr, dis, m.wv, m.svs, m.svn,
                        m.skind, m.srad, m.sbody, m.bpos, m.bvel, m.bomg, m.jprops, 0.0,
-                       m.thickness, m.P[K.P_REACH], nact, np.empty((n, 8), np.int64),
-                       np.empty((n, 2, 6 + K.NSF)))
+                       m.thickness, m.P[K.P_REACH], nact)
     m.snapshot()
 
 
@@ -219,8 +219,8 @@ def stable_dt(m) -> float:
 
 def _set_dt(m, dt) -> None:
     m.build()
-    if dt is None and m.dt is not None:
-        return
+    if m.dt is not None and (dt is None or dt == m.dt):
+        return  # a time step once accepted stays (it is not re-checked after settling)
     dts = stable_dt(m)
     if dt is None:
         dt = dts
@@ -243,8 +243,7 @@ def energy(m) -> dict:
     sn = m.bsnap  # state at the last force evaluation, consistent with the contact forces
     ke = 0.5 * float(np.sum(m.bmass[dyn] * (sn[dyn, 3:5] ** 2).sum(1))
                      + np.sum(m.binert[dyn] * sn[dyn, 5] ** 2))
-    g = m.gravity_vector([m.snap_time])[0]
-    pe = -float(np.sum(m.bmass[dyn] * (sn[dyn, :2] @ g)))
+    pe = m._potential()
     on = m.sid >= 0
     f = m.sf[on]
     el = 0.0
@@ -260,8 +259,9 @@ def energy(m) -> dict:
     out = {"kinetic": ke, "gravity": pe, "elastic": el, "base_work": float(E[K.E_WBASE]),
            "damping_work": float(E[K.E_WDAMP]), "slip": float(E[K.E_DSLIP]),
            "rolling": float(E[K.E_DROLL]), "breaking": float(E[K.E_DBREAK]),
-           "external_work": float(E[K.E_WEXT])}
+           "external_work": float(E[K.E_WEXT]), "tilt_work": float(E[K.E_WTILT])}
     out["error"] = (ke + pe + el - m.E0 - (out["base_work"] + out["external_work"]
+                                           + out["tilt_work"]
                                            + out["damping_work"] - out["slip"]
                                            - out["rolling"] - out["breaking"]))
     return out
@@ -278,10 +278,20 @@ def _chunk(m, n: int, moving: bool) -> None:
         vfull = np.zeros((n, 2))
         vhalf = vfull
     grav = m.gravity_vector(ts if moving else np.full(n, m.time))
-    out = K.run_chunk(n, m.P, m.E, m.C, m.S, vhalf, vfull, grav, m.bpos, m.bang, m.bvel,
-                      m.bomg, m.bmass, m.binert, m.bkin, m.brad, m.blast, m.bsnap, m.sbody, m.skind,
-                      m.svs, m.svn, m.srad, m.sgroup, m.lv, m.wv, m.jprops, m.jtab, m.pairs,
-                      m.pj, m.pbond, m.sid, m.sf, m.sbr, m.bext)
+    gdot = m.gravity_rate(ts) if moving else np.zeros((n, 2))
+    # few pairs: one thread (the kernels' docstring of run_chunk)
+    nth = numba.get_num_threads()
+    few = nth > 1 and m.pairs.shape[0] < m.P[K.P_PARMIN]
+    if few:
+        numba.set_num_threads(1)
+    try:
+        out = K.run_chunk(n, m.P, m.E, m.C, m.S, vhalf, vfull, grav, gdot, m.bpos, m.bang,
+                          m.bvel, m.bomg, m.bmass, m.binert, m.bkin, m.brad, m.blast,
+                          m.bsnap, m.sbody, m.skind, m.svs, m.svn, m.srad, m.sgroup, m.lv, m.wv,
+                          m.jprops, m.jtab, m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr, m.bext)
+    finally:
+        if few:
+            numba.set_num_threads(nth)
     m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr = out
     m.snap_time = m.time - m.dt
 
@@ -357,11 +367,16 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         local_damping: float = 0.0, probes: dict | None = None, every: int | None = None,
         sample_dt: float = 0.01, stop=None, max_steps: int | None = None,
         progress: bool = False, external: Callable | None = None,
-        external_every: int | None = None) -> RunResult:
+        external_every: int | None = None, damping_frame: str = "base") -> RunResult:
     """Dynamic run up to ``t_end`` (or ``duration`` from now) [s].
 
     xi, freq : mass-proportional damping, fraction of critical at frequency [Hz];
     local_damping : Cundall local damping coefficient (0: none);
+    damping_frame : the velocities that both dampings act on: ``"base"`` (default) relative to
+        the base motion, so that damping does not brake a body that moves with the ground nor
+        a collapse; ``"absolute"`` the velocities in the fixed frame, as UDEC's Rayleigh
+        damping of a model shaken by a velocity boundary (it then also resists the rigid
+        motion of the whole model with the base);
     probes : dict name -> :class:`Probe` or callable(model) -> float, sampled every ``every``
         steps (default ``sample_dt`` [s]); the histories are kept in ``model.history`` (they
         survive a checkpoint);
@@ -381,7 +396,10 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         raise ValueError("xi must be >= 0 and local_damping in [0, 1)")
     if xi > 0 and not (freq and freq > 0):
         raise ValueError("mass-proportional damping needs freq > 0 [Hz]")
+    if damping_frame not in ("base", "absolute"):
+        raise ValueError(f"damping_frame must be 'base' or 'absolute', got {damping_frame!r}")
     m.P[K.P_AMASS] = 4.0 * math.pi * xi * freq if xi > 0 else 0.0
+    m.P[K.P_DREL] = 1.0 if damping_frame == "base" else 0.0
     m.P[K.P_ALOCAL] = local_damping
     if probes:
         m.probes.update(probes)

@@ -61,15 +61,18 @@ def polygon_properties(v: np.ndarray) -> tuple[float, np.ndarray, float]:
     return float(A), np.array([cx, cy]), float(J)
 
 
-def _clean_polygon(vertices, index: int) -> np.ndarray:
+def _clean_polygon(vertices, where: str) -> np.ndarray:
+    """Counter-clockwise convex polygon without repeated or collinear vertices; ``where``
+    names it in errors ("body 3", "body 3 part 1")."""
     v = np.asarray(vertices, dtype=float)
     if v.ndim != 2 or v.shape[1] != 2 or v.shape[0] < 3:
-        raise ModelError(f"polygon {index} needs at least 3 vertices (k, 2), got shape {v.shape}")
+        raise ModelError(f"{where}: a polygon needs at least 3 vertices (k, 2), got shape "
+                         f"{v.shape}")
     if not np.all(np.isfinite(v)):
-        raise ModelError(f"polygon {index} has non-finite vertices")
+        raise ModelError(f"{where}: the polygon has non-finite vertices")
     A, _, _ = polygon_properties(v)
     if A == 0:
-        raise ModelError(f"polygon {index} has zero area")
+        raise ModelError(f"{where}: the polygon has zero area")
     if A < 0:
         v = v[::-1].copy()
     # drop repeated and collinear vertices
@@ -94,7 +97,7 @@ def _clean_polygon(vertices, index: int) -> np.ndarray:
         e0 = v[i] - v[i - 1]
         e1 = v[(i + 1) % n] - v[i]
         if e0[0] * e1[1] - e0[1] * e1[0] < 0:
-            raise ModelError(f"polygon {index} is not convex: split it into a clump")
+            raise ModelError(f"{where}: the polygon is not convex: split it into a clump")
     return v
 
 
@@ -141,7 +144,7 @@ class Model:
         if rounding is not None and not rounding > 0:
             raise ModelError(f"rounding must be positive [m], got {rounding!r}")
         self.thickness = float(thickness)
-        self.gravity = float(gravity)
+        self._gravity = float(gravity)
         self.safety = float(safety)
         self.rounding = None if rounding is None else float(rounding)
         self.margin = None if margin is None else float(margin)
@@ -159,6 +162,7 @@ class Model:
         self._motion_callable: Callable | None = None
         self.tilt_rate = 0.0  # [rad/s]
         self.tilt0 = 0.0  # [rad]
+        self.tilt_t0 = 0.0  # model time [s] at which the tilt is tilt0
         self.time_offset = 0.0
         self.step_offset = 0
         self.history: dict[str, list] = {}
@@ -188,7 +192,7 @@ class Model:
                     group: str = "default") -> int:
         """A rigid convex polygon (world vertices [m], counter-clockwise); returns its body
         index."""
-        v = _clean_polygon(vertices, self._npoly())
+        v = _clean_polygon(vertices, f"body {len(self._bodies)}")
         return self._add([("poly", v)], density, kinematic, group)
 
     def add_rectangle(self, width: float, height: float, center=(0.0, 0.0), angle: float = 0.0,
@@ -223,13 +227,10 @@ class Model:
                     raise ModelError(f"disc radius must be positive, got {p[2]!r}")
                 out.append(("disc", np.asarray(p[1], float), float(p[2])))
             else:
-                out.append(("poly", _clean_polygon(p, self._npoly() + len(out))))
+                out.append(("poly", _clean_polygon(p, f"body {len(self._bodies)} part {len(out)}")))
         if not out:
             raise ModelError("a clump needs at least one part")
         return self._add(out, density, kinematic, group)
-
-    def _npoly(self) -> int:
-        return sum(1 for b in self._bodies for p in b["parts"] if p[0] == "poly")
 
     def set_joint(self, joint: Joint, group_a: str | None = None,
                   group_b: str | None = None) -> None:
@@ -279,10 +280,43 @@ class Model:
             self._motion_callable = velocity
 
     def set_tilt(self, rate_deg_per_s: float, start_deg: float = 0.0) -> None:
-        """Tilting table: gravity rotates at ``rate`` [deg/s] from ``start`` [deg]; a positive
-        tilt pushes the bodies towards +x (g = g (sin beta, -cos beta))."""
-        self.tilt_rate = math.radians(rate_deg_per_s)
-        self.tilt0 = math.radians(start_deg)
+        """Tilting table: gravity rotates at ``rate`` [deg/s] from ``start`` [deg] at the
+        current model time; a positive tilt pushes the bodies towards +x (g = g (sin beta,
+        -cos beta)). The energy balance counts the change of the gravitational energy caused by
+        the jump to ``start`` and, during the run, the work of the rotating gravity
+        (``energy()["tilt_work"]``)."""
+        def change():
+            self.tilt_rate = math.radians(rate_deg_per_s)
+            self.tilt0 = math.radians(start_deg)
+            self.tilt_t0 = self.time
+        self._rebase_gravity(change)
+
+    @property
+    def gravity(self) -> float:
+        """Magnitude of gravity [m/s²]; changing it between runs is counted in the energy
+        balance like a change of tilt."""
+        return self._gravity
+
+    @gravity.setter
+    def gravity(self, value: float) -> None:
+        def change():
+            self._gravity = float(value)
+        self._rebase_gravity(change)
+
+    def _potential(self) -> float:
+        """Gravitational energy [J] of the dynamic bodies at the energy snapshot."""
+        dyn = self.bkin == 0
+        g = self.gravity_vector([self.snap_time])[0]
+        return -float(np.sum(self.bmass[dyn] * (self.bsnap[dyn, :2] @ g)))
+
+    def _rebase_gravity(self, change) -> None:
+        # a sudden change of the gravity vector changes the potential energy of the bodies
+        # without any work of the forces: booked as work of the tilt so that the balance holds
+        built = self._built and getattr(self, "bsnap", None) is not None
+        pe0 = self._potential() if built else 0.0
+        change()
+        if built:
+            self.E[K.E_WTILT] += self._potential() - pe0
 
     # ------------------------------------------------------------------ arrays
     def build(self) -> None:
@@ -393,6 +427,7 @@ class Model:
         self.P[K.P_MARGIN] = self.margin
         self.P[K.P_REACH] = float(np.max(self.jprops[:, K.J_T] / self.jprops[:, K.J_KN]))
         self.P[K.P_PARMIN] = 1024  # parallel contact loop from 1024 pairs (thread overhead)
+        self.P[K.P_DREL] = 1.0  # damping on velocities relative to the base
         self.E = np.zeros(K.NE)
         self.C = np.zeros(K.NC, np.int64)
         self.S = np.zeros(K.NS)
@@ -430,8 +465,17 @@ class Model:
 
     def gravity_vector(self, t) -> np.ndarray:
         """Gravity [m/s²] at times t (n, 2)."""
-        beta = self.tilt0 + self.tilt_rate * np.asarray(t, float)
+        beta = self.tilt_angle(t)
         return self.gravity * np.column_stack([np.sin(beta), -np.cos(beta)])
+
+    def tilt_angle(self, t) -> np.ndarray:
+        """Tilt of gravity [rad] at times t."""
+        return self.tilt0 + self.tilt_rate * (np.asarray(t, float) - self.tilt_t0)
+
+    def gravity_rate(self, t) -> np.ndarray:
+        """Time derivative of the gravity vector [m/s³] at times t (n, 2)."""
+        beta = self.tilt_angle(t)
+        return self.gravity * self.tilt_rate * np.column_stack([np.cos(beta), np.sin(beta)])
 
     def base_velocity(self, t) -> np.ndarray:
         """Velocity of the ``"base"`` bodies [m/s] at times t (n, 2)."""
@@ -556,7 +600,8 @@ class Model:
             "thickness": self.thickness, "gravity": self.gravity, "safety": self.safety,
             "rounding": self.rounding, "margin": self.margin, "dt": self.dt,
             "motion_kind": self._motion_kind, "motion_dt": self._motion_dt,
-            "tilt_rate": self.tilt_rate, "tilt0": self.tilt0, "time_offset": self.time_offset,
+            "tilt_rate": self.tilt_rate, "tilt0": self.tilt0, "tilt_t0": self.tilt_t0,
+            "time_offset": self.time_offset,
             "step_offset": self.step_offset, "E0": self.E0, "snap_time": self.snap_time,
             "groups": self._groups,
             "nouter": len(self._outer), "history": list(self.history),
@@ -586,6 +631,7 @@ class Model:
         m._motion_dt = meta["motion_dt"]
         m.tilt_rate = meta["tilt_rate"]
         m.tilt0 = meta["tilt0"]
+        m.tilt_t0 = meta.get("tilt_t0", 0.0)
         m.time_offset = meta["time_offset"]
         m.step_offset = meta["step_offset"]
         m.E0 = meta["E0"]
