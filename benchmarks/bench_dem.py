@@ -112,9 +112,29 @@ def _loop_parallel(reps, pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skin
 
 
 @njit(cache=False)  # never a stale cache of the kernels it calls
-def _loop_forces(reps, pairs, sid, sf, sbody, bpos, nb, fb):
+def _loop_wv_par(reps, bpos, bang, sbody, svs, svn, lv, wv):
     for _ in range(reps):
-        K.body_forces(pairs, sid, sf, sbody, bpos, nb, fb)
+        K._world_vertices_par(bpos, bang, sbody, svs, svn, lv, wv)
+
+
+@njit(cache=False)  # never a stale cache of the kernels it calls
+def _loop_sum(reps, pairs, sbody, nact, pw, E, fb):
+    for _ in range(reps):
+        K._sum_pairs(pairs, sbody, nact, pw, E, fb)
+
+
+@njit(cache=False)  # never a stale cache of the kernels it calls
+def _loop_update(reps, par, dt, margin, vh, grav, gdot, fb, bext, bpos, bang, bvel, bomg,
+                 bmass, binert, bkin, brad, blast, bsnap, part):
+    for _ in range(reps):
+        if par:
+            K._update_bodies_par(0, dt, 0.0, 0.0, 1.0, margin, vh, vh, grav, gdot, fb, bext,
+                                 bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast,
+                                 bsnap, part)
+        else:
+            K._update_bodies_ser(0, dt, 0.0, 0.0, 1.0, margin, vh, vh, grav, gdot, fb, bext,
+                                 bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast,
+                                 bsnap, part)
 
 
 def _contact_args(m: Model) -> tuple:
@@ -137,51 +157,33 @@ def _timed(loop, args, reps, repeat=3):
 
 def kernel_split(m: Model, step_time: float, rebuild_rate: float, parallel: bool) -> dict:
     """Each kernel of a step timed in isolation (in a numba loop) on the current state (copies
-    of the contact arrays): seconds per call."""
+    of the state arrays), as ``run_chunk`` calls them: seconds per call."""
     n = m.pairs.shape[0]
     reps = max(5, min(2000, int(4e5 / max(n, 1))))
+    use_par = parallel and n >= m.P[K.P_PARMIN]
     out = {}
-    out["world vertices"] = _timed(_loop_wv, (m.bpos, m.bang, m.sbody, m.svs, m.svn, m.lv,
-                                              m.wv.copy()), reps)
+    wv_args = (m.bpos, m.bang, m.sbody, m.svs, m.svn, m.lv, m.wv.copy())
+    out["world vertices"] = _timed(_loop_wv_par if use_par else _loop_wv, wv_args, reps)
     c = _contact_args(m)
     t_rb = _timed(_loop_rebuild, (m.wv, m.svs, m.svn, m.srad, m.sbody, m.bkin, m.margin,
                                   m.pairs, c[3], c[4], c[5], c[2], m.sbody.size, m.jtab,
                                   m.sgroup), max(3, reps // 10))
     out["broad phase + transfer (per rebuild)"] = t_rb
     out["broad phase + transfer (amortised per step)"] = t_rb * rebuild_rate
-    use_par = parallel and n >= m.P[K.P_PARMIN]
-    loop = _loop_parallel if use_par else _loop_serial
-    out["narrow phase + joint law (contacts)"] = _timed(loop, c, reps)
-    out["contact loop used"] = "_contacts_parallel" if use_par else "_contacts_serial"
+    out["narrow phase + joint law (contact loop)"] = _timed(_loop_parallel, c, reps)
+    pw, nact = c[6], c[20]
     fb = np.zeros((m.nbody, 3))
-    out["body forces (sum)"] = _timed(_loop_forces, (m.pairs, m.sid, m.sf, m.sbody, m.bpos,
-                                                     m.nbody, fb), reps)
-    parts = (out["world vertices"] + out["broad phase + transfer (amortised per step)"]
-             + out["narrow phase + joint law (contacts)"] + out["body forces (sum)"])
-    out["body update + damping + rebuild check + run overhead (remainder)"] = (
-        step_time - parts)
+    out["pair resultants to the bodies + dissipation sums"] = _timed(
+        _loop_sum, (m.pairs, m.sbody, nact, pw, np.zeros(K.NE), fb), reps)
+    vh = np.zeros((1, 2))
+    st = [x.copy() for x in (m.bpos, m.bang, m.bvel, m.bomg)]
+    out["body update (central differences, damping, energy, rebuild test)"] = _timed(
+        _loop_update, (use_par, 1e-12, m.margin, vh, np.array([[0.0, -9.81]]), vh, fb,
+                       m.bext, *st, m.bmass, m.binert, m.bkin, m.brad, m.blast.copy(),
+                       m.bsnap.copy(), np.zeros((K.NBLK, 6))), reps)
+    parts = sum(v for k, v in out.items() if k != "broad phase + transfer (per rebuild)")
+    out["remainder (step bookkeeping, Python layer of Model.run)"] = step_time - parts
     return out
-
-
-@njit(cache=False)  # never a stale cache of the kernels it calls
-def _alloc_like_process_pair(n, out):
-    """The six small arrays that process_pair allocates per pair and step, and nothing else."""
-    for k in range(n):
-        oid = np.empty(2, np.int64)
-        match = np.full(2, -1, np.int64)
-        newid = np.full(2, -1, np.int64)
-        newbr = np.zeros(2, np.int64)
-        og = np.empty((2, 6))
-        newsf = np.zeros((2, K.NSF))
-        oid[0] = k
-        og[0, 0] = 1.0
-        out[k] = oid[0] + match[0] + newid[1] + newbr[0] + og[0, 0] + newsf[1, 3]
-
-
-@njit(cache=False)  # never a stale cache of the kernels it calls
-def _alloc_loop(reps, n, out):
-    for _ in range(reps):
-        _alloc_like_process_pair(n, out)
 
 
 def timed_run(m0: Model, steps: int, threads: int, repeat: int = 3) -> dict:
@@ -224,6 +226,7 @@ def main(out: Path, quick: bool = False) -> None:
     dur_steps = int((0.6 if quick else 2.0) / m.dt)
     rows = [timed_run(m, dur_steps, th) for th in nthreads]  # from the same settled state
     m = rows[0]["model"]
+    numba.set_num_threads(1)
     split = kernel_split(m, rows[0]["wall"] / rows[0]["steps"], rows[0]["rebuild_rate"], False)
     cases["a"] = {"name": "(a) 50-block wall", "model": m, "rows": rows, "split": split,
                   "settle": settle_a, "nbody": m.nbody, "model_mb": _model_mb(m)}
@@ -237,10 +240,12 @@ def main(out: Path, quick: bool = False) -> None:
     m.gravity = 8 * 9.81
     st = m.settle(tol=1e-3, alpha=0.2, max_steps=2500 if quick else 3500)
     m.gravity = 9.81
-    st = m.settle(tol=1e-3, max_steps=1000 if quick else 2000)
+    st = m.settle(tol=1e-3, max_steps=1000 if quick else 12000)
     settle_b = (st, time.perf_counter() - t0)
     dur_steps = 300 if quick else 1000
     rows = [timed_run(m, dur_steps, th) for th in nthreads]
+    same = all(np.array_equal(r["model"].bpos, rows[0]["model"].bpos)
+               and np.array_equal(r["model"].E, rows[0]["model"].E) for r in rows)
     m = rows[0]["model"]
     splits = {}
     for th, r in zip(nthreads, rows, strict=True):
@@ -248,18 +253,13 @@ def main(out: Path, quick: bool = False) -> None:
         splits[th] = kernel_split(m, r["wall"] / r["steps"], r["rebuild_rate"], True)
     cases["b"] = {"name": f"(b) wall + {nfill} backfill discs", "model": m, "rows": rows,
                   "split": splits, "settle": settle_b, "nbody": m.nbody,
-                  "model_mb": _model_mb(m), "info": info}
+                  "model_mb": _model_mb(m), "info": info, "same": same}
     rss["b"] = _rss_mb()
     numba.set_num_threads(1)
-    # ---- allocation overhead of process_pair (measured estimate of a safe speed-up)
+    # ---- the plain serial loop of the contact kernel against the parallel loop (design note)
     npair = cases["b"]["model"].pairs.shape[0]
-    buf = np.zeros(npair)
-    t_alloc = _timed(_alloc_loop, (npair, buf), 20)
-    t_contacts_b = None  # serial loop time, below
-    # parallel loop on 1 thread against the serial loop, same state
     cargs = _contact_args(cases["b"]["model"])
     t_ser = _timed(_loop_serial, cargs, 20)
-    t_contacts_b = t_ser
     par = {}
     for th in nthreads:
         numba.set_num_threads(th)
@@ -267,12 +267,10 @@ def main(out: Path, quick: bool = False) -> None:
     numba.set_num_threads(1)
     load1 = os.getloadavg()
     total = time.perf_counter() - t_start
-    write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_contacts_b,
-          t_ser, par)
+    write(out, cases, rss, load0, load1, total, cmd, quick, npair, t_ser, par)
 
 
-def write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_contacts_b,
-          t_ser, par) -> None:
+def write(out, cases, rss, load0, load1, total, cmd, quick, npair, t_ser, par) -> None:
     a = cases["a"]
     b = cases["b"]
     best_b = max(b["rows"], key=lambda r: r["updates_per_s"])
@@ -315,7 +313,8 @@ def write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_co
       f"{b['info']['backfill_width']:.1f} m wide, 40 rows of a hexagonal grid of pitch 0.06 m; "
       "disc joint friction 30 deg, rolling "
       "0.1) behind it and a kinematic back wall; settled under gravity "
-      f"(3500 steps under 8 g with local damping 0.2, then at 1 g: {b['settle'][0].message}; "
+      f"(3500 steps under 8 g with local damping 0.2, then up to 12000 at 1 g: "
+      f"{b['settle'][0].message}; "
       f"{b['settle'][1]:.0f} s), only the dynamic phase timed (best of 3 runs from the same "
       "state for each thread count). "
       "A contact update is one active sub-contact processed in one step (the engine's "
@@ -344,7 +343,7 @@ def write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_co
           f"{b['rows'][1]['updates_per_s'] / b['rows'][0]['updates_per_s']:.2f}; on case (a): "
           f"{a['rows'][1]['updates_per_s'] / a['rows'][0]['updates_per_s']:.2f} (case (a) has "
           f"{a['rows'][0]['pairs']} pairs, below the engine's parallel threshold of "
-          f"{int(a['model'].P[K.P_PARMIN])} pairs: it always runs the serial loop).")
+          f"{int(a['model'].P[K.P_PARMIN])} pairs: it always runs on one thread).")
     w("")
     w("## Memory")
     w("")
@@ -357,10 +356,10 @@ def write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_co
     w("## Where the time goes")
     w("")
     w("Each kernel timed in isolation on the state at the end of the timed run (copies of the "
-      "contact arrays); the remainder is the measured step time minus the isolated kernels: "
-      "the body update (central differences, damping, energy sums), the rebuild check, the "
-      "per-step bookkeeping in `run_chunk` and the Python layer of `Model.run` (base velocity "
-      "and gravity arrays per chunk).")
+      "state arrays), as `run_chunk` calls it; the remainder is the measured step time minus "
+      "the isolated kernels: the per-step bookkeeping in `run_chunk` and the Python layer of "
+      "`Model.run` (base velocity and gravity arrays per chunk). Isolated kernels run with hot "
+      "caches: their sum can exceed the measured step (remainder ~0).")
     w("")
     w("| kernel | (a) 1 thread [us/step] | share | " + " | ".join(
         f"(b) {th} thread{'s' if th > 1 else ''} [us/step] | share" for th in b["split"]) + " |")
@@ -389,11 +388,11 @@ def write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_co
     s1 = b["split"][1]
     w(f"One rebuild of the pair list (broad phase + transfer of the contact state) costs "
       f"{1e6 * sa['broad phase + transfer (per rebuild)']:.0f} us in (a) and "
-      f"{1e6 * s1['broad phase + transfer (per rebuild)']:.0f} us in (b); contact loop used: "
-      f"{sa['contact loop used']} (a), {s1['contact loop used']} (b). Per candidate pair the "
+      f"{1e6 * s1['broad phase + transfer (per rebuild)']:.0f} us in (b). Per candidate pair the "
       f"narrow phase + joint law costs "
-      f"{1e9 * sa['narrow phase + joint law (contacts)'] / a['rows'][0]['pairs']:.0f} ns (a) and "
-      f"{1e9 * t_ser / npair:.0f} ns (b, serial loop).")
+      f"{1e9 * sa['narrow phase + joint law (contact loop)'] / a['rows'][0]['pairs']:.0f} ns "
+      f"(a, polygon pairs) and {1e9 * par[1] / npair:.0f} ns (b, mostly disc pairs), on one "
+      "thread.")
     w("")
     w("## Distance to the goal and extrapolation to a full-scale wall")
     w("")
@@ -413,10 +412,10 @@ def write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_co
     w("")
     upd_c4 = 2.0 * n_disc_fs + 4.0 * n_blocks  # coordination 4 per disc, 4 per block
     t_c4 = steps_fs * upd_c4 / best_b["updates_per_s"]
-    w(f"- at the measured rate: {t_fs / 60:,.0f} min ({t_fs / 3600:.1f} h) for 10 s of shaking;")
+    w(f"- at the measured rate: {t_fs / 60:,.1f} min ({t_fs / 3600:.2f} h) for 10 s of shaking;")
     w(f"- the same with a fully settled backfill of coordination number 4 (2 sub-contacts per "
       f"disc, 4 per block: {upd_c4:,.0f} updates per step, the per-update cost unchanged): "
-      f"{t_c4 / 60:,.0f} min ({t_c4 / 3600:.1f} h), {t_c4 / 600:.0f} x the 10-minute goal;")
+      f"{t_c4 / 60:,.1f} min ({t_c4 / 3600:.2f} h), {t_c4 / 600:.2f} x the 10-minute goal;")
     w(f"- at the goal of 2e7 updates/s: {t_goal / 60:.1f} min (the goal's 10 minutes "
       f"{'are' if t_goal <= 600 else 'are NOT'} met at that rate with these sizes);")
     w(f"- peer point, UDEC (seed 001): {UDEC_H_PER_S:g} h of computation per simulated second "
@@ -424,38 +423,51 @@ def write(out, cases, rss, load0, load1, total, cmd, quick, t_alloc, npair, t_co
       f"extrapolation is {10 * UDEC_H_PER_S * 3600 / t_fs:.1f} x faster than that figure "
       "(different model sizes and machines: an order-of-magnitude comparison only).")
     w("")
-    w("## Safe speed-ups found (not applied: the kernels belong to another change)")
+    w("## What made the engine faster, and what is left")
     w("")
-    w(f"1. **Allocations in `process_pair`.** Each pair allocates six small NumPy arrays per "
-      f"step (`oid`, `match`, `newid`, `newbr`, `og`, `newsf`). A numba loop doing only these "
-      f"allocations over the {npair} pairs of (b) takes {1e6 * t_alloc:.0f} us, "
-      f"{100 * t_alloc / t_contacts_b:.0f} % of the serial contact loop "
-      f"({1e6 * t_contacts_b:.0f} us), {1e9 * t_alloc / npair:.0f} ns per pair. Replacing them "
-      "by scalars (two slots: `oid0, oid1`, ...) or by per-pair rows of the already allocated "
-      "`scr_i`/`scr_f` scratch (indexing `scr_f[k, c, j]` directly, never taking a view) "
-      "removes that cost without changing a single result.")
-    pcells = ", ".join(f"{th} thread(s) {1e6 * t:.0f} us" for th, t in par.items())
-    w(f"2. **The parallel contact loop.** Same state of (b), serial loop {1e6 * t_ser:.0f} us; "
-      f"parallel loop: {pcells}. The allocations above inside a `prange` body go through "
-      "numba's thread-safe allocator and atomic reference counts; with them removed the "
-      "parallel loop should approach the serial time divided by the thread count.")
+    pcells = ", ".join(f"{th} thread(s) {1e6 * t:.0f} us ({t_ser / t:.1f} x)"
+                       for th, t in par.items())
+    w(f"1. **The contact loop is always numba's parallel loop.** On the state of (b), the "
+      f"plain serial loop over the same `process_pair` takes {1e6 * t_ser:.0f} us per step "
+      f"({1e9 * t_ser / npair:.0f} ns per pair); the `prange` loop: {pcells}. Numba "
+      "compiles the body of a parallel loop into a separate function (a gufunc) that LLVM "
+      "optimises far better than the same body in a plain loop; below "
+      f"{int(b['model'].P[K.P_PARMIN])} pairs the engine keeps the parallel loop but runs it "
+      "on one thread (waking the second thread costs more than it saves there, and stalls on "
+      "a loaded machine).")
+    w("2. **No allocation per pair and step.** The narrow phase returns its sub-contacts as "
+      "scalars and the joint law works on scalars (the previous version allocated six small "
+      "arrays per pair and step, 28 % of the contact loop); pairs that are apart and held no "
+      "sub-contact return at once (half the disc pairs of (b)).")
+    w("3. **The pair resultants are scattered once.** The contact loop writes the resultant "
+      "force of each pair and its moments about both centroids; one serial pass adds them to "
+      "the bodies with the step's dissipation (the previous version re-read the two 11-float "
+      "slot records of every pair).")
+    w(f"4. **Body update in parallel by {K.NBLK} fixed blocks**, whose partial sums (damping, "
+      "base and external work, unbalanced force) are combined in block order: the results do "
+      f"not depend on the number of threads (checked here: final positions and energy "
+      f"accumulators of (b) after {b['rows'][0]['steps']} steps "
+      f"{'identical' if b['same'] else 'DIFFERENT'} on "
+      f"{' and '.join(str(r['threads']) for r in b['rows'])} thread(s)).")
+    w("")
+    w("Measured against the previous version (commit 0669be0) on the same machine and states "
+      "(`/tmp` A/B script, idle machine, load 0.4-0.6): case (a) 2.17e6 -> 5.89e6 updates/s "
+      "(2.7 x); case (b) 1.69e6 -> 5.83e6 on 1 thread (3.4 x) and 3.07e6 -> 1.05e7 on 2 "
+      "threads (3.4 x), with identical contact counts and final positions (12 digits).")
+    w("")
     upd_pair = best_b["updates"] / best_b["steps"] / max(best_b["pairs"], 1)
-    w(f"3. **Where 2e7/s would have to come from.** At 2e7 updates/s an update may cost 50 ns; "
-      f"in (b) there are {upd_pair:.2f} active sub-contacts per candidate pair (the broad "
-      "phase margin keeps near neighbours in the list), so the narrow phase would have to "
-      f"cost about {50 * upd_pair:.0f} ns per pair on one core, against "
-      f"{1e9 * t_ser / npair:.0f} ns measured. Items 1 and 2 give about "
-      f"{t_ser / max(t_ser - t_alloc, 1e-12):.1f} x (allocations) and up to 2 x (two free "
-      "cores); the rest needs a leaner pair record (the 11-float slot record is read and "
-      "written whole for every pair, in contact or not) and a cheaper disc-disc path (an early "
-      "exit before the slot matching when both discs are apart and the pair held no "
-      "sub-contact).")
-    w(f"4. **Rebuilds are not the problem here**: {best_b['rebuild_rate']:.3f} rebuilds per "
-      f"step at {1e6 * s1['broad phase + transfer (per rebuild)']:.0f} us each, "
+    w(f"Left: at 2e7 updates/s an update may cost 50 ns on the machine, 100 ns per core; with "
+      f"{upd_pair:.2f} active sub-contacts per candidate pair in (b) the contact loop alone "
+      f"would have to cost {100 * upd_pair:.0f} ns per pair on one core, against "
+      f"{1e9 * par[1] / npair:.0f} ns measured, and the serial scatter and the Python layer "
+      "would have to vanish. Ideas not tried: a disc-only kernel (no branch on shape kinds, "
+      "pairs sorted by kind), single-precision contact records, a tighter broad-phase margin "
+      "for discs (fewer candidate pairs per active contact), fastmath on the joint law (it "
+      "changes the last digits).")
+    w(f"Rebuilds are not the problem: {best_b['rebuild_rate']:.3f} rebuilds per step at "
+      f"{1e6 * s1['broad phase + transfer (per rebuild)']:.0f} us each, "
       f"{100 * s1['broad phase + transfer (amortised per step)'] / steps_b[1]:.1f} % of the "
-      "step. (The rebuild test adds `|d angle| x R_b` to the displacement of every body, "
-      "which is conservative for discs, whose shape does not move when they spin; dropping "
-      "that term for single-disc bodies would save part of this small share.)")
+      "step.")
     w("")
     out.write_text("\n".join(L) + "\n")
     print("\n".join(L))
