@@ -128,11 +128,13 @@ def _loop_update(reps, par, dt, margin, vh, grav, gdot, fb, bext, bpos, bang, bv
                  bmass, binert, bkin, brad, blast, bsnap, part):
     for _ in range(reps):
         if par:
-            K._update_bodies_par(0, dt, 0.0, 0.0, 1.0, margin, vh, vh, grav, gdot, fb, bext,
+            K._update_bodies_par(0, dt, 0.0, 0.0, 1.0, margin, vh, vh, grav, gdot, gdot, fb,
+                                 bext,
                                  bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast,
                                  bsnap, part)
         else:
-            K._update_bodies_ser(0, dt, 0.0, 0.0, 1.0, margin, vh, vh, grav, gdot, fb, bext,
+            K._update_bodies_ser(0, dt, 0.0, 0.0, 1.0, margin, vh, vh, grav, gdot, gdot, fb,
+                                 bext,
                                  bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast,
                                  bsnap, part)
 

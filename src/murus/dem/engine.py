@@ -285,7 +285,8 @@ def _chunk(m, n: int, moving: bool) -> None:
     if few:
         numba.set_num_threads(1)
     try:
-        out = K.run_chunk(n, m.P, m.E, m.C, m.S, vhalf, vfull, grav, gdot, m.bpos, m.bang,
+        out = K.run_chunk(n, m.P, m.E, m.C, m.S, vhalf, vfull, grav, gdot, m.bpresc,
+                          m.bpos, m.bang,
                           m.bvel, m.bomg, m.bmass, m.binert, m.bkin, m.brad, m.blast,
                           m.bsnap, m.sbody, m.skind, m.svs, m.svn, m.srad, m.sgroup, m.lv, m.wv,
                           m.jprops, m.jtab, m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr, m.bext)
@@ -330,7 +331,8 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     """Static solution under gravity (at the current tilt) and the external forces
     ``model.bext`` with local damping ``alpha``: step until the unbalanced-force ratio is below
     ``tol`` (module doc). ``external(model)``, if given, updates ``model.bext`` every
-    ``check_every`` steps. The base does not move and the model time does not advance."""
+    ``check_every`` steps. The base and the ``"prescribed"`` bodies do not move and the model
+    time does not advance."""
     if not (0 <= alpha < 1):
         raise ValueError(f"alpha must be in [0, 1), got {alpha!r}")
     _set_dt(m, dt)
@@ -339,18 +341,23 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     done = 0
     ratio = math.inf
     converged = False
-    with _SigInt() as sig:
-        while done < max_steps and not sig.hit:
-            n = min(check_every, max_steps - done)
-            if external is not None:
-                external(m)
-            _chunk(m, n, moving=False)
-            m.step_offset += n  # settling does not advance the model time
-            done += n
-            ratio = unbalanced_ratio(m)
-            if ratio < tol:
-                converged = True
-                break
+    presc = m.bpresc.copy()
+    m.bpresc[:] = 0.0
+    try:
+        with _SigInt() as sig:
+            while done < max_steps and not sig.hit:
+                n = min(check_every, max_steps - done)
+                if external is not None:
+                    external(m)
+                _chunk(m, n, moving=False)
+                m.step_offset += n  # settling does not advance the model time
+                done += n
+                ratio = unbalanced_ratio(m)
+                if ratio < tol:
+                    converged = True
+                    break
+    finally:
+        m.bpresc[:] = presc
     m.bvel[:] = 0.0
     m.bomg[:] = 0.0
     detect(m)

@@ -5,7 +5,8 @@ Storage (structure of arrays, built by :mod:`murus.dem.model`)
 - bodies ``b``: ``bpos (nb, 2)`` centroid [m], ``bang`` angle [rad, counter-clockwise],
   ``bvel (nb, 2)`` [m/s] and ``bomg`` [rad/s] at the half step ``t - dt/2``, ``bmass`` [kg],
   ``binert`` [kg m²] about the centroid, ``bkin`` (0 dynamic, 1 fixed, 2 moved by the base
-  motion), ``brad`` bounding radius about the centroid [m];
+  motion, 3 moved at its prescribed velocity ``bpresc``), ``brad`` bounding radius about the
+  centroid [m];
 - shapes ``s``: ``sbody``, ``skind`` (0 polygon, 1 disc), ``svs``/``svn`` range into the
   local-vertex array ``lv`` (core vertices of a polygon relative to the body centroid at angle 0,
   the disc centre for a disc), ``srad`` (rounding radius of a polygon, radius of a disc),
@@ -883,7 +884,7 @@ def _sum_pairs(pairs, sbody, nact, pw, E, fb):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, fb,
+def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc, fb,
                   bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part):
     """Central-difference update (module doc) of the bodies of block ``blk`` (of ``NBLK``);
     ``part[blk] = (max unbalanced force, damping work, base work, external work, rebuild
@@ -974,6 +975,24 @@ def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, g
                 bomg[b] = 0.0
                 bpos[b, 0] += vhalf[i, 0] * dt
                 bpos[b, 1] += vhalf[i, 1] * dt
+            elif kin == 3:
+                # prescribed velocity: its work on the system is -(F . v + M omega)
+                pvx = bpresc[b, 0]
+                pvy = bpresc[b, 1]
+                pw_ = bpresc[b, 2]
+                wbase -= dt * (fb[b, 0] * pvx + fb[b, 1] * pvy + fb[b, 2] * pw_)
+                bsnap[b, 0] = bpos[b, 0]
+                bsnap[b, 1] = bpos[b, 1]
+                bsnap[b, 2] = bang[b]
+                bsnap[b, 3] = pvx
+                bsnap[b, 4] = pvy
+                bsnap[b, 5] = pw_
+                bvel[b, 0] = pvx
+                bvel[b, 1] = pvy
+                bomg[b] = pw_
+                bpos[b, 0] += pvx * dt
+                bpos[b, 1] += pvy * dt
+                bang[b] += pw_ * dt
             # rebuild test for the next step (as :func:`_moved`)
             dx = bpos[b, 0] - blast[b, 0]
             dy = bpos[b, 1] - blast[b, 1]
@@ -988,19 +1007,21 @@ def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, g
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
-def _update_bodies_par(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, fb,
+def _update_bodies_par(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc, fb,
                        bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part):
     for blk in prange(NBLK):
-        _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, fb,
-                      bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part)
+        _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc,
+                      fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap,
+                      part)
 
 
 @njit(cache=True, error_model="numpy")
-def _update_bodies_ser(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, fb,
+def _update_bodies_ser(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc, fb,
                        bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part):
     for blk in range(NBLK):
-        _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, fb,
-                      bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part)
+        _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc,
+                      fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap,
+                      part)
 
 
 @njit(cache=True, error_model="numpy")
@@ -1016,7 +1037,7 @@ def _moved(bpos, bang, blast, brad, margin):
 
 
 @njit(cache=True, error_model="numpy")
-def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot,
+def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
               bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap,
               sbody, skind, svs, svn, srad, sgroup, lv, wv, jprops, jtab,
               pairs, pj, pbond, sid, sf, sbr, bext):
@@ -1088,12 +1109,12 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot,
         C[C_UPDATES] += nactive
         if few:
             _update_bodies_ser(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot,
-                               fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast,
-                               bsnap, bpart)
+                               bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad,
+                               blast, bsnap, bpart)
         else:
             _update_bodies_par(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot,
-                               fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast,
-                               bsnap, bpart)
+                               bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad,
+                               blast, bsnap, bpart)
         unbal = 0.0
         wdamp = 0.0
         wbase = 0.0

@@ -8,7 +8,10 @@ Bodies are rigid: a convex polygon, a disc, or a clump (one rigid body made of s
 parts). Kinematic bodies do not respond to forces: ``"fixed"`` stays in place, ``"base"`` moves
 with the base motion (a :class:`~murus.motion.core.GroundMotion`, whose piecewise-linear
 acceleration is integrated exactly, i.e. the trapezoid rule at the samples, or a callable
-velocity ``v(t) -> vx`` or ``(vx, vy)`` in closed form).
+velocity ``v(t) -> vx`` or ``(vx, vy)`` in closed form), ``"prescribed"`` moves with its own
+velocity ``(vx, vy, omega)`` set by :meth:`Model.set_velocity` (a servo-controlled platen, a
+container wall pushed by hand), held constant until changed. The work that the moving kinematic
+bodies do on the others is counted in the energy balance (``base_work``).
 
 Polygon corners are rounded with the radius ``rounding`` (UDEC's corner rounding; default 0.5 %
 of the shortest polygon edge): contacts are computed between the cores (polygons offset inwards
@@ -42,7 +45,7 @@ class ModelError(ValueError):
     """Invalid model input (one-line message)."""
 
 
-_KIN = {None: 0, "dynamic": 0, "fixed": 1, "base": 2}
+_KIN = {None: 0, "dynamic": 0, "fixed": 1, "base": 2, "prescribed": 3}
 
 
 def polygon_properties(v: np.ndarray) -> tuple[float, np.ndarray, float]:
@@ -181,7 +184,8 @@ class Model:
     def _add(self, parts, density, kinematic, group) -> int:
         self._check_open()
         if kinematic not in _KIN:
-            raise ModelError(f"kinematic must be None, 'fixed' or 'base', got {kinematic!r}")
+            raise ModelError(f"kinematic must be None, 'fixed', 'base' or 'prescribed', got "
+                             f"{kinematic!r}")
         if not (density > 0 and math.isfinite(density)):
             raise ModelError(f"density must be positive [kg/m³], got {density!r}")
         self._bodies.append({"parts": parts, "density": float(density),
@@ -258,6 +262,18 @@ class Model:
         if self._built:
             self.jprops[j] = joint.row()
             self.P[K.P_REACH] = float(np.max(self.jprops[:, K.J_T] / self.jprops[:, K.J_KN]))
+
+    def set_velocity(self, body: int, vx: float = 0.0, vy: float = 0.0,
+                     omega: float = 0.0) -> None:
+        """Velocity [m/s, m/s, rad/s] of a ``kinematic="prescribed"`` body from now on (the
+        rotation about its centroid)."""
+        self.build()
+        if not (0 <= body < self.nbody) or self.bkin[body] != _KIN["prescribed"]:
+            raise ModelError(f"body {body} is not a kinematic='prescribed' body")
+        v = (float(vx), float(vy), float(omega))
+        if not all(math.isfinite(x) for x in v):
+            raise ModelError(f"body {body}: the velocity must be finite, got {v}")
+        self.bpresc[body] = v
 
     def set_base_motion(self, motion=None, velocity: Callable | None = None) -> None:
         """Motion of the ``kinematic="base"`` bodies: a GroundMotion (``acc`` and optional
@@ -399,6 +415,7 @@ class Model:
         self.blen = blen
         self.blast = np.column_stack([bpos, np.zeros(nb)])
         self.bext = np.zeros((nb, 3))  # external force (Fx, Fy) [N] and moment [N m]
+        self.bpresc = np.zeros((nb, 3))  # velocity (vx, vy, omega) of "prescribed" bodies
         self.bref = np.column_stack([bpos, np.zeros(nb)])
         self.sbody = np.array(sbody, np.int64)
         self.skind = np.array(skind, np.int64)
@@ -592,6 +609,7 @@ class Model:
         self.build()
         arrays = {name.lstrip("_"): getattr(self, name) for name in self._ARRAYS}
         arrays["bext"] = self.bext
+        arrays["bpresc"] = self.bpresc
         for i, o in enumerate(self._outer):
             arrays[f"outer_{i}"] = o
         for name, h in self.history.items():
@@ -624,6 +642,7 @@ class Model:
                 setattr(m, name, z[name.lstrip("_")].copy())
             nb = m.bpos.shape[0]
             m.bext = z["bext"].copy() if "bext" in z.files else np.zeros((nb, 3))
+            m.bpresc = z["bpresc"].copy() if "bpresc" in z.files else np.zeros((nb, 3))
             m._outer = [z[f"outer_{i}"].copy() for i in range(meta["nouter"])]
             m.history = {k: list(z[f"hist__{k}"]) for k in meta["history"]}
         m.dt = meta["dt"]
