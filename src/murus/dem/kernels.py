@@ -624,7 +624,10 @@ def _joint_law(o, k, sf, sbr, pb, jprops, jp, kn, ks, tanphi, muroll, rolling, r
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _store(k, slot, sid, sf, sbr, key, broken, fn, fs, mr, px, py, nx, ny, kna, ksa, kra, gap):
+def _store(k, slot, sid, sf, sbr, key, broken, fn, fs, mr, px, py, nx, ny, kna, ksa, kra, gap,
+           xa, ya, xb, yb):
+    """Write a sub-contact to slot ``slot`` of pair k; returns its force on body b and its
+    moments about the centroids of b and a ``(fx, fy, mb, ma)``."""
     sid[k, slot] = key
     sbr[k, slot] = broken
     sf[k, slot, F_FN] = fn
@@ -638,6 +641,42 @@ def _store(k, slot, sid, sf, sbr, key, broken, fn, fs, mr, px, py, nx, ny, kna, 
     sf[k, slot, F_KSA] = ksa
     sf[k, slot, F_KRA] = kra
     sf[k, slot, F_GAP] = gap
+    fx = fn * nx - fs * ny
+    fy = fn * ny + fs * nx
+    return (fx, fy, (px - xb) * fy - (py - yb) * fx + mr, (px - xa) * fy - (py - ya) * fx + mr)
+
+
+@njit(cache=True, error_model="numpy")
+def _nearest_slot(k, sf, s0, s1, used0, used1, px, py, tol):
+    """The unused old slot of pair k nearest to the new point (px, py), within ``tol``:
+    ``(slot or -1, used0, used1)``."""
+    best = -1
+    bestd = tol
+    if s0 >= 0 and not used0:
+        dd = math.sqrt((sf[k, 0, F_PX] - px) ** 2 + (sf[k, 0, F_PY] - py) ** 2)
+        if dd < bestd:
+            bestd = dd
+            best = 0
+    if s1 >= 0 and not used1:
+        dd = math.sqrt((sf[k, 1, F_PX] - px) ** 2 + (sf[k, 1, F_PY] - py) ** 2)
+        if dd < bestd:
+            best = 1
+    if best == 0:
+        used0 = True
+    elif best == 1:
+        used1 = True
+    return best, used0, used1
+
+
+@njit(cache=True, error_model="numpy")
+def _released(k, o, sf):
+    """Shear and rolling spring energy [J] of the old slot o of pair k."""
+    e = 0.0
+    if sf[k, o, F_KSA] > 0.0:
+        e += 0.5 * sf[k, o, F_FS] ** 2 / sf[k, o, F_KSA]
+    if sf[k, o, F_KRA] > 0.0:
+        e += 0.5 * sf[k, o, F_MR] ** 2 / sf[k, o, F_KRA]
+    return e
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -681,50 +720,16 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
             used1 = True
     tol = srad[a] + srad[b]
     if cnt >= 1 and m0 < 0:
-        bestd = tol
-        if s0 >= 0 and not used0:
-            dd = math.sqrt((sf[k, 0, F_PX] - px0) ** 2 + (sf[k, 0, F_PY] - py0) ** 2)
-            if dd < bestd:
-                bestd = dd
-                m0 = 0
-        if s1 >= 0 and not used1:
-            dd = math.sqrt((sf[k, 1, F_PX] - px0) ** 2 + (sf[k, 1, F_PY] - py0) ** 2)
-            if dd < bestd:
-                bestd = dd
-                m0 = 1
-        if m0 == 0:
-            used0 = True
-        elif m0 == 1:
-            used1 = True
+        m0, used0, used1 = _nearest_slot(k, sf, s0, s1, used0, used1, px0, py0, tol)
     if cnt >= 2 and m1 < 0:
-        bestd = tol
-        if s0 >= 0 and not used0:
-            dd = math.sqrt((sf[k, 0, F_PX] - px1) ** 2 + (sf[k, 0, F_PY] - py1) ** 2)
-            if dd < bestd:
-                bestd = dd
-                m1 = 0
-        if s1 >= 0 and not used1:
-            dd = math.sqrt((sf[k, 1, F_PX] - px1) ** 2 + (sf[k, 1, F_PY] - py1) ** 2)
-            if dd < bestd:
-                bestd = dd
-                m1 = 1
-        if m1 == 0:
-            used0 = True
-        elif m1 == 1:
-            used1 = True
-    d_break = 0.0
+        m1, used0, used1 = _nearest_slot(k, sf, s0, s1, used0, used1, px1, py1, tol)
     # shear and rolling energy of the old slots that disappear (the normal spring energy of a
     # separating contact is given back as work of the normal force over the step)
+    d_break = 0.0
     if s0 >= 0 and not used0:
-        if sf[k, 0, F_KSA] > 0.0:
-            d_break += 0.5 * sf[k, 0, F_FS] ** 2 / sf[k, 0, F_KSA]
-        if sf[k, 0, F_KRA] > 0.0:
-            d_break += 0.5 * sf[k, 0, F_MR] ** 2 / sf[k, 0, F_KRA]
+        d_break += _released(k, 0, sf)
     if s1 >= 0 and not used1:
-        if sf[k, 1, F_KSA] > 0.0:
-            d_break += 0.5 * sf[k, 1, F_FS] ** 2 / sf[k, 1, F_KSA]
-        if sf[k, 1, F_KRA] > 0.0:
-            d_break += 0.5 * sf[k, 1, F_MR] ** 2 / sf[k, 1, F_KRA]
+        d_break += _released(k, 1, sf)
     d_slip = 0.0
     d_roll = 0.0
     keep0 = False
@@ -780,24 +785,20 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         rmb = 0.0
         rma = 0.0
         if keep0:
-            _store(k, 0, sid, sf, sbr, id0, br0, fn0, fs0, mr0, px0, py0, nx0, ny0, kna0,
-                   ksa0, kra0, g0)
-            fx = fn0 * nx0 - fs0 * ny0
-            fy = fn0 * ny0 + fs0 * nx0
+            fx, fy, mb, ma = _store(k, 0, sid, sf, sbr, id0, br0, fn0, fs0, mr0, px0, py0, nx0,
+                                    ny0, kna0, ksa0, kra0, g0, xa, ya, xb, yb)
             rfx += fx
             rfy += fy
-            rmb += (px0 - xb) * fy - (py0 - yb) * fx + mr0
-            rma += (px0 - xa) * fy - (py0 - ya) * fx + mr0
+            rmb += mb
+            rma += ma
             slot = 1
         if keep1:
-            _store(k, slot, sid, sf, sbr, id1, br1, fn1, fs1, mr1, px1, py1, nx1, ny1, kna1,
-                   ksa1, kra1, g1)
-            fx = fn1 * nx1 - fs1 * ny1
-            fy = fn1 * ny1 + fs1 * nx1
+            fx, fy, mb, ma = _store(k, slot, sid, sf, sbr, id1, br1, fn1, fs1, mr1, px1, py1,
+                                    nx1, ny1, kna1, ksa1, kra1, g1, xa, ya, xb, yb)
             rfx += fx
             rfy += fy
-            rmb += (px1 - xb) * fy - (py1 - yb) * fx + mr1
-            rma += (px1 - xa) * fy - (py1 - ya) * fx + mr1
+            rmb += mb
+            rma += ma
             slot += 1
         nkeep = slot
         pw[k, W_FX] = rfx
