@@ -138,16 +138,21 @@ def _clamp01(x):
     return x
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _shape_vertices(s, bpos, bang, sbody, svs, svn, lv, wv):
+    b = sbody[s]
+    c = math.cos(bang[b])
+    sn = math.sin(bang[b])
+    for k in range(svs[s], svs[s] + svn[s]):
+        wv[k, 0] = bpos[b, 0] + c * lv[k, 0] - sn * lv[k, 1]
+        wv[k, 1] = bpos[b, 1] + sn * lv[k, 0] + c * lv[k, 1]
+
+
 @njit(cache=True, error_model="numpy")
 def world_vertices(bpos, bang, sbody, svs, svn, lv, wv):
     """World coordinates of every local vertex (polygon cores, disc centres)."""
     for s in range(sbody.size):
-        b = sbody[s]
-        c = math.cos(bang[b])
-        sn = math.sin(bang[b])
-        for k in range(svs[s], svs[s] + svn[s]):
-            wv[k, 0] = bpos[b, 0] + c * lv[k, 0] - sn * lv[k, 1]
-            wv[k, 1] = bpos[b, 1] + sn * lv[k, 0] + c * lv[k, 1]
+        _shape_vertices(s, bpos, bang, sbody, svs, svn, lv, wv)
 
 
 @njit(cache=True, error_model="numpy")
@@ -841,12 +846,7 @@ NBLK = 64
 def _world_vertices_par(bpos, bang, sbody, svs, svn, lv, wv):
     """:func:`world_vertices` as a parallel loop over the shapes."""
     for s in prange(sbody.size):
-        b = sbody[s]
-        c = math.cos(bang[b])
-        sn = math.sin(bang[b])
-        for k in range(svs[s], svs[s] + svn[s]):
-            wv[k, 0] = bpos[b, 0] + c * lv[k, 0] - sn * lv[k, 1]
-            wv[k, 1] = bpos[b, 1] + sn * lv[k, 0] + c * lv[k, 1]
+        _shape_vertices(s, bpos, bang, sbody, svs, svn, lv, wv)
 
 
 @njit(cache=True, error_model="numpy")
