@@ -885,6 +885,24 @@ def _sum_pairs(pairs, sbody, nact, pw, E, fb):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _advance(b, dt, sx, sy, sw, vx, vy, w, bpos, bang, bvel, bomg, bsnap):
+    """Body b: snapshot of the state at the time of the forces (position, angle and the
+    velocities ``sx, sy, sw`` at that time), then the new half-step velocity and the move."""
+    bsnap[b, 0] = bpos[b, 0]
+    bsnap[b, 1] = bpos[b, 1]
+    bsnap[b, 2] = bang[b]
+    bsnap[b, 3] = sx
+    bsnap[b, 4] = sy
+    bsnap[b, 5] = sw
+    bvel[b, 0] = vx
+    bvel[b, 1] = vy
+    bomg[b] = w
+    bpos[b, 0] += vx * dt
+    bpos[b, 1] += vy * dt
+    bang[b] += w * dt
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc, fb,
                   bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part):
     """Central-difference update (module doc) of the bodies of block ``blk`` (of ``NBLK``);
@@ -950,50 +968,22 @@ def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, g
                                + (dmz - amass * I * wm) * wm)
                 wext += dt * (bext[b, 0] * vmx + bext[b, 1] * vmy + bext[b, 2] * wm)
                 wtilt -= dt * m * (bpos[b, 0] * gdx + bpos[b, 1] * gdy)
-                bsnap[b, 0] = bpos[b, 0]
-                bsnap[b, 1] = bpos[b, 1]
-                bsnap[b, 2] = bang[b]
-                bsnap[b, 3] = vmx
-                bsnap[b, 4] = vmy
-                bsnap[b, 5] = wm
-                bvel[b, 0] = vx1
-                bvel[b, 1] = vy1
-                bomg[b] = w1
-                bpos[b, 0] += vx1 * dt
-                bpos[b, 1] += vy1 * dt
-                bang[b] += w1 * dt
-            elif kin == 2:
-                # the body imposes the base motion: its work on the system is -F . v
-                wbase -= dt * (fb[b, 0] * ubx + fb[b, 1] * uby)
-                bsnap[b, 0] = bpos[b, 0]
-                bsnap[b, 1] = bpos[b, 1]
-                bsnap[b, 2] = bang[b]
-                bsnap[b, 3] = ubx
-                bsnap[b, 4] = uby
-                bsnap[b, 5] = 0.0
-                bvel[b, 0] = vhalf[i, 0]
-                bvel[b, 1] = vhalf[i, 1]
-                bomg[b] = 0.0
-                bpos[b, 0] += vhalf[i, 0] * dt
-                bpos[b, 1] += vhalf[i, 1] * dt
-            elif kin == 3:
-                # prescribed velocity: its work on the system is -(F . v + M omega)
-                pvx = bpresc[b, 0]
-                pvy = bpresc[b, 1]
-                pw_ = bpresc[b, 2]
-                wbase -= dt * (fb[b, 0] * pvx + fb[b, 1] * pvy + fb[b, 2] * pw_)
-                bsnap[b, 0] = bpos[b, 0]
-                bsnap[b, 1] = bpos[b, 1]
-                bsnap[b, 2] = bang[b]
-                bsnap[b, 3] = pvx
-                bsnap[b, 4] = pvy
-                bsnap[b, 5] = pw_
-                bvel[b, 0] = pvx
-                bvel[b, 1] = pvy
-                bomg[b] = pw_
-                bpos[b, 0] += pvx * dt
-                bpos[b, 1] += pvy * dt
-                bang[b] += pw_ * dt
+                _advance(b, dt, vmx, vmy, wm, vx1, vy1, w1, bpos, bang, bvel, bomg, bsnap)
+            elif kin >= 2:
+                # moved by the base motion (2) or at its prescribed velocity (3): its work on
+                # the system is -(F . v + M omega), with v at the time of the forces
+                if kin == 2:
+                    vfx = ubx
+                    vfy = uby
+                    vhx = vhalf[i, 0]
+                    vhy = vhalf[i, 1]
+                    om = 0.0
+                else:
+                    vfx = vhx = bpresc[b, 0]
+                    vfy = vhy = bpresc[b, 1]
+                    om = bpresc[b, 2]
+                wbase -= dt * (fb[b, 0] * vfx + fb[b, 1] * vfy + fb[b, 2] * om)
+                _advance(b, dt, vfx, vfy, om, vhx, vhy, om, bpos, bang, bvel, bomg, bsnap)
             # rebuild test for the next step (as :func:`_moved`)
             dx = bpos[b, 0] - blast[b, 0]
             dy = bpos[b, 1] - blast[b, 1]
