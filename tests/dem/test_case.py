@@ -118,6 +118,8 @@ BAD = {
                         "[stop.monitor]", "unknown monitor 'v'", 30),
     "unknown body": (lambda s: _edit(s, "body = 1", 'body = "roof"'),
                      "[monitors[0].body]", "unknown body 'roof'", 26),
+    "damping frame": (lambda s: s + '[dem.damping]\nframe = "relative"\n',
+                      "[dem.damping.frame]", "'base' or 'absolute'", 30),
     "unknown key": (lambda s: _edit(s, "width = 0.4", "widht = 0.4"),
                     "[blocks[1].widht]", "unknown key", 19),
 }

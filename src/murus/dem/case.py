@@ -18,6 +18,7 @@ Example (every table is optional except ``[dem]``, ``[materials.*]`` and the blo
     local = 0.0              # Cundall local damping during the run
     fraction = 0.05          # mass-proportional (Rayleigh) fraction of critical ...
     frequency = 5.0          # ... at this frequency [Hz]
+    frame = "base"           # velocities damped: relative to the "base" or "absolute"
 
     [materials.stone]        # density [kg/m3], kn, ks [Pa/m], friction_deg, cohesion,
     density = 2600.0         # tensile, cohesion_res, tensile_res [Pa], rolling [-]
@@ -100,6 +101,7 @@ class DampingCfg(Strict):
     local: float = Field(default=0.0, ge=0.0, lt=1.0, allow_inf_nan=False)
     fraction: float = Field(default=0.0, ge=0.0, allow_inf_nan=False)
     frequency: float | None = Field(default=None, gt=0.0, allow_inf_nan=False)
+    frame: Literal["base", "absolute"] = "base"
 
     @model_validator(mode="after")
     def _freq(self):
@@ -699,6 +701,7 @@ def build(case: DemCase, path: Path, text: str) -> Built:
         stop_desc = f"{s.monitor} {op} {value:.6g}"
     run_kwargs = {"duration": duration, "dt": d.dt, "xi": d.damping.fraction,
                   "freq": d.damping.frequency, "local_damping": d.damping.local,
+                  "damping_frame": d.damping.frame,
                   "probes": probes, "sample_dt": case.output.sample_dt, "stop": stop,
                   "max_steps": d.max_steps}
     settle = ({"tol": d.settle_tolerance, "max_steps": d.settle_max_steps, "dt": d.dt}
