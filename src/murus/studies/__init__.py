@@ -13,7 +13,9 @@ NetCDF with h5netcdf.
 - :func:`fragility`, :func:`fit_fragility`, :func:`fit_msa`, :func:`fit_ida`,
   :func:`plot_fragility`, :func:`seed002_configs`;
 - :func:`load_study`, :func:`make_study`, :func:`run_study`, :func:`run_plan`,
-  :func:`study_status`, :func:`open_result`, :func:`open_executor`.
+  :func:`study_status`, :func:`open_result`, :func:`open_executor`; :func:`run_tasks`, the
+  generic engine (any picklable function, dependent tasks) of :func:`run_plan` and of the
+  behaviour-factor study of :mod:`murus.retaining.study`.
 
 Names are imported on first use (PEP 562): ``import murus.studies`` loads neither numba, xarray
 nor Dask.
@@ -32,6 +34,7 @@ _EXPORTS = {
     "Plan": "sweep",
     "StudyError": "sweep",
     "run_plan": "sweep",
+    "run_tasks": "sweep",
     "study_status": "sweep",
     "open_result": "sweep",
     "write_netcdf": "sweep",

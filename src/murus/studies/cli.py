@@ -12,7 +12,6 @@ from pathlib import Path
 
 import typer
 
-from murus.cliutil import fail as _fail
 from murus.cliutil import guard
 
 app = typer.Typer(
@@ -31,8 +30,10 @@ def _guard():
     return guard(CaseError, ValueError, ImportError, OSError, first_line=True)
 
 
-def _progress_bar():
-    """A rich progress bar (chunks, ETA) and its callback."""
+def progress_bar(unit: str = "chunks", description: str = "study"):
+    """A rich progress bar (tasks done of total, failures, elapsed time, ETA) and its callback
+    ``callback(done, total, failed)`` (the ``progress`` of :func:`~murus.studies.sweep.
+    run_tasks`); ``unit`` names the tasks ("chunks", "cases")."""
     from rich.progress import (
         BarColumn,
         MofNCompleteColumn,
@@ -43,7 +44,7 @@ def _progress_bar():
     )
 
     prog = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-                    TextColumn("chunks"), TextColumn("{task.fields[failed]}"),
+                    TextColumn(unit), TextColumn("{task.fields[failed]}"),
                     TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
                     transient=False)
     state = {"task": None}
@@ -51,11 +52,43 @@ def _progress_bar():
     def callback(done: int, total: int, failed: int) -> None:
         extra = f"[red]{failed} failed" if failed else ""
         if state["task"] is None:
-            state["task"] = prog.add_task("study", total=total, completed=done, failed=extra)
+            state["task"] = prog.add_task(description, total=total, completed=done,
+                                          failed=extra)
         else:
             prog.update(state["task"], completed=done, failed=extra)
 
     return prog, callback
+
+
+EXECUTOR_HELP = "Executor: serial, process (a local pool of --workers) or dask (--scheduler)."
+
+
+def executor_choice(executor: str | None, serial: bool, dask: str | None,
+                    scheduler: str | None, default: tuple[str, str | None] = ("process", None)
+                    ) -> tuple[str, str | None]:
+    """The executor kind and Dask scheduler from the options shared by the commands that run
+    studies: ``--executor serial|process|dask``, or the shortcuts ``--serial``, ``--dask
+    local`` and ``--scheduler tcp://HOST:PORT`` (a Dask cluster); ``default`` when none is
+    given (``--executor dask`` without a scheduler starts a local cluster). Conflicting
+    options raise ``ValueError`` (one line)."""
+    from murus.studies.executors import EXECUTOR_KINDS
+
+    if executor is not None and executor not in EXECUTOR_KINDS:
+        raise ValueError(f"--executor must be one of {', '.join(EXECUTOR_KINDS)}, got "
+                         f"{executor!r}")
+    if dask is not None and dask != "local":
+        raise ValueError(f"--dask takes 'local' (got {dask!r}); use --scheduler "
+                         "tcp://HOST:PORT for a running cluster")
+    short = [k for k, on in (("serial", serial), ("dask", bool(scheduler or dask))) if on]
+    if (scheduler and dask) or len(short) > 1:
+        raise ValueError("give only one of --scheduler, --dask, --serial")
+    if executor is not None and short and short[0] != executor:
+        raise ValueError(f"--executor {executor} conflicts with "
+                         f"{'--serial' if serial else '--scheduler/--dask'}")
+    if executor is None and not short:
+        return default
+    kind = executor or short[0]
+    return kind, (scheduler or ("local" if dask else None)) if kind == "dask" else None
 
 
 @app.command()
@@ -70,17 +103,14 @@ def run(
     workers: int | None = typer.Option(None, "--workers", "-w", min=1,
                                        help="Worker processes (default: the cores)."),
     serial: bool = typer.Option(False, "--serial", help="Run in this process (no pool)."),
+    executor: str | None = typer.Option(None, "--executor", help=EXECUTOR_HELP),
     retries: int | None = typer.Option(None, "--retries", min=0,
                                        help="Retries of a failing chunk (default [study])."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
 ) -> None:
     """Run a study: writes OUT/study.json, OUT/chunks/*.npz, OUT/result.nc (resumable)."""
-    if sum(x is not None and x is not False for x in (scheduler, dask, serial or None)) > 1:
-        _fail("give only one of --scheduler, --dask, --serial")
-    if dask is not None and dask != "local":
-        _fail(f"--dask takes 'local' (got {dask!r}); use --scheduler tcp://HOST:PORT for a "
-              "running cluster")
-    kind = "dask" if (scheduler or dask) else "serial" if serial else "process"
+    with _guard():
+        kind, scheduler = executor_choice(executor, serial, dask, scheduler)
     with _guard():
         from murus.studies.study import load_study
         from murus.studies.sweep import run_plan
@@ -96,13 +126,13 @@ def run(
     with _guard():
         from murus.studies.executors import open_executor
 
-        handle = open_executor(kind, workers, scheduler or ("local" if dask else None))
+        handle = open_executor(kind, workers, scheduler)
     try:
         with _guard():
             if quiet:
                 ds = run_plan(plan, handle, out=folder, retries=st.retries)
             else:
-                prog, cb = _progress_bar()
+                prog, cb = progress_bar()
                 with prog:
                     ds = run_plan(plan, handle, out=folder, retries=st.retries, progress=cb)
     finally:
@@ -165,16 +195,18 @@ def plot(
 def status(
     folder: Path = typer.Argument(..., help="Study folder (holding study.json)."),
 ) -> None:
-    """Chunks done, missing and failed in a study folder."""
+    """Chunks (or cases) done, missing and failed in a study folder."""
     with _guard():
         from murus.studies.sweep import study_status
 
         s = study_status(folder)
-    typer.echo(f"{s['name']} ({s['digest']}): {len(s['done'])}/{s['total']} chunks done, "
+    unit = s.get("unit", "chunks")
+    typer.echo(f"{s['name']} ({s['digest']}): {len(s['done'])}/{s['total']} {unit} done, "
                f"{len(s['missing'])} missing, {len(s['failed'])} failed"
-               f"{', result.nc written' if s['result'] else ''}")
+               f"{', ' + s.get('result_file', 'result.nc') + ' written' if s['result'] else ''}")
     for i, f in sorted(s["failed"].items()):
-        typer.echo(f"  failed chunk {i}: {f.get('error')} (attempts: {f.get('attempts')})")
+        typer.echo(f"  failed {unit.removesuffix('s')} {i}: {f.get('error')} (attempts: "
+                   f"{f.get('attempts')})")
     if s["missing"]:
         m = s["missing"]
         typer.echo(f"  missing: {', '.join(map(str, m[:20]))}{' ...' if len(m) > 20 else ''}")

@@ -22,6 +22,13 @@ Study folder (``out``)::
 
 Re-running the same study with the same ``out`` computes only the chunks that have no file
 (missing or failed); a folder that holds another study (different digest) is refused.
+
+The engine underneath is generic: :func:`run_tasks` runs any picklable function over
+``(index, payload)`` tasks with the same retries, window, progress and interruption rules, and
+lets a finished task queue the tasks that need its result; :func:`prepare_folder`,
+:func:`write_json` and :func:`study_status` (with the ``task_files`` of ``study.json``) give any
+study the same folder, refusal of another study and ``murus study status``
+(:mod:`murus.retaining.study`, the behaviour factor of dry-stone walls, is one).
 """
 
 from __future__ import annotations
@@ -31,7 +38,7 @@ import json
 import math
 import os
 from collections import deque
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import FIRST_COMPLETED, wait
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,7 +47,8 @@ import numpy as np
 
 from murus.studies.records import RecordSet
 
-__all__ = ["Dim", "Point", "Plan", "ChunkTask", "run_chunk", "run_plan", "study_status",
+__all__ = ["Dim", "Point", "Plan", "ChunkTask", "run_chunk", "run_plan", "run_tasks",
+           "study_status", "prepare_folder", "check_folder", "write_json",
            "StudyError", "write_netcdf", "open_result", "SUMMARY_VARS"]
 
 FORMAT_VERSION = 1
@@ -263,10 +271,31 @@ def _load_chunk(out: Path, index: int, digest: str, shape: tuple) -> np.ndarray 
         return None  # a damaged file is recomputed
 
 
-def _prepare_folder(out: Path, plan: Plan, digest: str) -> None:
+def prepare_folder(out, digest: str, meta: dict) -> None:
+    """Create the study folder ``out`` (and ``out/chunks`` unless ``meta`` has ``task_files``)
+    and write ``study.json`` (``meta`` with the format and ``digest``) if it is new; a folder
+    that holds another study (another digest) or an unreadable ``study.json`` is refused
+    (:class:`StudyError`, nothing written).
+
+    ``meta`` may declare ``"task_files"`` (one path per task, relative to ``out``: a task is
+    done when its file exists), ``"unit"`` (what a task is, for messages: "chunks", "cases")
+    and ``"result_file"`` (default ``result.nc``), read by :func:`study_status`."""
+    out = Path(out)
+    check_folder(out, digest)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "chunks").mkdir(exist_ok=True)
+    if "task_files" not in meta:
+        (out / "chunks").mkdir(exist_ok=True)
     sj = out / "study.json"
+    if sj.exists():
+        return
+    _write_json(sj, {"format": FORMAT_VERSION, **meta, "digest": digest})
+
+
+def check_folder(out, digest: str) -> None:
+    """Refuse ``out`` if it holds another study (as :func:`prepare_folder`), writing nothing."""
+    sj = Path(out) / "study.json"
+    if Path(out).exists() and not Path(out).is_dir():
+        raise StudyError(f"{out}: exists and is not a directory")
     if sj.exists():
         try:
             old = json.loads(sj.read_text())
@@ -276,9 +305,17 @@ def _prepare_folder(out: Path, plan: Plan, digest: str) -> None:
         if old.get("digest") != digest:
             raise StudyError(f"{out} holds results of a different study (digest "
                              f"{old.get('digest')} != {digest}); use another output folder")
-        return
-    _write_json(sj, {
-        "format": FORMAT_VERSION, "name": plan.name, "digest": digest, "spec": plan.spec,
+
+
+def write_json(path, data) -> None:
+    """Write ``data`` as indented JSON to ``path`` atomically (temporary file, fsync,
+    os.replace): a reader never sees a partial file."""
+    _write_json(Path(path), data)
+
+
+def _prepare_folder(out: Path, plan: Plan, digest: str) -> None:
+    prepare_folder(out, digest, {
+        "name": plan.name, "spec": plan.spec,
         "dims": [{"name": d.name, "values": [_jsonable(v) for v in d.values], "attrs": d.attrs}
                  for d in plan.dims],
         "n_records": plan.n_records, "chunks": plan.chunks(), "n_histories": plan.n_histories,
@@ -286,24 +323,165 @@ def _prepare_folder(out: Path, plan: Plan, digest: str) -> None:
 
 
 def study_status(out) -> dict:
-    """Chunks done, missing and failed in a study folder: ``{"name", "digest", "total",
-    "done", "missing", "failed": {index: error}, "complete"}``."""
+    """Tasks (chunks, or the ``task_files`` of ``study.json``) done, missing and failed in a
+    study folder: ``{"name", "digest", "unit", "total", "done", "missing", "failed": {index:
+    error}, "complete", "result_file", "result"}``."""
     out = Path(out)
     sj = out / "study.json"
     if not sj.exists():
         raise StudyError(f"{out}: not a study folder (no study.json)")
-    meta = json.loads(sj.read_text())
-    chunks = meta["chunks"]
-    done = [i for i in range(len(chunks)) if _chunk_path(out, i).exists()]
+    try:
+        meta = json.loads(sj.read_text())
+    except (OSError, ValueError):
+        raise StudyError(f"{sj}: unreadable study file") from None
+    files = meta.get("task_files")
+    if files is not None:
+        total = len(files)
+        done = [i for i, f in enumerate(files) if (out / f).exists()]
+    else:
+        total = len(meta["chunks"])
+        done = [i for i in range(total) if _chunk_path(out, i).exists()]
     fj = out / "failures.json"
     failed = {}
     if fj.exists():
         failed = {int(k): v for k, v in json.loads(fj.read_text()).items()
                   if int(k) not in set(done)}
-    missing = [i for i in range(len(chunks)) if i not in set(done) and i not in failed]
-    return {"name": meta.get("name"), "digest": meta.get("digest"), "total": len(chunks),
-            "done": done, "missing": missing, "failed": failed,
-            "complete": len(done) == len(chunks), "result": (out / "result.nc").exists()}
+    missing = [i for i in range(total) if i not in set(done) and i not in failed]
+    return {"name": meta.get("name"), "digest": meta.get("digest"),
+            "unit": meta.get("unit", "chunks"), "total": total,
+            "done": done, "missing": missing, "failed": failed, "complete": len(done) == total,
+            "result_file": meta.get("result_file", "result.nc"),
+            "result": (out / meta.get("result_file", "result.nc")).exists()}
+
+
+# ----------------------------------------------------------------------------- tasks -----
+def _run_task(fn: Callable, index: int, payload, threads: int | None, hook: Callable | None):
+    """Worker side of :func:`run_tasks`: limit numba's threads, run the hook, run the task."""
+    from murus.studies.executors import limit_threads
+
+    limit_threads(threads)
+    if hook is not None:
+        hook(index)
+    return fn(payload)
+
+
+def run_tasks(
+    fn: Callable,
+    tasks: Iterable[tuple[int, object]],
+    executor="process",
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    retries: int = 2,
+    on_result: Callable[[int, object], Iterable[tuple[int, object]] | None],
+    progress: Callable[[int, int, int], None] | None = None,
+    total: int | None = None,
+    done: int = 0,
+    hook: Callable | None = None,
+    window: int | None = None,
+) -> dict[int, dict]:
+    """Run ``fn(payload)`` for every ``(index, payload)`` of ``tasks`` on an executor, with
+    retries, a bounded window of tasks in flight and progress: the engine of :func:`run_plan`,
+    for any picklable module-level ``fn`` (a chunk of rocking histories, a DEM run, ...).
+
+    on_result:
+        ``on_result(index, result)``, called in this process as each task finishes, in index
+        order among the tasks that finish together (store the result there: an interruption
+        loses no finished task); it may return further ``(index, payload)`` tasks, queued
+        at once (a stage that needs this result, e.g. the S1 checks of a collapse run).
+    total, done:
+        For ``progress(done, total, failed)``: the number of tasks of the whole study
+        (default: those given) and of those already done (stored by an earlier run).
+    executor, workers, scheduler, retries, hook, window:
+        As for :func:`run_plan` (``hook(index)`` runs in the worker before the task).
+
+    Returns the tasks that failed after their retries, ``{index: {"error", "attempts"}}``; the
+    others go on. ``KeyboardInterrupt`` and ``SystemExit`` are not retried: they stop the run;
+    the tasks running then are waited for (when the executor is opened here) and stored with
+    those that had finished, the queued ones are dropped.
+    """
+    from murus.studies.executors import ExecutorHandle, is_broken_pool, open_executor
+
+    if not (isinstance(retries, int) and retries >= 0):
+        raise StudyError(f"retries must be a non-negative integer, got {retries!r}")
+    queue = deque(tasks)
+    total = len(queue) + done if total is None else total
+    failures: dict[int, dict] = {}
+    if progress is not None:
+        progress(done, total, 0)
+    if not queue:
+        return failures
+    handle = executor if isinstance(executor, ExecutorHandle) else open_executor(
+        executor, workers, scheduler)
+    try:
+        attempts: dict[int, int] = {}
+        payloads: dict[int, object] = {}
+
+        def submit(i, payload):
+            payloads[i] = payload
+            attempts[i] = attempts.get(i, 0) + 1
+            return handle.executor.submit(_run_task, fn, i, payload, handle.threads, hook)
+
+        # a window of tasks in flight: memory stays bounded, a serial run stores each task
+        # before the next starts, retries go to the front of the queue
+        if window is None:
+            window = 1 if handle.kind == "serial" else max(64, 4 * handle.workers)
+        pending: dict = {}
+
+        def fill():
+            while queue and len(pending) < window:
+                i, payload = queue.popleft()
+                pending[submit(i, payload)] = i
+
+        fill()
+        try:
+            while pending:
+                finished, _ = wait(list(pending), return_when=FIRST_COMPLETED)
+                broken = False
+                retry = []
+                for f in sorted(finished, key=lambda f: pending[f]):
+                    i = pending.pop(f)
+                    try:
+                        res = f.result()
+                    except BaseException as exc:  # noqa: BLE001 - recorded, then retried
+                        if isinstance(exc, KeyboardInterrupt | SystemExit):
+                            raise
+                        broken = broken or is_broken_pool(exc)
+                        if attempts[i] <= retries:
+                            retry.append((i, payloads[i]))
+                        else:
+                            failures[i] = {"error": _one_line(exc), "attempts": attempts[i]}
+                            payloads.pop(i, None)
+                            if progress is not None:
+                                progress(done, total, len(failures))
+                        continue
+                    payloads.pop(i, None)
+                    more = on_result(i, res)
+                    done += 1
+                    if progress is not None:
+                        progress(done, total, len(failures))
+                    if more:
+                        queue.extend(more)
+                if broken:
+                    # a dead process breaks the whole pool: every task in flight comes back
+                    handle.restart()
+                    retry += [(i, payloads[i]) for i in sorted(pending.values())]
+                    pending.clear()
+                queue.extendleft(reversed(retry))
+                fill()
+        except (KeyboardInterrupt, SystemExit):
+            # interrupted: the queued tasks are cancelled, those running finish (an executor
+            # of ours is closed first, which waits for them), the finished ones are stored
+            if handle is not executor:
+                handle.close()
+            for f in sorted(pending, key=lambda f: pending[f]):
+                if f.done() and not f.cancelled() and f.exception() is None:
+                    on_result(pending[f], f.result())
+            raise
+    finally:
+        if handle is not executor:
+            handle.close()
+    return failures
 
 
 # ----------------------------------------------------------------------------- runner ----
@@ -343,7 +521,6 @@ def run_plan(
         to keep a Dask cluster's queues full, bounded for very long sweeps).
     """
     from murus.rocking import kernels as K
-    from murus.studies.executors import ExecutorHandle, is_broken_pool, open_executor
 
     if not (isinstance(retries, int) and retries >= 0):
         raise StudyError(f"retries must be a non-negative integer, got {retries!r}")
@@ -361,73 +538,21 @@ def run_plan(
             todo.append(i)
         else:
             raw[a:b] = got
-    failures: dict[int, dict] = {}
-    done = len(chunks) - len(todo)
-    if progress is not None:
-        progress(done, len(chunks), 0)
-    if todo:
-        handle = executor if isinstance(executor, ExecutorHandle) else open_executor(
-            executor, workers, scheduler)
-        try:
-            attempts = dict.fromkeys(todo, 0)
 
-            def submit(i):
-                a, b = chunks[i]
-                task = ChunkTask(i, plan.points[a:b], plan.records, plan.duration, plan.rtol,
-                                 handle.threads, hook)
-                attempts[i] += 1
-                return handle.executor.submit(run_chunk, task)
+    def store(i, res):
+        a, b = chunks[i]
+        raw[a:b] = res
+        if out is not None:
+            _save_chunk(out, i, digest, res)
 
-            # a window of chunks in flight: memory stays bounded, a serial run stores each
-            # chunk before the next starts, retries go to the front of the queue
-            if window is None:
-                window = 1 if handle.kind == "serial" else max(64, 4 * handle.workers)
-            queue = deque(todo)
-            pending: dict = {}
-
-            def fill():
-                while queue and len(pending) < window:
-                    i = queue.popleft()
-                    pending[submit(i)] = i
-
-            fill()
-            while pending:
-                finished, _ = wait(list(pending), return_when=FIRST_COMPLETED)
-                broken = False
-                retry = []
-                for f in sorted(finished, key=lambda f: pending[f]):
-                    i = pending.pop(f)
-                    try:
-                        res = f.result()
-                    except BaseException as exc:  # noqa: BLE001 - recorded, then retried
-                        if isinstance(exc, KeyboardInterrupt | SystemExit):
-                            raise
-                        broken = broken or is_broken_pool(exc)
-                        if attempts[i] <= retries:
-                            retry.append(i)
-                        else:
-                            failures[i] = {"error": _one_line(exc), "attempts": attempts[i],
-                                           "nodes": list(chunks[i])}
-                            if progress is not None:
-                                progress(done, len(chunks), len(failures))
-                        continue
-                    a, b = chunks[i]
-                    raw[a:b] = res
-                    if out is not None:
-                        _save_chunk(out, i, digest, res)
-                    done += 1
-                    if progress is not None:
-                        progress(done, len(chunks), len(failures))
-                if broken:
-                    # a dead process breaks the whole pool: every chunk in flight comes back
-                    handle.restart()
-                    retry += sorted(pending.values())
-                    pending.clear()
-                queue.extendleft(reversed(retry))
-                fill()
-        finally:
-            if handle is not executor:
-                handle.close()
+    tasks = [(i, ChunkTask(i, plan.points[chunks[i][0]:chunks[i][1]], plan.records,
+                           plan.duration, plan.rtol, None, None)) for i in todo]
+    failures = run_tasks(run_chunk, tasks, executor, workers=workers, scheduler=scheduler,
+                         retries=retries, on_result=store, progress=progress,
+                         total=len(chunks), done=len(chunks) - len(todo), hook=hook,
+                         window=window)
+    for i, f in failures.items():
+        f["nodes"] = list(chunks[i])
     ds = to_dataset(plan, raw, failures, digest)
     if out is not None:
         if failures:

@@ -1,0 +1,121 @@
+"""The generic task runner of murus.studies (run_tasks): any picklable function, dependent
+tasks queued from results, retries then recorded failures, progress, and a study folder whose
+tasks are files (study_status with task_files)."""
+
+import json
+import operator
+
+import pytest
+
+from murus.studies.faults import FailTimes
+from murus.studies.sweep import (
+    StudyError,
+    check_folder,
+    prepare_folder,
+    run_tasks,
+    study_status,
+    write_json,
+)
+
+
+def test_dependent_tasks_progress_and_order():
+    got, prog = {}, []
+
+    def on_result(i, res):
+        got[i] = res
+        if i < 3:  # stage 2: task 3 + i needs the result of task i
+            return [(3 + i, res * 10)]
+        return None
+
+    fails = run_tasks(operator.neg, [(0, 1), (1, 2), (2, 3)], "serial", on_result=on_result,
+                      progress=lambda *a: prog.append(a), total=6)
+    assert fails == {}
+    assert got == {0: -1, 1: -2, 2: -3, 3: 10, 4: 20, 5: 30}
+    assert prog[0] == (0, 6, 0) and prog[-1] == (6, 6, 0) and len(prog) == 7
+
+
+def test_retries_then_failure_recorded(tmp_path):
+    got = {}
+    fails = run_tasks(abs, [(0, -1), (1, -2), (2, -3)], "serial", retries=1,
+                      on_result=lambda i, r: got.__setitem__(i, r),
+                      hook=FailTimes(str(tmp_path), chunk=1, times=-1))
+    assert got == {0: 1, 2: 3}
+    assert list(fails) == [1] and fails[1]["attempts"] == 2
+    assert "injected failure" in fails[1]["error"]
+    (tmp_path / "x").mkdir()
+    again = {}
+    ok = run_tasks(abs, [(1, -2)], "serial", retries=2,
+                   on_result=lambda i, r: again.__setitem__(i, r),
+                   hook=FailTimes(str(tmp_path / "x"), chunk=1, times=2))
+    assert ok == {} and again == {1: 2}  # failed twice, then ran
+    assert len(list((tmp_path / "x").glob("fail-1-*"))) == 3
+
+
+def test_process_pool_runs_dependent_tasks():
+    got = {}
+
+    def on_result(i, res):
+        got[i] = res
+        return [(10 + i, res)] if i < 10 else None
+
+    fails = run_tasks(operator.neg, [(i, i) for i in range(4)], "process", workers=2,
+                      on_result=on_result)
+    assert fails == {}
+    assert got == {**{i: -i for i in range(4)}, **{10 + i: i for i in range(4)}}
+
+
+def test_interrupt_is_not_retried():
+    def boom(i):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        run_tasks(operator.neg, [(0, 1), (1, 2)], "serial", on_result=lambda i, r: None,
+                  hook=boom)
+
+
+def test_folder_with_task_files(tmp_path):
+    out = tmp_path / "s"
+    meta = {"name": "t", "unit": "cases", "result_file": "table.csv",
+            "task_files": ["cases/a.json", "cases/b.json"]}
+    check_folder(out, "d1")  # nothing there: accepted, nothing written
+    assert not out.exists()
+    prepare_folder(out, "d1", meta)
+    assert not (out / "chunks").exists()
+    (out / "cases").mkdir()
+    write_json(out / "cases" / "b.json", {"x": 1})
+    st = study_status(out)
+    assert st["unit"] == "cases" and st["total"] == 2 and st["done"] == [1]
+    assert st["missing"] == [0] and not st["complete"] and not st["result"]
+    write_json(out / "failures.json", {"0": {"error": "E", "attempts": 3}})
+    assert list(study_status(out)["failed"]) == [0]
+    prepare_folder(out, "d1", meta)  # the same study: accepted
+    with pytest.raises(StudyError, match="different study"):
+        check_folder(out, "d2")
+    with pytest.raises(StudyError, match="different study"):
+        prepare_folder(out, "d2", meta)
+    assert json.loads((out / "study.json").read_text())["digest"] == "d1"
+
+
+class InterruptAt:
+    """Ctrl-C in the worker that starts task ``index`` (picklable for a process pool)."""
+
+    def __init__(self, index):
+        self.index = index
+
+    def __call__(self, i):
+        if i == self.index:
+            raise KeyboardInterrupt
+
+
+def test_interrupt_keeps_the_tasks_running_then():
+    import time
+
+    got = {}
+    # task 1 is interrupted at once while task 0 (another worker) is still running: the run
+    # stops, but task 0 is waited for and stored (the queued task 2 is dropped, unless a slow
+    # start of the second worker let it run first)
+    with pytest.raises(KeyboardInterrupt):
+        run_tasks(time.sleep, [(0, 1.0), (1, 0.0), (2, 0.0)], "process", workers=2,
+                  window=2, on_result=lambda i, r: got.__setitem__(i, r),
+                  hook=InterruptAt(1))
+    assert got.get(0, 1) is None and 1 not in got
