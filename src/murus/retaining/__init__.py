@@ -8,6 +8,8 @@
   equivalence;
 - :mod:`murus.retaining.dem_wall`: the distinct-element model of the wall (stones in running
   bond on the inclined beds) with the equivalent EN 1998-5 Annex E thrust;
+- :mod:`murus.retaining.backfill`: the fully discrete granular backfill (discs) behind the DEM
+  wall, with a container or an absorbing lateral boundary;
 - :mod:`murus.retaining.collapse`: the collapse protocol (S2 ramps, ``A_col``, S1 checks) and
   the behaviour factor ``r`` (seed 001 §4.2-4.4, Tables 7-8);
 - :mod:`murus.retaining.cli`: ``murus retaining pseudo-static``, ``geometry``, ``collapse``,
@@ -46,6 +48,10 @@ _EXPORTS = {
     "DemWall": "dem_wall",
     "EquivalentThrust": "dem_wall",
     "build_wall": "dem_wall",
+    "BackfillError": "backfill",
+    "DiscreteBackfill": "backfill",
+    "AbsorbingBoundary": "backfill",
+    "generate_packing": "backfill",
     "BehaviourTable": "collapse",
     "CollapseResult": "collapse",
     "behaviour_factor": "collapse",

@@ -30,11 +30,15 @@ inertia on the wall acts out of the slope (``kh = a_x / g``); S(t) starts with t
 
 Numerics (documented choices): mass-proportional damping ``xi = 10 %`` (seed 001 Table 6: 5 %
 doubled because only the mass-proportional part is used) at the input frequency, on the
-velocity relative to the base; joint stiffness of Table 6 times ``stiffness_scale`` (default
+velocity relative to the base (``damping_frame="base"``; ``"absolute"`` damps the velocity in
+the fixed frame, as UDEC does, so that it also resists the motion of the wall with the
+ground); joint stiffness of Table 6 times ``stiffness_scale`` (default
 1e-3, so that a full-scale run takes about a minute: the stones are nearly rigid either way,
 the elastic joint closure under the wall's weight is 2e-5 m at the default against a collapse
 threshold of 0.5 m); a kinematic backstop along the back face (the backfill cannot be
-entered, :func:`~murus.retaining.dem_wall.build_wall`). Units: SI (m, s, m/s², m/s³, Hz).
+entered, :func:`~murus.retaining.dem_wall.build_wall`). With ``backfill="discrete"`` the
+thrust and the backstop are replaced by a disc backfill behind the wall
+(:mod:`murus.retaining.backfill`, which says when to use which). Units: SI (m, s, m/s², m/s³, Hz).
 
 Check of the thrust model: DSRW1 under a monotonic base acceleration ``a = 0.75 t`` (no
 carrier, 1e-3 stiffness) starts a mechanism near 1.5-1.65 m/s² (d_top 1 cm at 1.5, 2.2 cm at
@@ -56,7 +60,7 @@ from murus.retaining.geometry import RetainingWall
 
 __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES",
            "pseudo_static_resistance", "ramp_rate", "collapse_run", "peak_ratio_check",
-           "behaviour_factor", "SEED_TABLE7"]
+           "failure_mode", "behaviour_factor", "SEED_TABLE7"]
 
 #: Vertical components: none, in phase, in opposition (seed 001 §4.3, ratio 0.5).
 VERTICAL_MODES = ("none", "in_phase", "opposition")
@@ -112,8 +116,9 @@ class CollapseResult:
     histories ``t`` [s], ``d_top`` [m] (out of the slope positive), ``acc`` and ``acc_v``
     (input, [m/s²]), ``kh``, ``kv``; ``polygons`` the stones and foundation at the end (the
     collapse instant when stopped there) and ``displacement`` their displacement magnitude
-    relative to the base [m]; ``wall_time`` [s], ``steps``, ``dt`` [s]; ``options`` the
-    numerical settings.
+    relative to the base [m], ``rotation`` their rotation [rad] (counter-clockwise);
+    ``wall_time`` [s], ``steps``, ``dt`` [s]; ``options`` the numerical settings; ``mode`` the
+    mechanism at the end of the run, "S" or "T" (:func:`failure_mode`).
     """
 
     wall: str
@@ -142,6 +147,8 @@ class CollapseResult:
     dt: float = 0.0
     status: str = ""
     options: dict = field(default_factory=dict)
+    rotation: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    mode: str = ""
 
     @property
     def stable(self) -> bool:
@@ -150,7 +157,8 @@ class CollapseResult:
     def summary(self) -> dict:
         """JSON-ready scalars (nan as None is left to the writer)."""
         d = {k: v for k, v in asdict(self).items()
-             if k not in ("t", "d_top", "acc", "acc_v", "kh", "kv", "polygons", "displacement")}
+             if k not in ("t", "d_top", "acc", "acc_v", "kh", "kv", "polygons", "displacement",
+                          "rotation")}
         d["d_top_max"] = float(np.nanmax(self.d_top)) if self.d_top.size else math.nan
         d["A_peak"] = 0.6 * self.A_col if self.collapsed else math.nan
         d["r"] = d["A_peak"] / self.A_pseudo if self.collapsed else math.nan
@@ -178,7 +186,9 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                  stiffness_scale: float = 1e-3, safety: float = 0.2, update_dt: float = 1e-3,
                  sample_dt: float = 0.01, motion_dt: float = 1e-3, thrust_scale: float = 1.0,
                  vertical_ratio: float = 0.5, assumptions=None, build: dict | None = None,
-                 A_pseudo: float | None = None) -> CollapseResult:
+                 A_pseudo: float | None = None,
+                 damping_frame: str = "base", backfill: str = "thrust",
+                 backfill_options: dict | None = None) -> CollapseResult:
     """Run the DEM wall under S2 (or S1 with ``a_peak``) until collapse (module docstring).
 
     frequency [Hz]; vertical: "none", "in_phase", "opposition"; A_rate [m/s³] (default
@@ -187,7 +197,16 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     threshold: fraction of H (default 0.2, 0.05 for mock-ups); xi: mass-proportional damping
     ratio at ``frequency``; stiffness_scale, safety, ``build``: passed to
     :func:`~murus.retaining.dem_wall.build_wall`; update_dt [s]: thrust update interval;
-    thrust_scale: 0 removes the backfill, 1 the Annex E thrust; A_pseudo: skip its computation.
+    thrust_scale: 0 removes the backfill, 1 the Annex E thrust; A_pseudo: skip its computation;
+    damping_frame: the velocities the mass-proportional damping acts on, ``"base"`` (relative
+    to the base, default) or ``"absolute"`` (fixed frame, as UDEC/3DEC: "a force which is
+    proportional to absolute velocity and mass", 3DEC 5.0 manual, Optional Features §2.2);
+    backfill: ``"thrust"`` (default, the equivalent thrust on a wall with a backstop) or
+    ``"discrete"`` (a disc backfill behind the wall, no backstop, no thrust:
+    :class:`~murus.retaining.backfill.DiscreteBackfill` with the keywords
+    ``backfill_options``, e.g. ``W``, ``boundary``, ``radius``; ``wall_time`` then includes
+    the generation and settling of the backfill, ``options["backfill_options"]`` its
+    summary).
     """
     from murus.dem.engine import stop_when
     from murus.motion.synthetic import harmonic_ramp, two_ramp
@@ -206,6 +225,9 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     if not (A > 0 and math.isfinite(A)):
         raise CollapseError(f"A_rate must be positive [m/s3], got {A_rate!r}")
     thr = _threshold(wall, threshold)
+    if damping_frame not in ("base", "absolute"):
+        raise CollapseError(f"damping_frame must be 'base' or 'absolute', got "
+                            f"{damping_frame!r}")
     vert = None if vmode == "none" else vmode
     if sig == "S2":
         t_end = 6.0 * t_pseudo if t_max is None else float(t_max)
@@ -224,16 +246,35 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         return (float(np.interp(t, tt, gm.acc, right=0.0)),
                 float(np.interp(t, tt, accv, right=0.0)))
 
-    dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety, **(build or {}))
-    m = dw.model
-    thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=thrust_scale)
-    t0 = _time.perf_counter()
-    st = m.settle(external=thrust)
-    if not st.converged:
-        raise CollapseError(f"{wall.name}: the DEM wall does not settle under gravity and the "
-                            f"static thrust ({st.message})")
+    bmode = str(backfill).strip().lower()
+    if bmode not in ("thrust", "discrete"):
+        raise CollapseError(f"backfill must be 'thrust' or 'discrete', got {backfill!r}")
+    bf = None
+    if bmode == "thrust":
+        dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety, **(build or {}))
+        m = dw.model
+        thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=thrust_scale)
+        t0 = _time.perf_counter()
+        st = m.settle(external=thrust)
+        if not st.converged:
+            raise CollapseError(f"{wall.name}: the DEM wall does not settle under gravity and "
+                                f"the static thrust ({st.message})")
+    else:
+        from murus.retaining.backfill import DiscreteBackfill
+
+        t0 = _time.perf_counter()
+        bf = DiscreteBackfill(wall, **dict({"stiffness_scale": stiffness_scale},
+                                           **(backfill_options or {})))
+        dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety,
+                        **dict(build or {}, backstop=False, add_bodies=bf.add_to))
+        m = dw.model
+        thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=0.0)
+        st = bf.settle(dw, external=thrust)
     m.set_base_motion(gm)
     every = max(1, int(round(update_dt / m.dt)))
+    external, ext_every = thrust, every
+    if bf is not None:
+        external, ext_every = bf.external(thrust), min(every, bf.interval(m))
 
     def d_top(model):
         return dw.d_top()
@@ -241,7 +282,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     probes = {"d_top": d_top,
               "kh": lambda model: thrust.last[1], "kv": lambda model: thrust.last[2]}
     res = m.run(t_end=t_end, xi=xi, freq=f, probes=probes, sample_dt=sample_dt,
-                stop=stop_when(d_top, ">", thr), external=thrust, external_every=every)
+                stop=stop_when(d_top, ">", thr), external=external, external_every=ext_every,
+                damping_frame=damping_frame)
     wall_time = _time.perf_counter() - t0
     t = res.t
     d = res["d_top"]
@@ -267,14 +309,33 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     disp = m.body_displacement() - m.body_displacement()[dw.foundation]
     bodies = m.body_of_polygon()
     dmag = np.hypot(disp[bodies, 0], disp[bodies, 1])
+    rot = m.body_rotation()
+    mode = failure_mode(float(d[-1]) if d.size else 0.0, float(rot[dw.top]),
+                        float(m.bref[dw.top, 1]))
     opts = dict(dw.options, xi=xi, update_dt=update_dt, sample_dt=sample_dt,
                 motion_dt=motion_dt, thrust_scale=thrust_scale, t_pseudo=t_pseudo,
                 threshold_fraction=thr / wall.height, vertical_ratio=vertical_ratio,
-                settle_steps=st.steps)
+                settle_steps=st.steps, damping_frame=damping_frame)
+    opts["backfill"] = bmode
+    if bf is not None:
+        opts["backfill_options"] = bf.summary()
     return CollapseResult(wall.name, f, vmode, sig, A, float(A_pseudo), ap, thr, wall.height,
                           collapsed, t_col, A_col, float(m.time), t, d, acc, acc_v,
                           res["kh"], res["kv"], polys, dmag, wall_time, res.steps, res.dt,
-                          res.status, opts)
+                          res.status, opts, rot[bodies], mode)
+
+
+def failure_mode(d_top: float, rotation: float, z_top: float, share: float = 0.5) -> str:
+    """``"T"`` (toppling) or ``"S"`` (sliding), the mechanism labels of seed 001 Table 3,
+    from the top stone's displacement ``d_top`` [m] (out of the slope positive), its rotation
+    [rad] (counter-clockwise positive, i.e. tipping out of the slope) and the height of its
+    centroid above the toe ``z_top`` [m]: toppling when the rotation accounts for at least
+    ``share`` of d_top (``rotation z_top >= share d_top``; a rigid toppling about a joint at
+    height ``z_j`` gives ``rotation z_top = d_top z_top / (z_top - z_j) >= d_top``, a pure
+    sliding gives 0). ``""`` when ``d_top <= 0``."""
+    if not d_top > 0:
+        return ""
+    return "T" if rotation * z_top >= share * d_top else "S"
 
 
 def peak_ratio_check(wall: RetainingWall, frequency: float, A_col: float,

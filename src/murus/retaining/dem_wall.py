@@ -194,7 +194,8 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
                stiffness_scale: float = 1.0, foundation_depth: float | None = None,
                foundation_front: float | None = None, safety: float = 0.2,
                rounding: float | None = None, top: str = "front",
-               backstop: bool = True, backstop_joint: dict | None = None) -> DemWall:
+               backstop: bool = True, backstop_joint: dict | None = None,
+               add_bodies: Callable | None = None) -> DemWall:
     """The DEM model of the cross-section of ``wall`` (module docstring), one metre thick.
 
     kn, ks : stone-stone joint stiffness [Pa/m] (default: seed 001 Table 6, 2.8e12, or Table 1
@@ -211,6 +212,9 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
         interface of seed 001 Table 6 (kn = ks = 2.9e10 Pa/m times ``stiffness_scale``,
         friction ``wall.interface_friction_deg``) unless ``backstop_joint`` (Joint keyword
         arguments) is given. It only pushes: the active thrust stays the applied force.
+    add_bodies : ``add_bodies(model)`` called after the stones and before the model is built,
+        to add more bodies and joints (the discrete backfill of
+        :mod:`murus.retaining.backfill`); the stones keep their body indices.
     """
     from murus.dem import Joint, Model
 
@@ -266,6 +270,8 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
         plate = m.add_polygon([(x0, z0), (x0 + wpl, z0), (xt + wpl, zt), (xt, zt)],
                               density=density, kinematic="base", group="backfill")
         m.set_joint(Joint(**bk), "backfill", "stones")
+    if add_bodies is not None:
+        add_bodies(m)
     m.build()
     # back face: x = B - lambda_m z from the heel to the crest
     part = wall.part_above(j0)
