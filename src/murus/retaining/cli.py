@@ -11,6 +11,7 @@ matplotlib), so that ``murus --help`` stays fast.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import typer
 
@@ -260,58 +261,175 @@ def collapse(
     typer.echo(f"wrote {d / 'd_top.csv'}, {d / 'summary.json'}, {d / 'collapse.png'}")
 
 
+# options of the command line form of behaviour-factor -> keys of the case file
+_BF_KEYS = {"wall.preset": "--preset", "wall.stone_height": "--stone-height",
+            "wall.base": "--base", "cases.frequencies": "--frequencies",
+            "cases.vertical": "--vertical", "cases.check_ratios": "--check-ratios",
+            "numerics.stiffness_scale": "--stiffness-scale", "numerics.xi": "--xi",
+            "numerics.threshold": "--threshold", "numerics.t_max": "--t-max"}
+
+
+def _numbers(text: str, option: str) -> list[float]:
+    try:
+        vals = [float(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise ValueError(f"{option} must be numbers separated by commas, got {text!r}") from None
+    if any(not math.isfinite(v) for v in vals):
+        raise ValueError(f"{option} must be finite numbers, got {text!r}")
+    return vals
+
+
+def _options_case(preset_name, frequencies, vertical, check_ratios, stone_height,
+                  stiffness_scale, xi, threshold, t_max, base) -> dict:
+    """The case-file tables of the command-line form (defaults: 3, 5, 10 Hz, no vertical
+    component, checks at 0.6 and 0.7 A_col, the numerics of collapse_run)."""
+    freqs = _numbers(frequencies if frequencies is not None else "3,5,10", "--frequencies")
+    if not freqs or any(f <= 0 for f in freqs):
+        raise ValueError(f"--frequencies must be positive numbers, got {frequencies!r}")
+    wall = {"preset": preset_name}
+    if stone_height is not None:
+        wall["stone_height"] = stone_height
+    if base is not None:
+        wall["base"] = base
+    cases = {"frequencies": freqs}
+    if vertical is not None:
+        cases["vertical"] = [x.strip() for x in vertical.split(",") if x.strip()]
+    if check_ratios is not None:
+        cases["check_ratios"] = _numbers(check_ratios, "--check-ratios")
+    num = {k: v for k, v in (("stiffness_scale", stiffness_scale), ("xi", xi),
+                             ("threshold", threshold), ("t_max", t_max)) if v is not None}
+    return {"wall": wall, "cases": cases, "numerics": num}
+
+
 @app.command("behaviour-factor")
 def behaviour_factor_cmd(
-    preset_name: str = _PRESET,
-    out: str = typer.Option(..., "--out", help="Output directory."),
-    frequencies: str = typer.Option("3,5,10", "--frequencies", help="Input frequencies [Hz], "
-                                    "comma-separated."),
-    vertical: str = typer.Option("none", "--vertical", help="Vertical modes, comma-separated: "
-                                 "none, in_phase, opposition."),
-    workers: int = typer.Option(1, "--workers", help="Parallel processes (1: serial)."),
-    stone_height: float | None = _STONE_H,
-    stiffness_scale: float = _STIFF,
-    xi: float = _XI,
-    threshold: float | None = _THR,
-    t_max: float | None = _TMAX,
+    case: Path | None = typer.Argument(None, help="Case file (TOML, examples/retaining/); or "
+                                       "give the wall with --preset and the options below.",
+                                       show_default=False),
+    out: Path | None = typer.Option(None, "--out", "-o", help="Study folder (default: the "
+                                    "case file's [output] folder, or its name next to it)."),
+    executor: str | None = typer.Option(None, "--executor", help="serial, process (a local "
+                                        "pool of --workers) or dask (--scheduler; default a "
+                                        "local cluster). Default: the case file's [executor], "
+                                        "else process."),
+    workers: int | None = typer.Option(None, "--workers", "-w", min=1, help="Worker "
+                                       "processes (default: the case file's, else the cores)."),
+    scheduler: str | None = typer.Option(None, "--scheduler",
+                                         help="Dask scheduler address, tcp://HOST:PORT."),
+    dask: str | None = typer.Option(None, "--dask", help="'local': start a local Dask cluster."),
+    serial: bool = typer.Option(False, "--serial", help="Run in this process (no pool)."),
+    retries: int | None = typer.Option(None, "--retries", min=0, help="Retries of a failing "
+                                       "case (default: [study] retries, 2)."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
+    no_snapshots: bool = typer.Option(False, "--no-snapshots", help="Do not draw the "
+                                      "cases/*.png figures."),
+    preset_name: str | None = typer.Option(None, "--preset", help="Without a case file: "
+                                           "DSRW1..DSRW4, C3s or mockup-<H/B>."),
+    frequencies: str | None = typer.Option(None, "--frequencies", help="Without a case "
+                                           "file: input frequencies [Hz], comma-separated "
+                                           "(default 3,5,10)."),
+    vertical: str | None = typer.Option(None, "--vertical", help="Without a case file: "
+                                        "vertical modes, comma-separated: none, in_phase, "
+                                        "opposition (default none)."),
+    check_ratios: str | None = typer.Option(None, "--check-ratios", help="Without a case "
+                                            "file: S1 checks at these fractions of A_col, "
+                                            "comma-separated (default 0.6,0.7; '' none)."),
+    stone_height: float | None = typer.Option(None, "--stone-height", help="Without a case "
+                                              "file: course height [m] (mock-ups)."),
+    stiffness_scale: float | None = typer.Option(None, "--stiffness-scale", help="Without a "
+                                                 "case file: joint stiffness factor (default "
+                                                 "1e-3)."),
+    xi: float | None = typer.Option(None, "--xi", help="Without a case file: damping ratio "
+                                    "(default 0.10)."),
+    threshold: float | None = typer.Option(None, "--threshold", help="Without a case file: "
+                                           "collapse threshold, fraction of H."),
+    t_max: float | None = typer.Option(None, "--t-max", help="Without a case file: end of an "
+                                       "S2 run without collapse [s]."),
     base: str | None = _BASE,
 ) -> None:
     """Behaviour factor r = 0.6 A_col / A_pseudo (seed 001 Tables 7 and 8): S2 collapse runs
-    for each frequency and vertical mode; writes behaviour_factor.csv and .md."""
-    from pathlib import Path
+    for each frequency and vertical mode, then S1 checks at 0.6 and 0.7 A_col, as stored,
+    resumable tasks on a process pool or a Dask cluster (as `murus study run`: running the
+    same command again computes only the missing cases; a folder of another study is refused).
+    Writes OUT/behaviour_factor.csv and .md, OUT/cases/*.json (summaries), *.csv (d_top
+    histories) and *.png (the blocks at collapse); `murus study status OUT` shows progress."""
+    from murus.cliutil import guard
+    from murus.config import CaseError
+    from murus.studies.cli import executor_choice, progress_bar
+    from murus.studies.sweep import StudyError, check_folder
 
-    from murus.retaining.collapse import behaviour_factor
+    legacy = {"--preset": preset_name, "--frequencies": frequencies, "--vertical": vertical,
+              "--check-ratios": check_ratios, "--stone-height": stone_height,
+              "--stiffness-scale": stiffness_scale, "--xi": xi, "--threshold": threshold,
+              "--t-max": t_max, "--base": base}
+    given = [k for k, v in legacy.items() if v is not None]
+    errors = (CaseError, StudyError, ImportError, OSError, *_collapse_errors())
+    with guard(*errors, first_line=True):
+        from murus.retaining.study import behaviour_study, load_behaviour_study
 
-    try:
-        _prepare_out(out)
-        try:
-            freqs = [float(x) for x in frequencies.split(",") if x.strip()]
-        except ValueError:
-            raise ValueError(f"--frequencies must be numbers separated by commas, got "
-                             f"{frequencies!r}") from None
-        if not freqs or any(not (f > 0 and math.isfinite(f)) for f in freqs):
-            raise ValueError(f"--frequencies must be positive numbers, got {frequencies!r}")
-        if workers < 1:
-            raise ValueError(f"--workers must be >= 1, got {workers}")
-        modes = [x.strip() for x in vertical.split(",") if x.strip()]
-        wall = _dem_wall(preset_name, base, stone_height)
-        kw = dict(stiffness_scale=stiffness_scale, xi=xi, threshold=threshold, t_max=t_max)
-        if workers > 1:
-            from concurrent.futures import ProcessPoolExecutor
-
-            with ProcessPoolExecutor(max_workers=workers) as ex:
-                table = behaviour_factor(wall, freqs, modes, executor=ex, **kw)
+        if case is not None and given:
+            raise ValueError(f"give a case file or {given[0]} and the other wall options, "
+                             "not both")
+        if case is None:
+            if preset_name is None:
+                raise ValueError("give a case file (CASE.toml) or --preset")
+            if out is None:
+                raise ValueError("--out is required without a case file")
+            data = _options_case(preset_name, frequencies, vertical, check_ratios,
+                                 stone_height, stiffness_scale, xi, threshold, t_max, base)
+            try:
+                st = behaviour_study(data)
+            except CaseError as exc:  # name the option, not the table key
+                msg = str(exc)
+                for key, opt in _BF_KEYS.items():
+                    msg = msg.replace(f"[{key}]", opt)
+                raise CaseError(msg) from None
+            folder = out
         else:
-            table = behaviour_factor(wall, freqs, modes, **kw)
-    except _collapse_errors() as exc:
-        _fail(exc)
-    d = Path(out)
-    d.mkdir(parents=True, exist_ok=True)
-    table.to_csv(d / "behaviour_factor.csv")
-    md = table.to_markdown()
-    (d / "behaviour_factor.md").write_text(md)
-    typer.echo(md, nl=False)
-    typer.echo(f"wrote {d / 'behaviour_factor.csv'}, {d / 'behaviour_factor.md'}")
+            st = load_behaviour_study(case)
+            folder = out if out is not None else Path(st.output) if st.output else \
+                case.parent / case.stem
+        if retries is not None:
+            st.retries = retries
+        kind, sched = executor_choice(executor, serial, dask, scheduler, default=(
+            st.executor["kind"], st.executor.get("scheduler")))
+        n_workers = workers if workers is not None else (
+            st.executor.get("workers") if kind == st.executor["kind"] else None)
+        check_folder(folder, st.digest())  # another study: refused before anything is written
+    n = len(st.tasks())
+    typer.echo(f"{st.name}: {st.wall.name}, {len(st.cases)} S2 runs and "
+               f"{n - len(st.cases)} S1 checks -> {folder}")
+    from murus.retaining.study import run_behaviour_study, write_snapshots
+
+    run = dict(workers=n_workers, scheduler=sched, out=folder)
+    try:
+        # the executor is opened (and closed) by the run: on Ctrl-C the cases running finish
+        # and are stored with the others before it stops
+        with guard(*errors, first_line=True):
+            if quiet:
+                res = run_behaviour_study(st, kind, **run)
+            else:
+                prog, cb = progress_bar("cases", st.name)
+                with prog:
+                    res = run_behaviour_study(st, kind, progress=cb, **run)
+    except KeyboardInterrupt:
+        from murus.studies.sweep import study_status
+
+        s = study_status(folder)
+        typer.echo(f"interrupted: {len(s['done'])}/{s['total']} cases stored in {folder}; run "
+                   "the same command again to compute the others", err=True)
+        raise typer.Exit(130) from None
+    if not no_snapshots:
+        with guard(*errors, first_line=True):
+            write_snapshots(folder)
+    typer.echo(res.to_markdown(), nl=False)
+    typer.echo(f"wrote {folder / 'behaviour_factor.csv'}, {folder / 'behaviour_factor.md'}, "
+               f"{folder / 'cases'}/")
+    if res.n_failed:
+        typer.echo(f"warning: {res.n_failed} cases failed (errors in "
+                   f"{folder / 'failures.json'}); run the same command again to retry them",
+                   err=True)
+        raise typer.Exit(1)
 
 
 @app.command("calibrate-backfill")
