@@ -28,6 +28,8 @@ def main() -> None:
     import identify
     import motion
     import restrained
+    import retaining_backfill
+    import retaining_dynamic
     import retaining_pseudostatic
     import rocking
     import seed000_model
@@ -36,7 +38,8 @@ def main() -> None:
 
     parts = [HEADER, rocking.section(), restrained.section(), seed000_model.section(),
              winkler.run(ROOT / "docs" / "figures" / "winkler"), motion.section(),
-             eurocode.section(), retaining_pseudostatic.section(), studies.section(),
+             eurocode.section(), retaining_pseudostatic.section(), retaining_dynamic.section(),
+             retaining_backfill.section(), studies.section(),
              identify.section()]
     Path(args.out).write_text("\n".join(parts))
     print(f"wrote {args.out}")
