@@ -26,6 +26,7 @@ RUNS = [
     ("bench_spectra.py", "RESULTS_motion.md"),
     ("bench_studies.py", "RESULTS_studies.md"),
     ("bench_dem.py", "RESULTS_dem.md"),
+    ("bench_retaining.py", "RESULTS_retaining.md"),
 ]
 
 

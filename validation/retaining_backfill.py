@@ -143,8 +143,10 @@ def figure(recs: dict, fig_dir: Path) -> str:
         b = r["backfill_options"]["boundary"]
         n = r["summary"]["options"]["backfill_options"]["n_discs"]
         col, ls = STYLE.get(key, ("C2", "-"))
+        seed = r["backfill_options"].get("seed")
+        other = f", packing seed {seed}" if seed else ""
         ax.plot(r["t"], 100 * np.asarray(r["d_top"]), ls=ls, color=col, lw=1.1,
-                label=f"discrete, {b}, W = {W:g} m ({n} discs)")
+                label=f"discrete, {b}, W = {W:g} m ({n} discs{other})")
     if THRUST_CACHE.exists():
         th = json.loads(THRUST_CACHE.read_text())
         ax.plot(th["t"], 100 * np.asarray(th["d_top"]), ":", color="0.4", lw=1.0,

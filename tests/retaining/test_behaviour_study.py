@@ -321,3 +321,24 @@ def test_resume_of_a_real_run_after_deleting_a_case(serial_run, tmp_path):
                                               else "stable")
     assert (out / "behaviour_factor.md").read_bytes() == \
         (serial_run / "behaviour_factor.md").read_bytes()  # the stored run times
+
+
+def test_discrete_backfill_options_reach_collapse_run():
+    """[numerics] backfill = "discrete" and its [numerics.backfill_options] go to every run's
+    keyword arguments; options without backfill = "discrete" are refused with the key."""
+    from murus.config import CaseError
+    from murus.retaining.study import behaviour_study
+
+    base = {"wall": {"preset": "mockup-1.3", "stone_height": 0.011},
+            "cases": {"frequencies": [5.0]}}
+    st = behaviour_study(dict(base, numerics={
+        "backfill": "discrete", "backfill_options": {"W": 0.5, "boundary": "absorbing"}}))
+    for case in st.tasks():
+        kw = st.case_kwargs(case, {"summary": {"A_col": 1.0, "A_rate": 1.0}})
+        assert kw["backfill"] == "discrete"
+        assert kw["backfill_options"] == {"W": 0.5, "boundary": "absorbing"}
+    with pytest.raises(CaseError, match=r"\[numerics\].*needs backfill = 'discrete'"):
+        behaviour_study(dict(base, numerics={"backfill_options": {"W": 0.5}}))
+    with pytest.raises(CaseError, match=r"numerics.backfill_options.boundary"):
+        behaviour_study(dict(base, numerics={"backfill": "discrete",
+                                             "backfill_options": {"boundary": "wall"}}))

@@ -90,3 +90,18 @@ def test_imports_stay_light():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
     assert out.stdout.strip() == "[]", out.stdout + out.stderr
+
+
+@pytest.mark.parametrize("args, word", [
+    (["--width", "5"], "need --backfill discrete"),
+    (["--backfill", "discrete", "--boundary", "free-field"], "boundary must be one of"),
+    (["--backfill", "soil"], "backfill must be 'thrust' or 'discrete'"),
+    (["--damping-frame", "relative"], "damping_frame must be 'base' or 'absolute'"),
+])
+def test_collapse_backfill_options_bad_input(tmp_path, args, word):
+    out = tmp_path / "out"
+    r = _cli("collapse", "--preset", "DSRW1", "--out", str(out), *args)
+    assert r.exit_code == 2
+    err = _err(r)
+    assert len(err.splitlines()) == 1 and err.startswith("error: ") and word in err, err
+    assert not out.exists()

@@ -120,8 +120,8 @@ from murus import G
 from murus.retaining.geometry import RetainingWall
 
 __all__ = ["BackfillError", "Packing", "DiscreteBackfill", "AbsorbingBoundary",
-           "CALIBRATION", "DISC_JOINT", "rolling_for", "wave_speeds", "check_overlap",
-           "generate_packing", "solid_fraction", "region_polygon", "wall_thrust"]
+           "CALIBRATION", "DISC_JOINT", "default_width", "rolling_for", "wave_speeds",
+           "check_overlap", "generate_packing", "solid_fraction", "region_polygon", "wall_thrust"]
 
 #: Biaxial calibration (:func:`murus.dem.biaxial.calibrate_rolling`, disc friction 30 deg,
 #: kn = ks = 1e9 Pa/m, radii ratio 1.5): (peak friction angle [deg], rolling coefficient mu_r).
@@ -143,6 +143,13 @@ class BackfillError(ValueError):
 
 def _is_mock(wall: RetainingWall) -> bool:
     return wall.name.lower().startswith("mockup")
+
+
+def default_width(wall: RetainingWall) -> float:
+    """Default backfill width [m]: ``2 H``, the ratio of seed 001 (W = 5 m behind its 2.5 m
+    walls, §4.1; Figure 10 shows that 2W changes nothing), so that a mock-up gets a backfill
+    of its own scale."""
+    return 2.0 * wall.height
 
 
 def rolling_for(phi_deg: float) -> float:
@@ -331,13 +338,14 @@ def _interface_joint(wall, stiffness_scale):
     return Joint(kn=k, ks=k, friction_deg=wall.interface_friction_deg)
 
 
-def generate_packing(wall: RetainingWall, W: float = 5.0, *, radius: float | None = None,
+def generate_packing(wall: RetainingWall, W: float | None = None, *, radius: float | None = None,
                      spread: float = 0.2, seed: int = 0, fill: float = 1.45,
                      gap: float = 0.02, rolling: float | None = None,
                      precompact_g: float = 8.0,
                      steps: tuple[int, int] = (6000, 30000), tol: float = 1e-2,
                      density: float = 1800.0) -> Packing:
-    """Settled disc packing of the backfill of ``wall``, ``W`` [m] wide (module docstring).
+    """Settled disc packing of the backfill of ``wall``, ``W`` [m] wide (default ``2 H``: the 5
+    m of seed 001 for its 2.5 m walls; module docstring).
 
     radius : mean radius [m] (default ``0.016 H``); spread : radii uniform in ``radius (1 -+
     spread)``; seed : random radii; fill : the grid fills the region stretched upwards by this
@@ -350,7 +358,7 @@ def generate_packing(wall: RetainingWall, W: float = 5.0, *, radius: float | Non
     from murus.dem import Joint, Model
 
     t0 = _time.perf_counter()
-    W = float(W)
+    W = default_width(wall) if W is None else float(W)
     if not (W > 0 and math.isfinite(W)):
         raise BackfillError(f"backfill width W must be positive [m], got {W!r}")
     rmean = 0.016 * wall.height if radius is None else float(radius)
@@ -527,7 +535,8 @@ def _forces_from(model, body_k, others) -> dict[int, np.ndarray]:
 
 # ------------------------------------------------------------------------ backfill
 class DiscreteBackfill:
-    """The discrete backfill of ``wall``, ``W`` [m] wide, with the lateral ``boundary``
+    """The discrete backfill of ``wall``, ``W`` [m] wide (default :func:`default_width`, ``2
+    H``), with the lateral ``boundary``
     ``"container"`` or ``"absorbing"`` (module docstring).
 
     Use: ``bf = DiscreteBackfill(wall, W)``; ``dw = build_wall(wall, backstop=False,
@@ -543,7 +552,8 @@ class DiscreteBackfill:
     relax_vtol, relax_xi : the dynamic relaxation that follows (:meth:`_relax`).
     """
 
-    def __init__(self, wall: RetainingWall, W: float = 5.0, boundary: str = "container", *,
+    def __init__(self, wall: RetainingWall, W: float | None = None,
+                 boundary: str = "container", *,
                  radius: float | None = None, spread: float = 0.2, seed: int = 0,
                  fill: float = 1.45, precompact_g: float = 8.0,
                  packing_steps: tuple[int, int] = (6000, 30000), packing: Packing | None = None,
@@ -564,7 +574,7 @@ class DiscreteBackfill:
         if not (stiffness_scale > 0 and math.isfinite(stiffness_scale)):
             raise BackfillError(f"stiffness_scale must be positive, got {stiffness_scale!r}")
         self.wall = wall
-        self.W = float(W)
+        self.W = default_width(wall) if W is None else float(W)
         self.boundary = b
         self.stiffness_scale = float(stiffness_scale)
         self.rolling = (rolling_for(wall.backfill_friction_deg) if rolling is None

@@ -205,24 +205,48 @@ def collapse(
     threshold: float | None = _THR,
     t_max: float | None = _TMAX,
     base: str | None = _BASE,
+    backfill: str = typer.Option("thrust", "--backfill", help="'thrust': the equivalent EN "
+                                 "1998-5 thrust on the back face (fast); 'discrete': a disc "
+                                 "backfill behind the wall (minutes; murus.retaining.backfill "
+                                 "says when to use which)."),
+    width: float | None = typer.Option(None, "--width", help="With --backfill discrete: "
+                                       "backfill width W [m] (default 2 H: 5 m for the "
+                                       "seed 001 walls)."),
+    boundary: str | None = typer.Option(None, "--boundary", help="With --backfill discrete: "
+                                        "lateral boundary, 'absorbing' (viscous, default) or "
+                                        "'container' (a rigid plate moving with the base)."),
+    radius: float | None = typer.Option(None, "--radius", help="With --backfill discrete: "
+                                        "mean disc radius [m] (default 0.016 H)."),
+    damping_frame: str = typer.Option("base", "--damping-frame", help="Velocities the "
+                                      "mass-proportional damping acts on: 'base' (relative to "
+                                      "the base) or 'absolute' (as UDEC)."),
 ) -> None:
-    """S2 collapse run of the DEM wall with the equivalent thrust (seed 001 §4.2): writes
-    d_top.csv (history), summary.json (A_col, t_col, A_pseudo, r) and collapse.png (the blocks
-    at the end of the run, coloured by their displacement relative to the base)."""
+    """S2 collapse run of the DEM wall with the equivalent thrust or a discrete backfill (seed
+    001 §4.2): writes d_top.csv (history), summary.json (A_col, t_col, A_pseudo, r) and
+    collapse.png (the blocks at the end of the run, coloured by their displacement relative
+    to the base)."""
     from pathlib import Path
 
+    from murus.retaining.backfill import BackfillError
     from murus.retaining.collapse import collapse_run, peak_ratio_check
 
     try:
         _prepare_out(out)
         wall = _dem_wall(preset_name, base, stone_height)
-        kw = dict(stiffness_scale=stiffness_scale, xi=xi, threshold=threshold, t_max=t_max)
+        kw = dict(stiffness_scale=stiffness_scale, xi=xi, threshold=threshold, t_max=t_max,
+                  damping_frame=damping_frame, backfill=backfill)
+        opts = {k: v for k, v in (("W", width), ("boundary", boundary), ("radius", radius))
+                if v is not None}
+        if opts and backfill.strip().lower() != "discrete":
+            raise ValueError("--width, --boundary and --radius need --backfill discrete")
+        if backfill.strip().lower() == "discrete":
+            kw["backfill_options"] = dict({"boundary": "absorbing"}, **opts)
         res = collapse_run(wall, frequency, vertical, **kw)
         checks = {}
         if check_peak and res.collapsed:
             checks = peak_ratio_check(wall, frequency, res.A_col, vertical=vertical,
                                       A_rate=res.A_rate, A_pseudo=res.A_pseudo, **kw)
-    except _collapse_errors() as exc:
+    except (*_collapse_errors(), BackfillError) as exc:
         _fail(exc)
     summary = res.summary()
     if check_peak:

@@ -117,8 +117,10 @@ class CollapseResult:
     (input, [m/s²]), ``kh``, ``kv``; ``polygons`` the stones and foundation at the end (the
     collapse instant when stopped there) and ``displacement`` their displacement magnitude
     relative to the base [m], ``rotation`` their rotation [rad] (counter-clockwise);
-    ``wall_time`` [s], ``steps``, ``dt`` [s]; ``options`` the numerical settings; ``mode`` the
-    mechanism at the end of the run, "S" or "T" (:func:`failure_mode`).
+    ``wall_time`` [s] (``setup_time`` of it before the dynamic run: building, settling, the
+    backfill's generation; not in :meth:`summary`, which stays the same on a re-run),
+    ``steps``, ``dt`` [s]; ``options`` the numerical settings; ``mode`` the mechanism at the
+    end of the run, "S" or "T" (:func:`failure_mode`).
     """
 
     wall: str
@@ -149,6 +151,7 @@ class CollapseResult:
     options: dict = field(default_factory=dict)
     rotation: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     mode: str = ""
+    setup_time: float = 0.0
 
     @property
     def stable(self) -> bool:
@@ -158,7 +161,7 @@ class CollapseResult:
         """JSON-ready scalars (nan as None is left to the writer)."""
         d = {k: v for k, v in asdict(self).items()
              if k not in ("t", "d_top", "acc", "acc_v", "kh", "kv", "polygons", "displacement",
-                          "rotation")}
+                          "rotation", "setup_time")}
         d["d_top_max"] = float(np.nanmax(self.d_top)) if self.d_top.size else math.nan
         d["A_peak"] = 0.6 * self.A_col if self.collapsed else math.nan
         d["r"] = d["A_peak"] / self.A_pseudo if self.collapsed else math.nan
@@ -281,6 +284,7 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
 
     probes = {"d_top": d_top,
               "kh": lambda model: thrust.last[1], "kv": lambda model: thrust.last[2]}
+    setup_time = _time.perf_counter() - t0
     res = m.run(t_end=t_end, xi=xi, freq=f, probes=probes, sample_dt=sample_dt,
                 stop=stop_when(d_top, ">", thr), external=external, external_every=ext_every,
                 damping_frame=damping_frame)
@@ -322,7 +326,7 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     return CollapseResult(wall.name, f, vmode, sig, A, float(A_pseudo), ap, thr, wall.height,
                           collapsed, t_col, A_col, float(m.time), t, d, acc, acc_v,
                           res["kh"], res["kv"], polys, dmag, wall_time, res.steps, res.dt,
-                          res.status, opts, rot[bodies], mode)
+                          res.status, opts, rot[bodies], mode, setup_time)
 
 
 def failure_mode(d_top: float, rotation: float, z_top: float, share: float = 0.5) -> str:

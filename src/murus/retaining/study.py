@@ -52,6 +52,8 @@ Case file (TOML, ``examples/retaining/``)::
     stiffness_scale = 1e-3
     # t_pseudo, t_max, tail, threshold, safety, update_dt, sample_dt, motion_dt,
     # thrust_scale, vertical_ratio, damping_frame; [numerics.build]: build_wall options
+    # backfill = "discrete"      # a disc backfill instead of the equivalent thrust, with
+    # [numerics.backfill_options] W = 5.0, boundary = "absorbing", radius, spread, seed, rolling
 
     [executor]                   # the CLI's --executor/--workers/--scheduler win
     kind = "process"             # serial | process | dask
@@ -184,6 +186,18 @@ class BuildCfg(Strict):
     backstop: bool | None = None
 
 
+class BackfillCfg(Strict):
+    """Options of :class:`murus.retaining.backfill.DiscreteBackfill` (None: its default);
+    used with ``backfill = "discrete"``."""
+
+    W: float | None = Field(default=None, gt=0, **_FLOAT)
+    boundary: Literal["container", "absorbing"] | None = None
+    radius: float | None = Field(default=None, gt=0, **_FLOAT)
+    spread: float | None = Field(default=None, ge=0, lt=1, **_FLOAT)
+    seed: int | None = Field(default=None, ge=0)
+    rolling: float | None = Field(default=None, ge=0, **_FLOAT)
+
+
 class NumericsCfg(Strict):
     """Keyword arguments of :func:`murus.retaining.collapse.collapse_run` (None: its
     default)."""
@@ -201,13 +215,24 @@ class NumericsCfg(Strict):
     thrust_scale: float | None = Field(default=None, ge=0, **_FLOAT)
     vertical_ratio: float | None = Field(default=None, gt=0, **_FLOAT)
     damping_frame: Literal["base", "absolute"] | None = None
+    backfill: Literal["thrust", "discrete"] | None = None
     build: BuildCfg = BuildCfg()
+    backfill_options: BackfillCfg = BackfillCfg()
+
+    @model_validator(mode="after")
+    def _backfill_options(self):
+        if self.backfill != "discrete" and self.backfill_options.model_dump(exclude_none=True):
+            raise ValueError("[numerics.backfill_options] needs backfill = 'discrete'")
+        return self
 
     def kwargs(self) -> dict:
-        kw = self.model_dump(exclude={"build"}, exclude_none=True)
+        kw = self.model_dump(exclude={"build", "backfill_options"}, exclude_none=True)
         b = self.build.model_dump(exclude_none=True)
         if b:
             kw["build"] = b
+        o = self.backfill_options.model_dump(exclude_none=True)
+        if o:
+            kw["backfill_options"] = o
         return kw
 
 
