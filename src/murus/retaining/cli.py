@@ -21,7 +21,8 @@ from murus.cliutil import fail as _fail
 app = typer.Typer(
     rich_markup_mode=None,
     name="retaining",
-    help="Dry-stone retaining walls (seed 001): pseudo-static resistance A_pseudo, geometry.",
+    help="Dry-stone retaining walls (seed 001): geometry, pseudo-static resistance A_pseudo, "
+         "dynamic collapse A_col, behaviour factor r, backfill calibration, several sections.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
