@@ -105,3 +105,34 @@ def test_errors():
         build_wall(preset("mockup-2.7"))
     with pytest.raises(DemWallError, match="stiffness_scale"):
         build_wall(preset("DSRW1"), stiffness_scale=0.0)
+
+
+def test_headers_and_bond_phase():
+    """Header courses are one stone from face to face; bond_phase 1 swaps the courses that start
+    with a half stone; the stones still tile the section; bad indices are refused by name."""
+    w = preset("DSRW1")
+    plain = stones_of_wall(w)
+    laid = stones_of_wall(w, headers=[3, 10])
+    for k, (a, b) in enumerate(zip(plain, laid, strict=True)):
+        if k in (3, 10):
+            assert len(a) >= 2 and len(b) == 1
+            assert polygon_area_centroid([tuple(p) for p in b[0]])[0] == pytest.approx(
+                sum(polygon_area_centroid([tuple(p) for p in q])[0] for q in a), rel=1e-12)
+        else:
+            assert len(a) == len(b)
+    swapped = stones_of_wall(w, bond_phase=1)
+
+    def front_width(course):
+        return float(np.ptp(np.asarray(course[0])[:, 0]))
+
+    # phase 0: the odd courses start with a half stone at the front (0.175 m along the bed plus
+    # the batter), phase 1 the even ones; the front stones of the other courses are whole
+    for k in range(len(plain)):
+        half, whole = (plain[k], swapped[k]) if k % 2 else (swapped[k], plain[k])
+        assert front_width(half) < 0.2 < 0.35 < front_width(whole)
+    dw = build_wall(w, headers=[0], bond_phase=1)
+    assert abs(dw.stone_weight / w.weight - 1.0) < 1e-6 and len(dw.courses[0]) == 1
+    with pytest.raises(DemWallError, match=r"headers: course 99 is not a course index"):
+        stones_of_wall(w, headers=[99])
+    with pytest.raises(DemWallError, match="bond_phase must be 0 or 1"):
+        stones_of_wall(w, bond_phase=2)

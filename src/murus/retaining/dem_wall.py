@@ -14,10 +14,13 @@ last joint and the horizontal crest. Each course is cut into stones of length ``
 seed 001 §4.1) by head joints perpendicular to the beds, in running bond: the cuts of odd
 courses are offset by ``L/2`` from the front face, so that odd courses start with a half stone
 at the front; the end pieces at the faces are whatever fits the batters, and an end piece
-shorter than ``min_piece L`` is merged with its neighbour (no slivers). Every stone is the
-course polygon clipped by two half-planes: a convex polygon, and the stones tile the section
-exactly (their total weight is :attr:`RetainingWall.weight`). The wall stands on a kinematic
-foundation slab (``kinematic="base"``, moved by the base motion) below the base joint, whose top
+shorter than ``min_piece L`` is merged with its neighbour (no slivers). ``bond_phase = 1``
+shifts the even courses instead (the other stretcher section of the same wall), and the
+courses listed in ``headers`` are single through-stones from face to face (seed 001 §3.2,
+Figure 3: the cross-sections of one wall differ by the position of their headers). Every
+stone is the course polygon clipped by two half-planes: a convex polygon, and the stones tile
+the section exactly (their total weight is :attr:`RetainingWall.weight`). The wall stands on a
+kinematic foundation slab (``kinematic="base"``, moved by the base motion) below the base joint, whose top
 face is the base joint line extended in front of the toe and behind the heel; the base joint is
 then a stone-foundation joint with the stone-stone properties.
 
@@ -59,7 +62,7 @@ Units: SI (m, kg, s, N, rad; ``*_deg`` in degrees).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -141,9 +144,20 @@ def _band(section, lower, upper):
 
 
 def stones_of_wall(wall: RetainingWall, stone_length: float | None = None,
-                   min_piece: float = 0.4) -> list[list[list[tuple[float, float]]]]:
+                   min_piece: float = 0.4, headers: Sequence[int] = (),
+                   bond_phase: int = 0) -> list[list[list[tuple[float, float]]]]:
     """The stone polygons of ``wall`` (module docstring), course by course (bottom first), each
-    course front to back; vertices counter-clockwise [m]."""
+    course front to back; vertices counter-clockwise [m].
+
+    headers : indices of the courses (0: the lowest course, on the base joint) laid as one
+        through-stone (a header, from the front face to the back face of the section); seed
+        001 §3.2 and Figure 3: the position of the headers in the height differs from one
+        cross-section of a wall to the next and changes its response.
+    bond_phase : 0 (default) or 1: which courses start with a half stone at the front, the odd
+        (0) or the even ones (1): the two stretcher cross-sections of a running bond.
+    """
+    if bond_phase not in (0, 1):
+        raise DemWallError(f"bond_phase must be 0 or 1, got {bond_phase!r}")
     if wall.stone_height is None:
         raise DemWallError(f"{wall.name}: the courses are unknown (stone_height=None): give "
                            "stone_height")
@@ -154,6 +168,13 @@ def stones_of_wall(wall: RetainingWall, stone_length: float | None = None,
         raise DemWallError(f"min_piece must be in [0, 1), got {min_piece!r}")
     section = list(wall.polygon)
     joints = wall.joints
+    heads = set()
+    for h in headers:
+        if isinstance(h, bool) or not isinstance(h, int | np.integer) or not \
+                0 <= h < len(joints):
+            raise DemWallError(f"headers: course {h!r} is not a course index of {wall.name} "
+                               f"(0 to {len(joints) - 1}, the lowest first)")
+        heads.add(int(h))
     out = []
     for k, jt in enumerate(joints):
         upper = joints[k + 1] if k + 1 < len(joints) else None
@@ -164,10 +185,10 @@ def stones_of_wall(wall: RetainingWall, stone_length: float | None = None,
         t = (math.cos(jt.angle), -math.sin(jt.angle))  # along the bed, into the slope
         s_of = [(p[0] - jt.front[0]) * t[0] + (p[1] - jt.front[1]) * t[1] for p in band]
         smin, smax = min(s_of), max(s_of)
-        offset = 0.5 * L if k % 2 == 1 else 0.0
+        offset = 0.5 * L if (k + bond_phase) % 2 == 1 else 0.0
         cuts = []
         c = offset if offset > 0 else L
-        while c < smax - 1e-9:
+        while c < smax - 1e-9 and k not in heads:
             if c > smin + 1e-9:
                 cuts.append(c)
             c += L
@@ -195,7 +216,8 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
                foundation_front: float | None = None, safety: float = 0.2,
                rounding: float | None = None, top: str = "front",
                backstop: bool = True, backstop_joint: dict | None = None,
-               add_bodies: Callable | None = None) -> DemWall:
+               add_bodies: Callable | None = None, headers: Sequence[int] = (),
+               bond_phase: int = 0) -> DemWall:
     """The DEM model of the cross-section of ``wall`` (module docstring), one metre thick.
 
     kn, ks : stone-stone joint stiffness [Pa/m] (default: seed 001 Table 6, 2.8e12, or Table 1
@@ -203,6 +225,7 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
     foundation_depth : thickness of the kinematic foundation slab [m] (default one stone
         height); foundation_front : its extension in front of the toe [m] (default H / 2, where
         the falling stones land);
+    headers, bond_phase : the bond pattern (:func:`stones_of_wall`);
     safety, rounding : passed to :class:`murus.dem.Model`;
     top : the d_top stone in the top course, ``"front"`` (default) or ``"back"``;
     backstop : a kinematic plate moving with the base along the back face, from the heel to
@@ -227,7 +250,7 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
     kn = (base_k["kn"] if kn is None else float(kn)) * stiffness_scale
     ks = (base_k["ks"] if ks is None else float(ks)) * stiffness_scale
     joint = Joint(kn=kn, ks=ks, friction_deg=wall.joint_friction_deg)
-    courses_poly = stones_of_wall(wall, stone_length, min_piece)
+    courses_poly = stones_of_wall(wall, stone_length, min_piece, headers, bond_phase)
     density = wall.wall_unit_weight / G
     m = Model(thickness=1.0, gravity=G, joint=joint, rounding=rounding, safety=safety)
     # foundation slab under the base joint

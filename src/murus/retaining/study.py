@@ -184,6 +184,8 @@ class BuildCfg(Strict):
     rounding: float | None = Field(default=None, ge=0, **_FLOAT)
     top: Literal["front", "back"] | None = None
     backstop: bool | None = None
+    headers: list[int] | None = None
+    bond_phase: Literal[0, 1] | None = None
 
 
 class BackfillCfg(Strict):
