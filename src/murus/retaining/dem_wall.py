@@ -22,8 +22,7 @@ stone is the course polygon clipped by two half-planes: a convex polygon, and th
 the section exactly (their total weight is :attr:`RetainingWall.weight`). The wall stands on a
 kinematic foundation slab (``kinematic="base"``, moved by the base motion) below the base
 joint, whose top face is the base joint line extended in front of the toe and behind the heel;
-the base joint is
-then a stone-foundation joint with the stone-stone properties.
+the base joint is then a stone-foundation joint with the stone-stone properties.
 
 Materials: seed 001 Table 6 (full-scale walls): units 20.0 kN/m³ (density ``20e3 / g``
 kg/m³, taken from ``wall.wall_unit_weight``), unit-unit interface kn = ks = 2.8e12 Pa/m and
