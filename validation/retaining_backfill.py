@@ -21,11 +21,11 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import sys
 from pathlib import Path
 
 import numpy as np
+
+from murus.cliutil import json_safe
 
 ROOT = Path(__file__).resolve().parents[1]
 FIG = ROOT / "docs" / "figures" / "retaining"
@@ -47,18 +47,6 @@ def runs() -> dict[str, dict]:
     }
 
 
-def _clean(d):
-    if isinstance(d, dict):
-        return {k: _clean(v) for k, v in d.items()}
-    if isinstance(d, (list, tuple)):
-        return [_clean(v) for v in d]
-    if isinstance(d, (float, np.floating)):
-        return None if not math.isfinite(float(d)) else float(d)
-    if isinstance(d, np.integer):
-        return int(d)
-    if isinstance(d, np.bool_):
-        return bool(d)
-    return d
 
 
 def compute(key: str) -> dict:
@@ -69,7 +57,7 @@ def compute(key: str) -> dict:
     opts = runs()[key]
     r = collapse_run(preset("DSRW1"), F, t_max=T_MAX, backfill="discrete",
                      backfill_options=opts)
-    rec = {"key": key, "backfill_options": opts, "summary": _clean(r.summary()),
+    rec = {"key": key, "backfill_options": opts, "summary": json_safe(r.summary()),
            "t": [round(float(x), 4) for x in r.t],
            "d_top": [round(float(x), 7) for x in r.d_top],
            "polygons": [np.round(np.asarray(q), 5).tolist() for q in r.polygons]}
@@ -78,26 +66,11 @@ def compute(key: str) -> dict:
     return rec
 
 
-def _worker(key: str) -> str:
-    compute(key)
-    return key
-
-
 def ensure(keys, recompute: bool = False, jobs: int = 1) -> dict[str, dict]:
-    todo = [k for k in keys if recompute or not (CACHE / f"{k}.json").exists()]
-    if todo:
-        os.environ.setdefault("NUMBA_NUM_THREADS", "1")
-        if jobs > 1 and len(todo) > 1:
-            from concurrent.futures import ProcessPoolExecutor
+    """The cached records of ``keys``, computing the missing ones (all with ``recompute``)."""
+    import runcache
 
-            with ProcessPoolExecutor(jobs) as ex:
-                for k in ex.map(_worker, todo):
-                    print(f"  computed {k}", file=sys.stderr)
-        else:
-            for k in todo:
-                compute(k)
-                print(f"  computed {k}", file=sys.stderr)
-    return {k: json.loads((CACHE / f"{k}.json").read_text()) for k in keys}
+    return runcache.ensure(keys, compute, CACHE, recompute, jobs)
 
 
 def compare(a: dict, b: dict) -> dict:

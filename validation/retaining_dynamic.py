@@ -24,11 +24,12 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
 import sys
 from pathlib import Path
 
 import numpy as np
+
+from murus.cliutil import json_safe
 
 ROOT = Path(__file__).resolve().parents[1]
 FIG = ROOT / "docs" / "figures" / "retaining"
@@ -159,7 +160,7 @@ def compute(key: str) -> dict:
     else:
         r = collapse_run(wall, spec["f"], **spec["kw"])
     summ = r.summary()
-    rec = {"key": key, "spec": spec, "summary": _clean(summ), "mode": r.mode,
+    rec = {"key": key, "spec": spec, "summary": json_safe(summ), "mode": r.mode,
            "stone_height": wall.stone_height, "width": wall.base_width,
            "t": [round(float(x), 4) for x in r.t],
            "d_top": [round(float(x), 7) for x in r.d_top],
@@ -171,41 +172,11 @@ def compute(key: str) -> dict:
     return rec
 
 
-def _clean(d):
-    if isinstance(d, dict):
-        return {k: _clean(v) for k, v in d.items()}
-    if isinstance(d, (list, tuple)):
-        return [_clean(v) for v in d]
-    if isinstance(d, (float, np.floating)):
-        return None if not math.isfinite(float(d)) else float(d)
-    if isinstance(d, (np.integer,)):
-        return int(d)
-    if isinstance(d, np.bool_):
-        return bool(d)
-    return d
-
-
-def _worker(key: str) -> str:
-    compute(key)
-    return key
-
-
 def ensure(keys, recompute: bool = False, jobs: int = 1) -> dict[str, dict]:
     """The cached records of ``keys``, computing the missing ones (all with ``recompute``)."""
-    todo = [k for k in keys if recompute or not (CACHE / f"{k}.json").exists()]
-    if todo:
-        os.environ.setdefault("NUMBA_NUM_THREADS", "1")
-        if jobs > 1 and len(todo) > 1:
-            from concurrent.futures import ProcessPoolExecutor
+    import runcache
 
-            with ProcessPoolExecutor(jobs) as ex:
-                for k in ex.map(_worker, todo):
-                    print(f"  computed {k}", file=sys.stderr)
-        else:
-            for k in todo:
-                compute(k)
-                print(f"  computed {k}", file=sys.stderr)
-    return {k: json.loads((CACHE / f"{k}.json").read_text()) for k in keys}
+    return runcache.ensure(keys, compute, CACHE, recompute, jobs)
 
 
 def _rows(name: str) -> list[dict]:
