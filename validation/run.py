@@ -29,6 +29,7 @@ def main() -> None:
     import motion
     import restrained
     import retaining_backfill
+    import retaining_behaviour
     import retaining_dynamic
     import retaining_pseudostatic
     import rocking
@@ -39,6 +40,7 @@ def main() -> None:
     parts = [HEADER, rocking.section(), restrained.section(), seed000_model.section(),
              winkler.run(ROOT / "docs" / "figures" / "winkler"), motion.section(),
              eurocode.section(), retaining_pseudostatic.section(), retaining_dynamic.section(),
+             retaining_behaviour.section(),
              retaining_backfill.section(), studies.section(),
              identify.section()]
     Path(args.out).write_text("\n".join(parts))
