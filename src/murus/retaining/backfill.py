@@ -560,7 +560,7 @@ class DiscreteBackfill:
                  rolling: float | None = None, stiffness_scale: float = 1e-3,
                  wave_speeds: tuple[float, float] | None = None,
                  floor_gap: float | None = None, settle_tol: float = 1e-2,
-                 settle_steps: int = 20000, relax_max: float = 3.0,
+                 settle_steps: int = 20000, relax_max: float | None = None,
                  relax_vtol: float | None = None, relax_xi: float = 0.1) -> None:
         b = str(boundary).strip().lower()
         if b not in BOUNDARIES:
@@ -598,9 +598,11 @@ class DiscreteBackfill:
         self.floor_gap = 0.2 * rmin if floor_gap is None else float(floor_gap)
         if not 0 <= self.floor_gap < rmin:
             raise BackfillError(f"floor_gap must be in [0, r_min = {rmin:g}) m")
-        self.relax_max = float(relax_max)
-        # 2 mm/s at full scale, scaled with the wall height (Froude: velocity ~ sqrt(H))
-        self.relax_vtol = (2e-3 * math.sqrt(wall.height / 2.5) if relax_vtol is None
+        # Froude scaling from the 2.5 m walls of seed 001 (times and velocities ~ sqrt(H)):
+        # at most 3 s of relaxation by chunks of 0.05 s, damping at 5 Hz, 2 mm/s at full scale
+        self.relax_scale = math.sqrt(wall.height / 2.5)
+        self.relax_max = 3.0 * self.relax_scale if relax_max is None else float(relax_max)
+        self.relax_vtol = (2e-3 * self.relax_scale if relax_vtol is None
                            else float(relax_vtol))
         self.relax_xi = float(relax_xi)
         self.relax_time = 0.0
@@ -683,9 +685,12 @@ class DiscreteBackfill:
         local damping of ``settle`` brakes a quasi-static creep of the wall with the soil),
         so the model runs without base motion, with ``relax_xi`` mass-proportional damping at
         5 Hz, by chunks of 0.05 s until the largest velocity of the stones and discs is below
-        ``relax_vtol`` twice in a row (at most ``relax_max`` s). The model time is then set
-        back (as ``settle`` does), the velocities zeroed and the state taken as reference.
-        Returns the relaxation time [s]."""
+        ``relax_vtol`` twice in a row (at most ``relax_max`` s); the frequency, the chunk and
+        the defaults of ``relax_max`` (3 s) and ``relax_vtol`` (2 mm/s) are those of a 2.5 m
+        wall, scaled by Froude similitude (times and velocities as ``sqrt(H / 2.5 m)``), so
+        that a mock-up relaxes in proportion (0.4 s at most for H = 44 mm). The model time is
+        then set back (as ``settle`` does), the velocities zeroed and the state taken as
+        reference. Returns the relaxation time [s]."""
         from murus.dem import kernels as K
         from murus.dem.engine import detect
 
@@ -698,10 +703,12 @@ class DiscreteBackfill:
         t = 0.0
         probes = dict(m.probes)
         m.probes.clear()
+        chunk = 0.05 * self.relax_scale
         while t < self.relax_max - 1e-12:
-            m.run(0.05, xi=self.relax_xi, freq=5.0, sample_dt=0.05, external=hook,
+            m.run(chunk, xi=self.relax_xi, freq=5.0 / self.relax_scale, sample_dt=chunk,
+                  external=hook,
                   external_every=min(self.interval(m), max(1, int(round(1e-3 / m.dt)))))
-            t += 0.05
+            t += chunk
             v = float(np.max(np.hypot(m.bvel[dyn, 0], m.bvel[dyn, 1])))
             ok = ok + 1 if v < self.relax_vtol else 0
             if ok >= 2:
