@@ -140,6 +140,7 @@ def _clamp01(x):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _shape_vertices(s, bpos, bang, sbody, svs, svn, lv, wv):
+    """World coordinates of the local vertices of shape s."""
     b = sbody[s]
     c = math.cos(bang[b])
     sn = math.sin(bang[b])
@@ -153,6 +154,23 @@ def world_vertices(bpos, bang, sbody, svs, svn, lv, wv):
     """World coordinates of every local vertex (polygon cores, disc centres)."""
     for s in range(sbody.size):
         _shape_vertices(s, bpos, bang, sbody, svs, svn, lv, wv)
+
+
+@njit(cache=True, error_model="numpy")
+def incidence(owner, nb):
+    """Entries of each body (compressed rows): ``idx[ptr[b]:ptr[b + 1]]`` are the indices e of
+    the entries with ``owner[e] == b``, in increasing order."""
+    ptr = np.zeros(nb + 1, np.int64)
+    for e in range(owner.size):
+        ptr[owner[e] + 1] += 1
+    for b in range(nb):
+        ptr[b + 1] += ptr[b]
+    fill = ptr[:-1].copy()
+    idx = np.empty(owner.size, np.int64)
+    for e in range(owner.size):
+        idx[fill[owner[e]]] = e
+        fill[owner[e]] += 1
+    return ptr, idx
 
 
 @njit(cache=True, error_model="numpy")
@@ -842,13 +860,6 @@ def _contacts_serial(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sr
 NBLK = 64
 
 
-@njit(cache=True, error_model="numpy", parallel=True)
-def _world_vertices_par(bpos, bang, sbody, svs, svn, lv, wv):
-    """:func:`world_vertices` as a parallel loop over the shapes."""
-    for s in prange(sbody.size):
-        _shape_vertices(s, bpos, bang, sbody, svs, svn, lv, wv)
-
-
 @njit(cache=True, error_model="numpy")
 def _sum_pairs(pairs, sbody, nact, pw, E, fb):
     """Scatter the pair resultants ``pw[k, W_FX:W_MA + 1]`` (written by the contact loop) to
@@ -903,19 +914,27 @@ def _advance(b, dt, sx, sy, sw, vx, vy, w, bpos, bang, bvel, bomg, bsnap):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc, fb,
-                  bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part):
-    """Central-difference update (module doc) of the bodies of block ``blk`` (of ``NBLK``);
+def _update_block(blk, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin,
+                  brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv):
+    """Central-difference update (module doc) of the bodies of block ``blk`` (of ``NBLK``)
+    under the contact resultants ``fb``, then the world coordinates of the shapes of each body
+    (``bsp``, ``bsh``: :func:`incidence` of ``sbody``) for the next step;
+    ``fr`` the step's base velocities and gravity (:func:`_frame`);
     ``part[blk] = (max unbalanced force, damping work, base work, external work, rebuild
     needed, work of the tilt)``."""
     nb = bmass.size
+    dt = P[P_DT]
+    alocal = P[P_ALOCAL]
+    amass = P[P_AMASS]
+    drel = P[P_DREL]
+    margin = P[P_MARGIN]
     cm = 0.5 * amass * dt
-    gx = grav[i, 0]
-    gy = grav[i, 1]
-    gdx = gdot[i, 0]
-    gdy = gdot[i, 1]
-    ubx = vfull[i, 0]
-    uby = vfull[i, 1]
+    ubx = fr[0]
+    uby = fr[1]
+    gx = fr[4]
+    gy = fr[5]
+    gdx = fr[6]
+    gdy = fr[7]
     # the frame of the damping: the base (drel = 1) or the fixed frame (drel = 0)
     dbx = drel * ubx
     dby = drel * uby
@@ -975,8 +994,8 @@ def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, g
                 if kin == 2:
                     vfx = ubx
                     vfy = uby
-                    vhx = vhalf[i, 0]
-                    vhy = vhalf[i, 1]
+                    vhx = fr[2]
+                    vhy = fr[3]
                     om = 0.0
                 else:
                     vfx = vhx = bpresc[b, 0]
@@ -989,6 +1008,8 @@ def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, g
             dy = bpos[b, 1] - blast[b, 1]
             if math.sqrt(dx * dx + dy * dy) + abs(bang[b] - blast[b, 2]) * brad[b] > half:
                 need = 1.0
+            for j in range(bsp[b], bsp[b + 1]):
+                _shape_vertices(bsh[j], bpos, bang, sbody, svs, svn, lv, wv)
         part[blk, 0] = unbal
         part[blk, 1] = wdamp
         part[blk, 2] = wbase
@@ -998,21 +1019,33 @@ def _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, g
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
-def _update_bodies_par(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc, fb,
-                       bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part):
+def _update_bodies_par(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                       bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv):
     for blk in prange(NBLK):
-        _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc,
-                      fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap,
-                      part)
+        _update_block(blk, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                      bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv)
 
 
 @njit(cache=True, error_model="numpy")
-def _update_bodies_ser(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc, fb,
-                       bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap, part):
+def _update_bodies_ser(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                       bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv):
     for blk in range(NBLK):
-        _update_block(blk, i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot, bpresc,
-                      fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap,
-                      part)
+        _update_block(blk, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                      bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _frame(i, vhalf, vfull, grav, gdot, fr):
+    """Row i of the step inputs of :func:`run_chunk` to ``fr``: base velocity at t_i (0, 1) and
+    t_i + dt/2 (2, 3), gravity (4, 5) and its rate (6, 7)."""
+    fr[0] = vfull[i, 0]
+    fr[1] = vfull[i, 1]
+    fr[2] = vhalf[i, 0]
+    fr[3] = vhalf[i, 1]
+    fr[4] = grav[i, 0]
+    fr[5] = grav[i, 1]
+    fr[6] = gdot[i, 0]
+    fr[7] = gdot[i, 1]
 
 
 @njit(cache=True, error_model="numpy")
@@ -1044,10 +1077,12 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
     omega), the time at which the contact forces and the work accumulators are consistent
     (energy snapshots). Returns the (possibly rebuilt) pair arrays.
 
-    A step: world vertices, the contact loop (narrow phase and joint law, a numba parallel
-    loop over the pairs, each pair writing only its own record and its resultant in ``pw``),
-    the resultants scattered to the bodies in pair order (serial), the body update (a parallel
-    loop over ``NBLK`` fixed blocks of bodies whose partial sums are combined in block order).
+    A step: the contact loop (narrow phase and joint law, a numba parallel loop over the pairs,
+    each pair writing only its own record and its resultant in ``pw``), the resultants
+    scattered to the bodies in pair order (serial), the body update (a parallel loop over
+    ``NBLK`` fixed blocks of bodies whose partial sums are combined in block order), in which
+    each body also updates the world coordinates of its shapes for the next step (two parallel
+    regions per step).
     A run therefore gives the same numbers on any number of threads. Below ``P_PARMIN`` pairs
     the body loops are serial and the caller runs the contact loop on one thread
     (:func:`murus.dem.engine._chunk`): waking a second thread costs more than it saves there,
@@ -1056,12 +1091,9 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
     (benchmarks/RESULTS_dem.md)."""
     dt = P[P_DT]
     thick = P[P_THICK]
-    alocal = P[P_ALOCAL]
-    amass = P[P_AMASS]
     margin = P[P_MARGIN]
     reach = P[P_REACH]
     parmin = int(P[P_PARMIN])
-    drel = P[P_DREL]
     nb = bmass.size
     ns = sbody.size
     fb = np.zeros((nb, 3))
@@ -1069,11 +1101,14 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
     pw = np.zeros((cap, NW))
     nact = np.zeros(cap, np.int64)
     bpart = np.zeros((NBLK, 6))
+    fr = np.empty(8)
     if C[C_NEED_REBUILD] == 0 and _moved(bpos, bang, blast, brad, margin):
         C[C_NEED_REBUILD] = 1
+    # the body update keeps the world vertices current from here on
+    world_vertices(bpos, bang, sbody, svs, svn, lv, wv)
+    bsp, bsh = incidence(sbody, nb)
     for i in range(nsteps):
         if C[C_NEED_REBUILD] != 0:
-            world_vertices(bpos, bang, sbody, svs, svn, lv, wv)
             newp = broad_phase(wv, svs, svn, srad, sbody, bkin, margin)
             sid, sf, sbr, pbond, pj = transfer(pairs, sid, sf, sbr, pbond, newp, ns, jtab,
                                                sgroup, 0)
@@ -1089,23 +1124,17 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
             cap = npair + npair // 4 + 16
             pw = np.zeros((cap, NW))
             nact = np.zeros(cap, np.int64)
-        few = npair < parmin
-        if few:
-            world_vertices(bpos, bang, sbody, svs, svn, lv, wv)
-        else:
-            _world_vertices_par(bpos, bang, sbody, svs, svn, lv, wv)
         _contacts_parallel(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
                            sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact)
         nactive = _sum_pairs(pairs, sbody, nact, pw, E, fb)
         C[C_UPDATES] += nactive
-        if few:
-            _update_bodies_ser(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot,
-                               bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad,
-                               blast, bsnap, bpart)
+        _frame(i, vhalf, vfull, grav, gdot, fr)
+        if npair < parmin:
+            _update_bodies_ser(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                               bkin, brad, blast, bsnap, bpart, bsp, bsh, sbody, svs, svn, lv, wv)
         else:
-            _update_bodies_par(i, dt, alocal, amass, drel, margin, vhalf, vfull, grav, gdot,
-                               bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin, brad,
-                               blast, bsnap, bpart)
+            _update_bodies_par(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                               bkin, brad, blast, bsnap, bpart, bsp, bsh, sbody, svs, svn, lv, wv)
         unbal = 0.0
         wdamp = 0.0
         wbase = 0.0
