@@ -513,6 +513,25 @@ def collide_pd(wv, a0, na, ra, cx, cy, rd, reach):
     return 1, cx - nx * h, cy - ny * h, nx, ny, d - rr, 2.0 * rd
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def collide_dd(a, b, wv, svs, srad, reach):
+    """Sub-contact of discs a < b, as returned by :func:`collide_pp`."""
+    ia = svs[a]
+    ib = svs[b]
+    dx = wv[ib, 0] - wv[ia, 0]
+    dy = wv[ib, 1] - wv[ia, 1]
+    d = math.sqrt(dx * dx + dy * dy)
+    ra = srad[a]
+    rb = srad[b]
+    if d - ra - rb > reach or d == 0.0:
+        return _NONE
+    nx = dx / d
+    ny = dy / d
+    h = 0.5 * (d - rb + ra)
+    return (1, ia, wv[ia, 0] + nx * h, wv[ia, 1] + ny * h, nx, ny, d - ra - rb,
+            2.0 * ra * rb / (ra + rb), -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
 @njit(cache=True, error_model="numpy")
 def collide(a, b, wv, svs, svn, skind, srad, reach):
     """Sub-contacts of shapes a < b, as returned by :func:`collide_pp` (the key of a point is a
@@ -522,20 +541,7 @@ def collide(a, b, wv, svs, svn, skind, srad, reach):
     if ka == 0 and kb == 0:
         return collide_pp(wv, svs[a], svn[a], srad[a], svs[b], svn[b], srad[b], reach)
     if ka == 1 and kb == 1:
-        ia = svs[a]
-        ib = svs[b]
-        dx = wv[ib, 0] - wv[ia, 0]
-        dy = wv[ib, 1] - wv[ia, 1]
-        d = math.sqrt(dx * dx + dy * dy)
-        ra = srad[a]
-        rb = srad[b]
-        if d - ra - rb > reach or d == 0.0:
-            return _NONE
-        nx = dx / d
-        ny = dy / d
-        h = 0.5 * (d - rb + ra)
-        return (1, ia, wv[ia, 0] + nx * h, wv[ia, 1] + ny * h, nx, ny, d - ra - rb,
-                2.0 * ra * rb / (ra + rb), -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        return collide_dd(a, b, wv, svs, srad, reach)
     if ka == 0:
         ic = svs[b]
         c, px, py, nx, ny, g, tr = collide_pd(wv, svs[a], svn[a], srad[a], wv[ic, 0],
@@ -704,18 +710,23 @@ def _released(k, o, sf):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
-                 bpos, bvel, bomg, jprops, dt, thick, reach):
+                 bpos, bvel, bomg, jprops, dt, thick, reach, discs):
     """Narrow phase and joint law of pair k: updates its two slots in place and writes the
     energy dissipated in the step (slip, rolling, breaking/opening) and the resultant of its
     sub-contacts on body b with its moments about both centroids to ``pw[k]`` (``W_*``).
     Returns the number of sub-contacts kept. Allocates nothing (scalars only): it runs once
-    per candidate pair and step, in a parallel loop."""
+    per candidate pair and step, in a parallel loop. ``discs`` (a constant where it is inlined):
+    the pair is known to be two discs (one sub-contact at most, no branch on shape kinds)."""
     a = pairs[k, 0]
     b = pairs[k, 1]
     s0 = sid[k, 0]
     s1 = sid[k, 1]
-    (cnt, id0, px0, py0, nx0, ny0, g0, l0,
-     id1, px1, py1, nx1, ny1, g1, l1) = collide(a, b, wv, svs, svn, skind, srad, reach)
+    if discs:
+        (cnt, id0, px0, py0, nx0, ny0, g0, l0,
+         id1, px1, py1, nx1, ny1, g1, l1) = collide_dd(a, b, wv, svs, srad, reach)
+    else:
+        (cnt, id0, px0, py0, nx0, ny0, g0, l0,
+         id1, px1, py1, nx1, ny1, g1, l1) = collide(a, b, wv, svs, svn, skind, srad, reach)
     if cnt == 0 and s0 < 0 and s1 < 0:  # apart, and no sub-contact to release
         pw[k, W_SLIP] = 0.0
         pw[k, W_ROLL] = 0.0
@@ -734,7 +745,7 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         elif s1 == id0:
             m0 = 1
             used1 = True
-    if cnt >= 2:
+    if not discs and cnt >= 2:
         if s0 == id1 and not used0:
             m1 = 0
             used0 = True
@@ -744,7 +755,7 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
     tol = srad[a] + srad[b]
     if cnt >= 1 and m0 < 0:
         m0, used0, used1 = _nearest_slot(k, sf, s0, s1, used0, used1, px0, py0, tol)
-    if cnt >= 2 and m1 < 0:
+    if not discs and cnt >= 2 and m1 < 0:
         m1, used0, used1 = _nearest_slot(k, sf, s0, s1, used0, used1, px1, py1, tol)
     # shear and rolling energy of the old slots that disappear (the normal spring energy of a
     # separating contact is given back as work of the normal force over the step)
@@ -765,10 +776,10 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         ks = jprops[jp, J_KS]
         tanphi = jprops[jp, J_TANPHI]
         muroll = jprops[jp, J_MUROLL]
-        rolling = muroll > 0.0 and (skind[a] == 1 or skind[b] == 1)
+        rolling = muroll > 0.0 and (discs or skind[a] == 1 or skind[b] == 1)
         reff = 0.0
         if rolling:
-            if skind[a] == 1 and skind[b] == 1:
+            if discs or (skind[a] == 1 and skind[b] == 1):
                 reff = srad[a] * srad[b] / (srad[a] + srad[b])
             elif skind[a] == 1:
                 reff = srad[a]
@@ -793,7 +804,7 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         d_slip += ds
         d_roll += dr
         d_break += db
-        if cnt >= 2:
+        if not discs and cnt >= 2:
             (keep1, br1, pb, fn1, fs1, mr1, kna1, ksa1, kra1, ds, dr, db) = _joint_law(
                 m1, k, sf, sbr, pb, jprops, jp, kn, ks, tanphi, muroll, rolling, reff,
                 px1, py1, nx1, ny1, g1, l1, thick, reach, dt,
@@ -815,7 +826,7 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
             rmb += mb
             rma += ma
             slot = 1
-        if keep1:
+        if not discs and keep1:
             fx, fy, mb, ma = _store(k, slot, sid, sf, sbr, id1, br1, fn1, fs1, mr1, px1, py1,
                                     nx1, ny1, kna1, ksa1, kra1, g1, xa, ya, xb, yb)
             rfx += fx
@@ -843,16 +854,24 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
 def _contacts_parallel(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
                        bpos, bvel, bomg, jprops, dt, thick, reach, nact):
     for k in prange(pairs.shape[0]):
-        nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
-                               srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach)
+        if skind[pairs[k, 0]] == 1 and skind[pairs[k, 1]] == 1:
+            nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
+                                   srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach, True)
+        else:
+            nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
+                                   srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach, False)
 
 
 @njit(cache=True, error_model="numpy")
 def _contacts_serial(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
                      bpos, bvel, bomg, jprops, dt, thick, reach, nact):
     for k in range(pairs.shape[0]):
-        nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
-                               srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach)
+        if skind[pairs[k, 0]] == 1 and skind[pairs[k, 1]] == 1:
+            nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
+                                   srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach, True)
+        else:
+            nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
+                                   srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach, False)
 
 
 #: number of fixed blocks of the parallel body loops: their partial sums are combined in a fixed
