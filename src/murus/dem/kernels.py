@@ -557,8 +557,8 @@ def collide(a, b, wv, svs, svn, skind, srad, reach):
     return (1, ic, px, py, nx, ny, g, tr, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
-@njit(cache=True, error_model="numpy")
-def _joint_law(o, k, sf, sbr, pb, jprops, jp, kn, ks, tanphi, muroll, rolling, reff,
+@njit(cache=True, error_model="numpy", inline="always")
+def _joint_law(o, k, sf, sbr, pb, jprops, jp, rolling, reff,
                px, py, nx, ny, gap, trib, thick, reach, dt,
                vax, vay, wa, xa, ya, vbx, vby, wb, xb, yb):
     """Joint law of one new sub-contact matched to the old slot ``o`` of pair k (-1: new).
@@ -567,6 +567,10 @@ def _joint_law(o, k, sf, sbr, pb, jprops, jp, kn, ks, tanphi, muroll, rolling, r
     d_slip = 0.0
     d_roll = 0.0
     d_break = 0.0
+    kn = jprops[jp, J_KN]
+    ks = jprops[jp, J_KS]
+    tanphi = jprops[jp, J_TANPHI]
+    muroll = jprops[jp, J_MUROLL]
     area = trib * thick
     if o >= 0:
         fs = sf[k, o, F_FS]
@@ -772,9 +776,6 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         ba = sbody[a]
         bb = sbody[b]
         jp = pj[k]
-        kn = jprops[jp, J_KN]
-        ks = jprops[jp, J_KS]
-        tanphi = jprops[jp, J_TANPHI]
         muroll = jprops[jp, J_MUROLL]
         rolling = muroll > 0.0 and (discs or skind[a] == 1 or skind[b] == 1)
         reff = 0.0
@@ -798,7 +799,7 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         pb = pbond[k]
         # both laws read the old slots before either is written
         (keep0, br0, pb, fn0, fs0, mr0, kna0, ksa0, kra0, ds, dr, db) = _joint_law(
-            m0, k, sf, sbr, pb, jprops, jp, kn, ks, tanphi, muroll, rolling, reff,
+            m0, k, sf, sbr, pb, jprops, jp, rolling, reff,
             px0, py0, nx0, ny0, g0, l0, thick, reach, dt,
             vax, vay, wa, xa, ya, vbx, vby, wb, xb, yb)
         d_slip += ds
@@ -806,7 +807,7 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         d_break += db
         if not discs and cnt >= 2:
             (keep1, br1, pb, fn1, fs1, mr1, kna1, ksa1, kra1, ds, dr, db) = _joint_law(
-                m1, k, sf, sbr, pb, jprops, jp, kn, ks, tanphi, muroll, rolling, reff,
+                m1, k, sf, sbr, pb, jprops, jp, rolling, reff,
                 px1, py1, nx1, ny1, g1, l1, thick, reach, dt,
                 vax, vay, wa, xa, ya, vbx, vby, wb, xb, yb)
             d_slip += ds
