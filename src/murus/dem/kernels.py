@@ -532,7 +532,7 @@ def collide_dd(a, b, wv, svs, srad, reach):
             2.0 * ra * rb / (ra + rb), -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def collide(a, b, wv, svs, svn, skind, srad, reach):
     """Sub-contacts of shapes a < b, as returned by :func:`collide_pp` (the key of a point is a
     global vertex index: the disc centre for a disc)."""
@@ -679,7 +679,7 @@ def _store(k, slot, sid, sf, sbr, key, broken, fn, fs, mr, px, py, nx, ny, kna, 
     return (fx, fy, (px - xb) * fy - (py - yb) * fx + mr, (px - xa) * fy - (py - ya) * fx + mr)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _nearest_slot(k, sf, s0, s1, used0, used1, px, py, tol):
     """The unused old slot of pair k nearest to the new point (px, py), within ``tol``:
     ``(slot or -1, used0, used1)``."""
@@ -701,7 +701,7 @@ def _nearest_slot(k, sf, s0, s1, used0, used1, px, py, tol):
     return best, used0, used1
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _released(k, o, sf):
     """Shear and rolling spring energy [J] of the old slot o of pair k."""
     e = 0.0
