@@ -851,28 +851,32 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
     return nkeep
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody, bpos, bvel,
+             bomg, jprops, dt, thick, reach):
+    """:func:`process_pair`, in its copy specialised to two discs when both shapes of pair k
+    are discs."""
+    if skind[pairs[k, 0]] == 1 and skind[pairs[k, 1]] == 1:
+        return process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
+                            sbody, bpos, bvel, bomg, jprops, dt, thick, reach, True)
+    return process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
+                        bpos, bvel, bomg, jprops, dt, thick, reach, False)
+
+
 @njit(cache=True, error_model="numpy", parallel=True)
 def _contacts_parallel(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
                        bpos, bvel, bomg, jprops, dt, thick, reach, nact):
     for k in prange(pairs.shape[0]):
-        if skind[pairs[k, 0]] == 1 and skind[pairs[k, 1]] == 1:
-            nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
-                                   srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach, True)
-        else:
-            nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
-                                   srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach, False)
+        nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
+                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach)
 
 
 @njit(cache=True, error_model="numpy")
 def _contacts_serial(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
                      bpos, bvel, bomg, jprops, dt, thick, reach, nact):
     for k in range(pairs.shape[0]):
-        if skind[pairs[k, 0]] == 1 and skind[pairs[k, 1]] == 1:
-            nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
-                                   srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach, True)
-        else:
-            nact[k] = process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind,
-                                   srad, sbody, bpos, bvel, bomg, jprops, dt, thick, reach, False)
+        nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
+                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach)
 
 
 #: number of fixed blocks of the parallel body loops: their partial sums are combined in a fixed
