@@ -33,6 +33,40 @@ HERE = Path(__file__).resolve().parent
 GOAL = 2e7  # contact updates per second (issue 5, item 7)
 RAMP_A, RAMP_F = 0.5, 2.0  # harmonic ramp S(t) = A t sin(2 pi f t) [m/s³, Hz] (seed 001 eq. 5)
 UDEC_H_PER_S = 12.0  # seed 001: 12 h of computation per simulated second (scaled-down model)
+# measured by hand with A/B scripts (not by this benchmark): the texts they feed below
+# contact loop on the state of (b), 1 thread, in one process [us/step]: 95d826a, + disc pairs
+# specialised (c70d14a), + joint law inlined (0677a4b), + narrow-phase dispatch inlined (fbee899)
+CONTACT_AB = (977.0, 608.0, 288.0, 269.0)
+AB_ROUND2 = (
+    "Second round (commits 27edf3e, c70d14a, 0677a4b, fbee899 against 95d826a), subprocess A/B "
+    "script: the settled states of (a) and (b) saved once, runs of 10000 (a) and 1000 (b) steps "
+    "alternated A B B A A B, two per process, best of 6 per version; load average 1.4-2.6 "
+    "(another engineer's jobs held one core or more): case (a) 6.53e6 -> 8.64e6 updates/s on "
+    "1 thread (1.32 x); case (b) 6.60e6 -> 1.43e7 on 1 thread (2.16 x) and 1.21e7 -> 2.32e7 on "
+    "2 threads (1.92 x; the best 2-thread runs of both versions came in a quiet minute at load "
+    "1.4, their medians, 1.26e6 and 1.82e6, show how the 2-thread runs stall whenever other "
+    "jobs hold the cores). Final positions, angles, velocities and energy accumulators "
+    "bitwise identical to 95d826a after 1000 steps of (b) and 20000 of (a), on 1 and 2 "
+    "threads.")
+LEFT_NOTES = (
+    "Tried and dropped in the second round: (i) a parallel gather of the pair resultants by "
+    "body, through compressed-row lists of the pairs of each body in pair order (the same sums "
+    "as the serial scatter, whatever the number of threads): its reads of the pair records are "
+    "random and cost about 74 us of CPU per step on (b) against 35 us for the serial scatter, "
+    "no gain on two cores; writing the resultants from the contact loop straight into rows by "
+    "body moves the random accesses into the contact loop (+100 us); (ii) skipping the "
+    "rotation of disc centres in the world-vertex transform: 22 % of the disc centres of (b) "
+    "sit 1e-16 m off their body's centroid (recomputed from the mass moments), so the skip "
+    "cannot be exact for them, and the branch cost as much as the sine and cosine of small "
+    "angles it saves; (iii) dynamic scheduling of the contact loop (numba's "
+    "`set_parallel_chunksize`) to balance the threads: a kernel that calls it cannot be cached. "
+    "Left: the pairs of the wall (polygon-polygon and polygon-disc, ~10 x the cost of a disc "
+    "pair) sit at the start of the pair list and all fall to the first thread of the static "
+    "split (two loops, one over the polygon pairs and one over the disc pairs, would balance "
+    "them); the serial scatter; the body update (six divisions, two square roots, a sine and "
+    "a cosine per body); single-precision contact records; a tighter broad-phase margin for "
+    "discs (fewer candidate pairs per active contact); on a shared machine, the 2-thread runs "
+    "stall whenever another job holds a core.")
 
 
 def _rss_mb() -> float:
@@ -82,12 +116,6 @@ def build_wall(backfill: int = 0, seed: int = 0) -> tuple[Model, dict]:
 
 # timing loops inside numba: no Python dispatch overhead (~10-30 us for 20+ array arguments)
 @njit(cache=False)  # never a stale cache of the kernels it calls
-def _loop_wv(reps, bpos, bang, sbody, svs, svn, lv, wv):
-    for _ in range(reps):
-        K.world_vertices(bpos, bang, sbody, svs, svn, lv, wv)
-
-
-@njit(cache=False)  # never a stale cache of the kernels it calls
 def _loop_rebuild(reps, wv, svs, svn, srad, sbody, bkin, margin, pairs, sid, sf, sbr, pbond, ns,
                   jtab, sgroup):
     for _ in range(reps):
@@ -112,31 +140,23 @@ def _loop_parallel(reps, pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skin
 
 
 @njit(cache=False)  # never a stale cache of the kernels it calls
-def _loop_wv_par(reps, bpos, bang, sbody, svs, svn, lv, wv):
-    for _ in range(reps):
-        K._world_vertices_par(bpos, bang, sbody, svs, svn, lv, wv)
-
-
-@njit(cache=False)  # never a stale cache of the kernels it calls
 def _loop_sum(reps, pairs, sbody, nact, pw, E, fb):
     for _ in range(reps):
         K._sum_pairs(pairs, sbody, nact, pw, E, fb)
 
 
 @njit(cache=False)  # never a stale cache of the kernels it calls
-def _loop_update(reps, par, dt, margin, vh, grav, gdot, fb, bext, bpos, bang, bvel, bomg,
-                 bmass, binert, bkin, brad, blast, bsnap, part):
+def _loop_update(reps, par, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                 bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv):
     for _ in range(reps):
         if par:
-            K._update_bodies_par(0, dt, 0.0, 0.0, 1.0, margin, vh, vh, grav, gdot, gdot, fb,
-                                 bext,
-                                 bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast,
-                                 bsnap, part)
+            K._update_bodies_par(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                                 bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv,
+                                 wv)
         else:
-            K._update_bodies_ser(0, dt, 0.0, 0.0, 1.0, margin, vh, vh, grav, gdot, gdot, fb,
-                                 bext,
-                                 bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast,
-                                 bsnap, part)
+            K._update_bodies_ser(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
+                                 bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv,
+                                 wv)
 
 
 def _contact_args(m: Model) -> tuple:
@@ -164,8 +184,6 @@ def kernel_split(m: Model, step_time: float, rebuild_rate: float, parallel: bool
     reps = max(5, min(2000, int(4e5 / max(n, 1))))
     use_par = parallel and n >= m.P[K.P_PARMIN]
     out = {}
-    wv_args = (m.bpos, m.bang, m.sbody, m.svs, m.svn, m.lv, m.wv.copy())
-    out["world vertices"] = _timed(_loop_wv_par if use_par else _loop_wv, wv_args, reps)
     c = _contact_args(m)
     t_rb = _timed(_loop_rebuild, (m.wv, m.svs, m.svn, m.srad, m.sbody, m.bkin, m.margin,
                                   m.pairs, c[3], c[4], c[5], c[2], m.sbody.size, m.jtab,
@@ -177,12 +195,16 @@ def kernel_split(m: Model, step_time: float, rebuild_rate: float, parallel: bool
     fb = np.zeros((m.nbody, 3))
     out["pair resultants to the bodies + dissipation sums"] = _timed(
         _loop_sum, (m.pairs, m.sbody, nact, pw, np.zeros(K.NE), fb), reps)
-    vh = np.zeros((1, 2))
     st = [x.copy() for x in (m.bpos, m.bang, m.bvel, m.bomg)]
-    out["body update (central differences, damping, energy, rebuild test)"] = _timed(
-        _loop_update, (use_par, 1e-12, m.margin, vh, np.array([[0.0, -9.81]]), vh, fb,
-                       m.bext, *st, m.bmass, m.binert, m.bkin, m.brad, m.blast.copy(),
-                       m.bsnap.copy(), np.zeros((K.NBLK, 6))), reps)
+    P = m.P.copy()
+    P[[K.P_DT, K.P_ALOCAL, K.P_AMASS, K.P_DREL]] = (1e-12, 0.0, 0.0, 1.0)
+    fr = np.array([0.0, 0.0, 0.0, 0.0, 0.0, -9.81, 0.0, 0.0])  # base at rest, gravity
+    bsp, bsh = K.incidence(m.sbody, m.nbody)
+    out["body update (central differences, damping, energy, rebuild test, world vertices)"] = (
+        _timed(_loop_update, (use_par, P, fr, m.bpresc, fb, m.bext, *st, m.bmass, m.binert,
+                              m.bkin, m.brad, m.blast.copy(), m.bsnap.copy(),
+                              np.zeros((K.NBLK, 6)), bsp, bsh, m.sbody, m.svs, m.svn, m.lv,
+                              m.wv.copy()), reps))
     parts = sum(v for k, v in out.items() if k != "broad phase + transfer (per rebuild)")
     out["remainder (step bookkeeping, Python layer of Model.run)"] = step_time - parts
     return out
@@ -450,22 +472,43 @@ def write(out, cases, rss, load0, load1, total, cmd, quick, npair, t_ser, par) -
       f"not depend on the number of threads (checked here: final positions and energy "
       f"accumulators of (b) after {b['rows'][0]['steps']} steps "
       f"{'identical' if b['same'] else 'DIFFERENT'} on "
-      f"{' and '.join(str(r['threads']) for r in b['rows'])} thread(s)).")
+      f"{' and '.join(str(r['threads']) for r in b['rows'])} thread(s)). Each body also "
+      "moves the world coordinates of its shapes there, for the next step: the separate "
+      "world-vertex pass, a parallel region of its own, is gone (two thread wake-ups per step "
+      "instead of three).")
+    w("5. **Disc-disc pairs take a specialised copy of the contact kernel.** The contact loop "
+      "calls `process_pair` with a constant flag when both shapes are discs; numba inlines it "
+      "with the constant, so that LLVM drops the branches on shape kinds and everything that "
+      "concerns a second sub-contact (a disc pair has one at most). On the state of (b), one "
+      "thread, both versions in the same process: contact loop "
+      f"{CONTACT_AB[0]:.0f} -> {CONTACT_AB[1]:.0f} us per step.")
+    w("6. **The joint law and the narrow-phase dispatch are inlined into the contact "
+      "kernel.** The joint law took 32 arguments; numba cannot inline a call of more than 30 "
+      "(Python compiles it as a call with `*args`), so it stayed a function returning a "
+      "12-tuple through memory. It now reads its joint properties itself (28 arguments) and is "
+      f"inlined: contact loop {CONTACT_AB[1]:.0f} -> {CONTACT_AB[2]:.0f} us per step; "
+      "inlining `collide` and the slot helpers as well: "
+      f"{CONTACT_AB[3]:.0f} us ({CONTACT_AB[0] / CONTACT_AB[3]:.1f} x in all), with bitwise "
+      "identical results.")
     w("")
     w("Measured against the previous version (commit 0669be0) on the same machine and states "
       "(`/tmp` A/B script, idle machine, load 0.4-0.6): case (a) 2.17e6 -> 5.89e6 updates/s "
       "(2.7 x); case (b) 1.69e6 -> 5.83e6 on 1 thread (3.4 x) and 3.07e6 -> 1.05e7 on 2 "
       "threads (3.4 x), with identical contact counts and final positions (12 digits).")
     w("")
+    w(AB_ROUND2)
+    w("")
     upd_pair = best_b["updates"] / best_b["steps"] / max(best_b["pairs"], 1)
-    w(f"Left: at 2e7 updates/s an update may cost 50 ns on the machine, 100 ns per core; with "
-      f"{upd_pair:.2f} active sub-contacts per candidate pair in (b) the contact loop alone "
-      f"would have to cost {100 * upd_pair:.0f} ns per pair on one core, against "
-      f"{1e9 * par[1] / npair:.0f} ns measured, and the serial scatter and the Python layer "
-      "would have to vanish. Ideas not tried: a disc-only kernel (no branch on shape kinds, "
-      "pairs sorted by kind), single-precision contact records, a tighter broad-phase margin "
-      "for discs (fewer candidate pairs per active contact), fastmath on the joint law (it "
-      "changes the last digits).")
+    rest = steps_b[1] - par[1]  # the step on one thread outside the contact loop
+    w(f"Budget: at 2e7 updates/s an update may cost 50 ns on the machine, 100 ns per core; "
+      f"with {upd_pair:.2f} active sub-contacts per candidate pair in (b), the whole step may "
+      f"cost {100 * upd_pair:.0f} ns per candidate pair on one core. Measured on one thread: "
+      f"the contact loop {1e9 * par[1] / npair:.0f} ns per pair, the rest of the step (serial "
+      f"scatter, body update, rebuilds, bookkeeping) {1e9 * rest / npair:.0f} ns per pair, "
+      f"{1e9 * steps_b[1] / npair:.0f} ns in all; two threads divide it by "
+      f"{steps_b[1] / min(steps_b.values()):.2f} here.")
+    w("")
+    w(LEFT_NOTES)
     w(f"Rebuilds are not the problem: {best_b['rebuild_rate']:.3f} rebuilds per step at "
       f"{1e6 * s1['broad phase + transfer (per rebuild)']:.0f} us each, "
       f"{100 * s1['broad phase + transfer (amortised per step)'] / steps_b[1]:.1f} % of the "
