@@ -104,6 +104,14 @@ and mobilises its peak strength only at larger strains), and the wall creeps out
 start of the S2 ramp: DSRW1 at 5 Hz collapses at A_col = 3.65 m/s² (seed 001 Table 7: 5.38;
 the equivalent thrust: 8.47) by toppling, in 8.5-11 min on one thread (W = 5 m).
 
+Mock-ups (seed 001 §3): the default radius ``0.016 H`` is 0.7 mm for the 44 mm wall, the
+time step 5.7e-6 s, and the generation, settling and relaxation take about 3 minutes on one
+core; with the absorbing boundary the dashpot hook runs at every step (its explicit dashpots
+need it on such light discs), which makes a run several times slower than with the container
+(``boundary="container"``, the shaking-table box of the experiments, the CLI's default for the
+mock-ups). Not validated against seed 001 Table 3: VALIDATION.md uses the equivalent thrust for
+the mock-ups.
+
 Units: SI (m, kg, s, N, Pa; ``*_deg`` in degrees).
 """
 

@@ -214,8 +214,10 @@ def collapse(
                                        "backfill width W [m] (default 2 H: 5 m for the "
                                        "seed 001 walls)."),
     boundary: str | None = typer.Option(None, "--boundary", help="With --backfill discrete: "
-                                        "lateral boundary, 'absorbing' (viscous, default) or "
-                                        "'container' (a rigid plate moving with the base)."),
+                                        "lateral boundary, 'absorbing' (viscous; default "
+                                        "at full scale, the seed's free field) or 'container' "
+                                        "(a rigid plate moving with the base; default for the "
+                                        "mock-ups, tested in a box)."),
     radius: float | None = typer.Option(None, "--radius", help="With --backfill discrete: "
                                         "mean disc radius [m] (default 0.016 H)."),
     damping_frame: str = typer.Option("base", "--damping-frame", help="Velocities the "
@@ -241,7 +243,9 @@ def collapse(
         if opts and backfill.strip().lower() != "discrete":
             raise ValueError("--width, --boundary and --radius need --backfill discrete")
         if backfill.strip().lower() == "discrete":
-            kw["backfill_options"] = dict({"boundary": "absorbing"}, **opts)
+            mock = wall.name.lower().startswith("mockup")
+            kw["backfill_options"] = dict(
+                {"boundary": "container" if mock else "absorbing"}, **opts)
         res = collapse_run(wall, frequency, vertical, **kw)
         checks = {}
         if check_peak and res.collapsed:
