@@ -102,7 +102,8 @@ that yields by a few centimetres is thus well above the active value that ``A_ps
 equivalent thrust assume (the disc assembly is softer than the seed's continuum, E = 92.7 MPa,
 and mobilises its peak strength only at larger strains), and the wall creeps out from the
 start of the S2 ramp: DSRW1 at 5 Hz collapses at A_col = 3.65 m/s² (seed 001 Table 7: 5.38;
-the equivalent thrust: 8.47) by toppling, in 8.5-11 min on one thread (W = 5 m).
+the equivalent thrust: 8.47) by toppling, in about 3 minutes on two cores (W = 5 m;
+``benchmarks/bench_retaining.py``).
 
 Mock-ups (seed 001 §3): the default radius ``0.016 H`` is 0.7 mm for the 44 mm wall, the
 time step 5.7e-6 s, and the generation, settling and relaxation take about 3 minutes on one

@@ -33,7 +33,7 @@ doubled because only the mass-proportional part is used) at the input frequency,
 velocity relative to the base (``damping_frame="base"``; ``"absolute"`` damps the velocity in
 the fixed frame, as UDEC does, so that it also resists the motion of the wall with the
 ground); joint stiffness of Table 6 times ``stiffness_scale`` (default
-1e-3, so that a full-scale run takes about a minute: the stones are nearly rigid either way,
+1e-3, so that a full-scale run takes about half a minute: the stones are nearly rigid either way,
 the elastic joint closure under the wall's weight is 2e-5 m at the default against a collapse
 threshold of 0.5 m); a kinematic backstop along the back face (the backfill cannot be
 entered, :func:`~murus.retaining.dem_wall.build_wall`). With ``backfill="discrete"`` the
