@@ -192,3 +192,21 @@ def test_collapse_run_with_discrete_backfill():
     assert o["n_boundary"] > 5 and o["unit_weight"] == pytest.approx(14.9e3, rel=0.02)
     assert r.t.size == r.d_top.size and r.t[-1] == pytest.approx(0.1, abs=0.011)
     assert np.all(np.abs(r.d_top) < 0.01)
+    # the snapshot: the discs with their displacement; the container plate of the absorbing
+    # boundary, moved out of reach, is not among the polygons
+    assert r.disc_radii.size == r.disc_displacement.size == o["n_discs"]
+    assert r.disc_centres.shape == (o["n_discs"], 2)
+    assert len(r.polygons) == len(r.displacement) == len(r.rotation)
+    x_end = small_wall().heel[0] + 1.0 + 0.5  # W = 1 m behind the heel, and the plate width
+    assert max(float(np.max(q[:, 0])) for q in r.polygons) < x_end
+    import matplotlib
+
+    matplotlib.use("Agg", force=True)
+    from murus.retaining.collapse import plot_collapse
+
+    ax = plot_collapse(r.polygons, r.displacement, (r.disc_centres, r.disc_radii),
+                       r.disc_displacement, "test")
+    assert len(ax.collections) == 2  # the polygons and the discs
+    import matplotlib.pyplot as plt
+
+    plt.close(ax.figure)

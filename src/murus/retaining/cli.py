@@ -265,17 +265,17 @@ def collapse(
     matplotlib.use("Agg", force=True)
     import matplotlib.pyplot as plt
 
-    from murus.dem.plots import plot_blocks
+    from murus.retaining.collapse import plot_collapse
 
     d = Path(out)
     d.mkdir(parents=True, exist_ok=True)
     res.history_csv(d / "d_top.csv")
     with open(d / "summary.json", "w") as fh:
         fh.write(dumps(summary))
-    ax = plot_blocks(res.polygons, values=res.displacement,
-                     label="displacement relative to the base [m]")
     state = f"collapse at t = {res.t_col:.2f} s" if res.collapsed else "no collapse"
-    ax.set_title(f"{wall.name}, {frequency:g} Hz, vertical {res.vertical}: {state}")
+    ax = plot_collapse(res.polygons, res.displacement, (res.disc_centres, res.disc_radii),
+                       res.disc_displacement,
+                       f"{wall.name}, {frequency:g} Hz, vertical {res.vertical}: {state}")
     ax.figure.savefig(d / "collapse.png", dpi=120)
     plt.close(ax.figure)
     if res.collapsed:

@@ -60,7 +60,7 @@ from murus.retaining.geometry import RetainingWall
 
 __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES",
            "pseudo_static_resistance", "ramp_rate", "collapse_run", "peak_ratio_check",
-           "failure_mode", "behaviour_factor", "SEED_TABLE7"]
+           "failure_mode", "plot_collapse", "behaviour_factor", "SEED_TABLE7"]
 
 #: Vertical components: none, in phase, in opposition (seed 001 §4.3, ratio 0.5).
 VERTICAL_MODES = ("none", "in_phase", "opposition")
@@ -152,6 +152,9 @@ class CollapseResult:
     rotation: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     mode: str = ""
     setup_time: float = 0.0
+    disc_centres: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)), repr=False)
+    disc_radii: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    disc_displacement: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
     @property
     def stable(self) -> bool:
@@ -161,7 +164,8 @@ class CollapseResult:
         """JSON-ready scalars (nan as None is left to the writer)."""
         d = {k: v for k, v in asdict(self).items()
              if k not in ("t", "d_top", "acc", "acc_v", "kh", "kv", "polygons", "displacement",
-                          "rotation", "setup_time")}
+                          "rotation", "setup_time", "disc_centres", "disc_radii",
+                          "disc_displacement")}
         d["d_top_max"] = float(np.nanmax(self.d_top)) if self.d_top.size else math.nan
         d["A_peak"] = 0.6 * self.A_col if self.collapsed else math.nan
         d["r"] = d["A_peak"] / self.A_pseudo if self.collapsed else math.nan
@@ -309,10 +313,18 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                             f"{res.message}")
     acc = np.interp(t, tt, gm.acc, right=0.0)
     acc_v = np.interp(t, tt, accv, right=0.0)
-    polys = m.world_polygons()
     disp = m.body_displacement() - m.body_displacement()[dw.foundation]
     bodies = m.body_of_polygon()
+    # the polygons of the section (the container plate of an absorbing boundary, moved out of
+    # reach, is left out) and the discs of a discrete backfill
+    shown = np.ones(bodies.size, bool) if bf is None or bf.absorbing is None else \
+        bodies != bf.container
+    polys = [q for q, k in zip(m.world_polygons(), shown, strict=True) if k]
+    bodies = bodies[shown]
     dmag = np.hypot(disp[bodies, 0], disp[bodies, 1])
+    centres, radii = m.discs()
+    db = m.body_of_disc()
+    ddisc = np.hypot(disp[db, 0], disp[db, 1])
     rot = m.body_rotation()
     mode = failure_mode(float(d[-1]) if d.size else 0.0, float(rot[dw.top]),
                         float(m.bref[dw.top, 1]))
@@ -326,7 +338,27 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     return CollapseResult(wall.name, f, vmode, sig, A, float(A_pseudo), ap, thr, wall.height,
                           collapsed, t_col, A_col, float(m.time), t, d, acc, acc_v,
                           res["kh"], res["kv"], polys, dmag, wall_time, res.steps, res.dt,
-                          res.status, opts, rot[bodies], mode, setup_time)
+                          res.status, opts, rot[bodies], mode, setup_time, centres, radii,
+                          ddisc)
+
+
+def plot_collapse(polygons, displacement, discs=None, disc_displacement=None, title="",
+                  ax=None):
+    """The stones (and the discs of a discrete backfill) at the end of a collapse run, coloured
+    by their displacement relative to the base [m], to scale: ``polygons`` (k, 2) vertex
+    arrays [m], ``discs`` ``(centres (n, 2), radii (n,))`` [m]. Returns the Axes."""
+    from murus.dem.plots import plot_blocks
+
+    values = np.asarray(displacement, float)
+    if discs is not None and len(discs[1]):
+        values = np.concatenate([values, np.asarray(disc_displacement, float)])
+    else:
+        discs = None
+    ax = plot_blocks(polygons, discs=discs, values=values,
+                     label="displacement relative to the base [m]", ax=ax)
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax
 
 
 def failure_mode(d_top: float, rotation: float, z_top: float, share: float = 0.5) -> str:

@@ -504,6 +504,9 @@ def _save_case(folder: Path, rec: dict, res) -> None:
             with open(p, "wb") as fh:
                 np.savez(fh, vertices=verts, counts=counts,
                          displacement=np.asarray(res.displacement, float),
+                         disc_centres=np.asarray(res.disc_centres, float),
+                         disc_radii=np.asarray(res.disc_radii, float),
+                         disc_displacement=np.asarray(res.disc_displacement, float),
                          t_col=np.float64(res.t_col), t_end=np.float64(res.t_end))
 
         _atomic(folder / rec["snapshot"], npz)
@@ -723,7 +726,7 @@ def write_snapshots(out, dpi: int = 110) -> list[Path]:
     matplotlib.use("Agg", force=True)
     import matplotlib.pyplot as plt
 
-    from murus.dem.plots import plot_blocks
+    from murus.retaining.collapse import plot_collapse
 
     folder = Path(out) / "cases"
     written = []
@@ -736,13 +739,16 @@ def write_snapshots(out, dpi: int = 110) -> list[Path]:
         s = rec.get("summary") or {}
         with np.load(data) as z:
             verts, counts, disp = z["vertices"], z["counts"], z["displacement"]
+            discs = ((z["disc_centres"], z["disc_radii"]) if "disc_radii" in z.files
+                     else None)  # studies stored before the discs were
+            ddisc = z["disc_displacement"] if discs is not None else None
         polys = np.split(verts, np.cumsum(counts)[:-1]) if counts.size else []
-        ax = plot_blocks(polys, values=disp, label="displacement relative to the base [m]")
         state = (f"collapse at t = {s['t_col']:.2f} s" if s.get("collapsed") and
                  s.get("t_col") is not None else f"no collapse up to {_num(s.get('t_end')):.2f} s")
         extra = f", peak {rec['ratio']:g} A_col" if rec.get("ratio") is not None else ""
-        ax.set_title(f"{s.get('wall', '')} {rec['signal']}{extra}, {rec['frequency']:g} Hz, "
-                     f"vertical {rec['vertical']}: {state}", fontsize=9)
+        ax = plot_collapse(polys, disp, discs, ddisc,
+                           f"{s.get('wall', '')} {rec['signal']}{extra}, {rec['frequency']:g} "
+                           f"Hz, vertical {rec['vertical']}: {state}")
         _atomic(png, lambda p, fig=ax.figure: fig.savefig(p, dpi=dpi, format="png"))
         plt.close(ax.figure)
         written.append(png)
