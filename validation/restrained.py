@@ -9,7 +9,6 @@ Run through ``make validate`` or ``python validation/restrained.py``; writes PNG
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -261,11 +260,9 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", default=None)
     args = ap.parse_args(argv)
-    text = section()
-    if args.out:
-        Path(args.out).write_text(text)
-    else:
-        sys.stdout.write(text)
+    import runcache
+
+    runcache.emit(section(), args.out)
 
 
 if __name__ == "__main__":

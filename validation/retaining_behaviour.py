@@ -18,7 +18,6 @@ import argparse
 import csv
 import math
 import os
-import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -144,11 +143,9 @@ def main(argv=None) -> None:
     ap.add_argument("--out", default=None)
     ap.add_argument("--workers", type=int, default=1)
     args = ap.parse_args(argv)
-    text = section(args.workers)
-    if args.out:
-        Path(args.out).write_text(text)
-    else:
-        sys.stdout.write(text)
+    import runcache
+
+    runcache.emit(section(args.workers), args.out)
 
 
 if __name__ == "__main__":

@@ -24,7 +24,6 @@ from __future__ import annotations
 import csv
 import json
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -754,11 +753,9 @@ def main(argv=None) -> None:
     if args.only is not None:
         ensure(args.only, args.recompute, args.jobs)
         return
-    text = section(args.fig_dir, args.recompute, args.jobs)
-    if args.out:
-        Path(args.out).write_text(text)
-    else:
-        sys.stdout.write(text)
+    import runcache
+
+    runcache.emit(section(args.fig_dir, args.recompute, args.jobs), args.out)
 
 
 if __name__ == "__main__":

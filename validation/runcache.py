@@ -28,3 +28,11 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
                 compute(k)
                 print(f"  computed {k}", file=sys.stderr)
     return {k: json.loads((cache / f"{k}.json").read_text()) for k in keys}
+
+
+def emit(text: str, out: str | None) -> None:
+    """Write a section to the file ``out``, or to standard output without one."""
+    if out:
+        Path(out).write_text(text)
+    else:
+        sys.stdout.write(text)

@@ -8,7 +8,6 @@ under ``docs/figures/studies/`` and returns the Markdown section.
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -167,11 +166,9 @@ def main(argv=None) -> None:
     ap.add_argument("--out", default=None, help="Markdown file (default: standard output).")
     ap.add_argument("--fig-dir", default=None)
     args = ap.parse_args(argv)
-    text = section(args.fig_dir)
-    if args.out:
-        Path(args.out).write_text(text)
-    else:
-        sys.stdout.write(text)
+    import runcache
+
+    runcache.emit(section(args.fig_dir), args.out)
 
 
 if __name__ == "__main__":
