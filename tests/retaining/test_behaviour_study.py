@@ -18,7 +18,7 @@ from typer.testing import CliRunner
 import murus.retaining.study as bs
 from murus.retaining.collapse import CollapseResult
 from murus.retaining.study import behaviour_study, load_behaviour_study, run_behaviour_study
-from murus.studies.faults import FailTimes, Touch
+from murus.studies.faults import FailTimes, Interrupt, Touch
 from murus.studies.sweep import StudyError, study_status
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "retaining" / \
@@ -78,15 +78,6 @@ def small(frequencies=(3.0, 5.0), ratios=(0.6, 0.7), **numerics):
         "numerics": {"stiffness_scale": 1e-5, "t_pseudo": 0.5, **numerics}})
 
 
-class Interrupt:
-    """Ctrl-C when task ``index`` starts."""
-
-    def __init__(self, index):
-        self.index = index
-
-    def __call__(self, i):
-        if i == self.index:
-            raise KeyboardInterrupt
 
 
 def files(out):

@@ -7,19 +7,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from murus.studies.faults import FailTimes, Touch
+from murus.studies.faults import FailTimes, Interrupt, Touch
 from murus.studies.sweep import StudyError, open_result, run_plan, study_status
-
-
-class Interrupt:
-    """Stop the whole run (like Ctrl-C) when chunk ``chunk`` starts."""
-
-    def __init__(self, chunk):
-        self.chunk = chunk
-
-    def __call__(self, index):
-        if index == self.chunk:
-            raise KeyboardInterrupt
 
 
 @pytest.fixture(scope="module")

@@ -7,7 +7,7 @@ import operator
 
 import pytest
 
-from murus.studies.faults import FailTimes
+from murus.studies.faults import FailTimes, Interrupt
 from murus.studies.sweep import (
     StudyError,
     check_folder,
@@ -96,15 +96,6 @@ def test_folder_with_task_files(tmp_path):
     assert json.loads((out / "study.json").read_text())["digest"] == "d1"
 
 
-class InterruptAt:
-    """Ctrl-C in the worker that starts task ``index`` (picklable for a process pool)."""
-
-    def __init__(self, index):
-        self.index = index
-
-    def __call__(self, i):
-        if i == self.index:
-            raise KeyboardInterrupt
 
 
 def test_interrupt_keeps_the_tasks_running_then():
@@ -117,5 +108,5 @@ def test_interrupt_keeps_the_tasks_running_then():
     with pytest.raises(KeyboardInterrupt):
         run_tasks(time.sleep, [(0, 1.0), (1, 0.0), (2, 0.0)], "process", workers=2,
                   window=2, on_result=lambda i, r: got.__setitem__(i, r),
-                  hook=InterruptAt(1))
+                  hook=Interrupt(1))
     assert got.get(0, 1) is None and 1 not in got

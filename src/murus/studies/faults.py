@@ -12,7 +12,7 @@ import signal
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["KillOnce", "FailTimes", "Touch"]
+__all__ = ["KillOnce", "FailTimes", "Touch", "Interrupt"]
 
 
 @dataclass(frozen=True)
@@ -64,3 +64,14 @@ class Touch:
 
     def __call__(self, index: int) -> None:
         (Path(self.folder) / f"ran-{index}-{os.getpid()}").write_text("")
+
+
+@dataclass(frozen=True)
+class Interrupt:
+    """Raise ``KeyboardInterrupt`` (as Ctrl-C) when task or chunk ``chunk`` starts."""
+
+    chunk: int = 0
+
+    def __call__(self, index: int) -> None:
+        if index == self.chunk:
+            raise KeyboardInterrupt
