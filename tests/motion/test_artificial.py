@@ -31,6 +31,17 @@ def test_records_compatible_and_baseline(records):
     assert 0.9 < ratio.min() and ratio.max() < 1.15
 
 
+def test_records_start_and_end_at_rest(records):
+    """The artificial records start and end at zero acceleration (EN 1998-1 records are applied
+    from rest), with zero final velocity and displacement: the baseline vanishes at both ends."""
+    for r in records:
+        assert abs(r.acc[0]) <= 1e-12 * r.pga and abs(r.acc[-1]) <= 1e-12 * r.pga
+        v, d = r.velocity(), r.displacement()
+        assert abs(v[-1]) < 1e-12 * r.pga * r.duration
+        assert abs(d[-1]) < 1e-12 * r.pga * r.duration ** 2
+        assert "sin(pi t/T)" in r.meta["baseline"]
+
+
 def test_reproducible_with_seed(records):
     again = generate_ec8(2.5, "C", 1, n=1, seed=7)
     assert np.array_equal(again[0].acc, records[0].acc)

@@ -13,6 +13,25 @@ from murus.motion.synthetic import ramp_velocity
 runner = CliRunner()
 
 
+def test_info_peaks_after_stated_baseline(tmp_path):
+    """A record that is only an acceleration offset c0 + c1 t: the raw PGD is the double
+    integral (c0 T²/2 + c1 T³/6); the quadratic velocity baseline removes it exactly."""
+    dt, n = 0.01, 1001
+    t = dt * np.arange(n)
+    a = 0.02 + 0.003 * t
+    f = tmp_path / "drift.csv"
+    rows = "\n".join(f"{x:.6f},{y:.12g}" for x, y in zip(t, a, strict=True))
+    f.write_text("# units: m/s2\n" + rows)
+    r = runner.invoke(app, ["motion", "info", str(f), "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    T = t[-1]
+    assert d["pgd_raw"] == pytest.approx(0.02 * T**2 / 2 + 0.003 * T**3 / 6, rel=1e-9)
+    assert d["pgv"] < 1e-10 and d["pgd"] < 1e-10
+    r = runner.invoke(app, ["motion", "info", str(f)])
+    assert "after baseline correction" in r.stdout and "baseline: quadratic" in r.stdout
+
+
 def test_ramp_info_spectrum(tmp_path):
     out = tmp_path / "ramp.csv"
     r = runner.invoke(app, ["motion", "ramp", "--amplitude-rate", "0.5", "--frequency", "3",
@@ -26,8 +45,10 @@ def test_ramp_info_spectrum(tmp_path):
     assert d["npts"] == 2001 and d["dt"] == 0.002
     # trapezoidal integration error of the sampled ramp: O((W dt)²/12)
     rel = (2 * np.pi * 3 * 0.002) ** 2 / 6
-    assert d["pgv"] == pytest.approx(np.max(np.abs(ramp_velocity(0.5, 3, gm.time))), rel=rel)
-    assert {"pga", "arias", "d5_95"} <= set(d)
+    assert d["pgv_raw"] == pytest.approx(np.max(np.abs(ramp_velocity(0.5, 3, gm.time))),
+                                         rel=rel)
+    assert {"pga", "arias", "d5_95", "pgv", "pgd", "pgd_raw"} <= set(d)
+    assert "quadratic" in d["baseline"]
     r = runner.invoke(app, ["motion", "spectrum", str(out), "--out", str(tmp_path / "sp")])
     assert r.exit_code == 0, r.output
     lines = (tmp_path / "sp" / "spectrum.csv").read_text().splitlines()

@@ -138,6 +138,19 @@ def test_end_correction_zero_final_velocity_displacement():
     assert abs(out.displacement()[-1]) < 1e-9
 
 
+def test_end_correction_zero_ends_keeps_end_samples():
+    """With zero_ends the baseline vanishes at t = 0 and t = T: the first and last samples are
+    unchanged, and the final velocity and displacement are zero to round-off."""
+    rng = np.random.default_rng(1)
+    a = rng.standard_normal(3001) + 0.05
+    a[0] = a[-1] = 0.0
+    out = processing.end_correction(GroundMotion(dt=0.01, acc=a), zero_ends=True)
+    assert out.acc[0] == 0.0 and out.acc[-1] == 0.0
+    assert abs(out.velocity()[-1]) < 1e-10
+    assert abs(out.displacement()[-1]) < 1e-9
+    assert np.max(np.abs(out.acc - a)) > 1e-3  # a baseline was removed
+
+
 @pytest.mark.parametrize("f", [0.05, 0.1, 0.2, 1.0])
 def test_zero_phase_highpass_gain(f):
     """Steady sine through a zero-phase Butterworth high-pass of order n: gain

@@ -9,10 +9,14 @@ Generation (:func:`spectrum_compatible`), as for the shaking-table input of seed
 2. its Fourier amplitudes are corrected iteratively by the ratio target / computed 5 % PSA,
    interpolated in frequency at f = 1/T (Gasparini and Vanmarcke 1976, SIMQKE); Fourier
    components below ``f_min`` are removed;
-3. after every correction a linear-in-time baseline correction
-   (:func:`murus.motion.processing.end_correction`) makes the final ground velocity and
-   displacement exactly zero; the spectrum used for the next correction, and the one reported,
-   is that of the corrected record. If the PGA falls below ag S the record is scaled up to it.
+3. after every correction the first and last 0.5 s (at most 5 % of the duration) are tapered
+   to zero by a cosine window, and a baseline correction that vanishes at both ends
+   (:func:`murus.motion.processing.end_correction` with ``zero_ends=True``: c1 sin(pi t/T) +
+   c2 sin(2 pi t/T)) makes the final ground velocity and displacement exactly zero; so the
+   record starts and ends at zero acceleration, velocity and displacement (a linear baseline
+   c0 + c1 t would shift the first sample by c0: up to 14 % of the PGA). The spectrum used for
+   the next correction, and the one reported, is that of the corrected record. If the PGA falls
+   below ag S the record is scaled up to it.
 
 :func:`check_ec8` reports the EN 1998-1 §3.2.3.1.2 conditions for a set of records: (a) at least
 3 records; (b) mean PGA >= ag S; (c) no value of the mean 5 % elastic spectrum below 90 % of the
@@ -52,6 +56,17 @@ def envelope(t: np.ndarray, rise: float, stationary: float, decay: float,
     raise ValueError("envelope kind must be 'trapezoidal' or 'jennings'")
 
 
+def _end_window(n: int, dt: float) -> np.ndarray:
+    """Weights of ``n`` samples: 1 except cosine ramps from 0 over the first and the last
+    min(0.5 s, 5 % of the duration) (at least 2 samples)."""
+    m = max(2, int(round(min(0.5, 0.05 * (n - 1) * dt) / dt)))
+    w = np.ones(n)
+    ramp = 0.5 * (1.0 - np.cos(np.pi * np.arange(m) / m))
+    w[:m] = ramp
+    w[n - m:] = ramp[::-1]
+    return w
+
+
 def spectrum_compatible(target, periods, dt: float = 0.01, rise: float = 2.0,
                         stationary: float = 10.0, decay: float = 4.0,
                         envelope_kind: str = "trapezoidal", damping: float = 0.05,
@@ -74,6 +89,7 @@ def spectrum_compatible(target, periods, dt: float = 0.01, rise: float = 2.0,
     acc = rng.standard_normal(n) * env
     f = np.fft.rfftfreq(n, dt)
     fp = 1.0 / periods[::-1]  # increasing frequencies
+    ends = _end_window(n, dt)
     gm = GroundMotion(dt=dt, acc=acc, name=name)
     # initial level: match the mean spectral ordinate
     s = pseudo_spectrum(gm, periods, damping)
@@ -84,13 +100,14 @@ def spectrum_compatible(target, periods, dt: float = 0.01, rise: float = 2.0,
         r = np.interp(f, fp, ratio, left=ratio[0], right=ratio[-1])
         X = np.fft.rfft(gm.acc) * r
         X[f < f_min] = 0.0
-        a = np.fft.irfft(X, n=n)
-        gm = end_correction(GroundMotion(dt=dt, acc=a, name=name))
+        a = np.fft.irfft(X, n=n) * ends
+        gm = end_correction(GroundMotion(dt=dt, acc=a, name=name), zero_ends=True)
     if pga_min is not None and gm.pga < pga_min:
         gm = gm.scaled(pga_min / gm.pga)
     v = gm.velocity()
     d = gm.displacement()
-    meta = {"kind": "artificial", "seed": seed, "envelope": envelope_kind, "rise": rise,
+    meta = {"kind": "artificial", "seed": seed, "baseline": gm.meta.get("baseline"),
+            "envelope": envelope_kind, "rise": rise,
             "stationary_duration": stationary, "decay": decay, "iterations": iterations,
             "v_end": float(v[-1]), "d_end": float(d[-1])}
     return GroundMotion(dt=dt, acc=gm.acc, name=name, meta=meta)

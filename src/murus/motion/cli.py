@@ -78,12 +78,16 @@ def info(
     units: str = typer.Option(None, help=UNITS_HELP),
     dt: float = typer.Option(None, help="Time step [s] of a one-column file."),
 ) -> None:
-    """Format, dt, npts, PGA, PGV, Arias intensity and D5-95 of a record."""
+    """Format, dt, npts, PGA, PGV, PGD, Arias intensity, D5-75, D5-95 and CAV of a record.
+
+    PGV and PGD are given after a stated baseline correction (a quadratic fitted to the
+    velocity; murus.motion.measures.BASELINE), with the uncorrected values beside them."""
     with _guard():
-        from murus.motion.measures import summary
+        from murus.motion.measures import corrected_peaks, summary
 
         gm = _load(file, units, dt)
         s = summary(gm)
+        s.update(corrected_peaks(gm))
     s = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in s.items()}
     s = {"file": str(file), "format": gm.meta.get("format"), "name": gm.name, **s}
     if as_json:
@@ -92,7 +96,9 @@ def info(
     typer.echo(f"{file}  [{s['format']}]")
     typer.echo(f"  npts {s['npts']}   dt {s['dt']:g} s   duration {s['duration']:.3f} s")
     typer.echo(f"  PGA {s['pga']:.4g} m/s² ({s['pga'] / 9.81:.4g} g)   PGV {s['pgv']:.4g} m/s"
-               f"   PGD {s['pgd']:.4g} m")
+               f"   PGD {s['pgd']:.4g} m (after baseline correction)")
+    typer.echo(f"  uncorrected: PGV {s['pgv_raw']:.4g} m/s   PGD {s['pgd_raw']:.4g} m")
+    typer.echo(f"  baseline: {s['baseline']}")
     typer.echo(f"  Arias {s['arias']:.4g} m/s   D5-75 {s['d5_75']:.3f} s   "
                f"D5-95 {s['d5_95']:.3f} s   CAV {s['cav']:.4g} m/s")
 

@@ -22,8 +22,12 @@ from murus.motion.core import GroundMotion
 
 __all__ = [
     "pga", "pgv", "pgd", "arias", "husid", "significant_duration", "d5_75", "d5_95", "cav",
-    "mean_period", "summary",
+    "mean_period", "summary", "BASELINE", "corrected_peaks",
 ]
+
+#: The baseline correction used for the PGV and PGD that ``murus motion info`` reports.
+BASELINE = ("quadratic velocity baseline: a quadratic fitted by least squares to the velocity "
+            "integrated from rest; its derivative (a linear acceleration) is subtracted")
 
 
 def pga(motion: GroundMotion) -> float:
@@ -119,6 +123,27 @@ def mean_period(motion: GroundMotion, fmin: float = 0.25, fmax: float = 20.0) ->
         raise ValueError("mean_period: no Fourier amplitude in the band [fmin, fmax]")
     c2 = c[sel] ** 2
     return float(np.sum(c2 / f[sel]) / np.sum(c2))
+
+
+def corrected_peaks(motion: GroundMotion) -> dict:
+    """PGV [m/s] and PGD [m] after the baseline correction :data:`BASELINE`.
+
+    Integrating a record from rest turns a small acceleration offset into a velocity that drifts
+    linearly and a displacement that drifts quadratically: the raw PGD of an uncorrected record
+    is often meaningless. The correction is
+    :func:`murus.motion.processing.baseline_correct` ``(order=2, fit="velocity")``.
+
+    Returns
+    -------
+    dict
+        ``pgv``, ``pgd`` after the correction, ``pgv_raw``, ``pgd_raw`` before it, and
+        ``baseline`` (the text of :data:`BASELINE`).
+    """
+    from murus.motion.processing import baseline_correct
+
+    c = baseline_correct(motion, order=2, fit="velocity")
+    return {"pgv": pgv(c), "pgd": pgd(c), "pgv_raw": pgv(motion), "pgd_raw": pgd(motion),
+            "baseline": BASELINE}
 
 
 def summary(motion: GroundMotion) -> dict:

@@ -48,15 +48,44 @@ def baseline_correct(motion: GroundMotion, order: int = 2, fit: str = "velocity"
     return motion._replace(acc=motion.acc - corr)
 
 
-def end_correction(motion: GroundMotion) -> GroundMotion:
-    """Subtract a linear-in-time acceleration c0 + c1 t so that the final velocity and the final
-    displacement (from rest) are exactly zero (exact for the piecewise-linear integration)."""
+def end_correction(motion: GroundMotion, zero_ends: bool = False) -> GroundMotion:
+    """Subtract a baseline so that the final velocity and the final displacement (from rest) are
+    exactly zero (exact for the piecewise-linear integration of
+    :func:`murus.motion.core.integrate`).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    zero_ends : bool
+        False (default): the baseline is linear in time, c0 + c1 t; it shifts the first and last
+        samples by c0 and c0 + c1 T. True: the baseline is c1 sin(pi t / T) + c2 sin(2 pi t / T),
+        which vanishes at both ends, so a record that starts and ends at zero acceleration keeps
+        doing so (used for the artificial EN 1998-1 records).
+
+    Returns
+    -------
+    GroundMotion
+        The corrected record; its ``meta['baseline']`` names the correction.
+    """
     T = motion.duration
     v, d = integrate(motion.acc, motion.dt)
-    # integral of c0 + c1 t: v_end = c0 T + c1 T²/2 ; d_end = c0 T²/2 + c1 T³/6
-    M = np.array([[T, T * T / 2], [T * T / 2, T**3 / 6]])
-    c0, c1 = np.linalg.solve(M, [v[-1], d[-1]])
-    return motion._replace(acc=motion.acc - (c0 + c1 * motion.time))
+    if zero_ends:
+        t = motion.time
+        basis = [np.sin(np.pi * t / T), np.sin(2.0 * np.pi * t / T)]
+        basis[0][-1] = basis[1][-1] = 0.0  # exactly zero at t = T
+        ends = [integrate(b, motion.dt) for b in basis]
+        M = np.array([[e[0][-1] for e in ends], [e[1][-1] for e in ends]])
+        c = np.linalg.solve(M, [v[-1], d[-1]])
+        corr = c[0] * basis[0] + c[1] * basis[1]
+        label = "end correction: c1 sin(pi t/T) + c2 sin(2 pi t/T) (final v = d = 0, ends kept)"
+    else:
+        # integral of c0 + c1 t: v_end = c0 T + c1 T²/2 ; d_end = c0 T²/2 + c1 T³/6
+        M = np.array([[T, T * T / 2], [T * T / 2, T**3 / 6]])
+        c0, c1 = np.linalg.solve(M, [v[-1], d[-1]])
+        corr = c0 + c1 * motion.time
+        label = "end correction: c0 + c1 t (final v = d = 0)"
+    return motion._replace(acc=motion.acc - corr).with_meta(baseline=label)
 
 
 def _filter(motion: GroundMotion, btype: str, freq, order: int) -> GroundMotion:
