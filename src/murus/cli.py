@@ -41,6 +41,7 @@ app.add_typer(verify_app, name="verify")
 
 
 fail = cliutil.fail
+cliutil.warnings_as_notes()
 
 
 @app.command()

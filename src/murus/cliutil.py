@@ -9,15 +9,45 @@ from __future__ import annotations
 
 import json
 import math
+import re
+import sys
+import warnings
 from contextlib import contextmanager
 
 import typer
 
+_NUMPY_REPR = re.compile(r"\bnp\.(?:float|int|uint|bool|complex|str)[a-z0-9_]*\(([^()]*)\)")
+
+
+def plain(message) -> str:
+    """``message`` on one line (white space folded) in a user's words: numpy scalar reprs such
+    as ``np.float64(5.0)`` become ``5.0``."""
+    text = _NUMPY_REPR.sub(r"\1", " ".join(str(message).split()))
+    return re.sub(r"\bnp\.(True|False)_", r"\1", text)
+
 
 def fail(message) -> None:
-    """Print ``error: message`` (white space folded to one line) on stderr and exit with code 2."""
-    typer.echo(f"error: {' '.join(str(message).split())}", err=True)
+    """Print ``error: message`` (one line, :func:`plain`) on stderr and exit with code 2."""
+    typer.echo(f"error: {plain(message)}", err=True)
     raise typer.Exit(code=2)
+
+
+def _note(message, category, filename, lineno, file=None, line=None) -> None:
+    """``warnings.showwarning`` of the command line: ``note: <message>`` on one line of stderr,
+    without the source file, line and code that Python prints."""
+    text = " ".join(str(message).split())
+    kind = "" if category in (UserWarning, RuntimeWarning) else f" ({category.__name__})"
+    try:
+        (file or sys.stderr).write(f"note: {text}{kind}\n")
+    except (OSError, ValueError):  # stderr closed
+        pass
+
+
+def warnings_as_notes() -> None:
+    """Show Python warnings as one-line notes on stderr (the ``murus`` command installs it);
+    each distinct note is shown once."""
+    warnings.showwarning = _note
+    warnings.simplefilter("default")
 
 
 @contextmanager

@@ -3,22 +3,104 @@ file, the line and the key in one line (GUIDE §3)."""
 
 from __future__ import annotations
 
+import math
 import re
 import tomllib
+import types
+import typing
 from pathlib import Path
-from typing import Literal
+from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
 
 
 class CaseError(ValueError):
     """An invalid case file; ``str()`` is one line naming the file, line and key."""
 
 
+#: Physical sense of case-file keys, declared once for every case schema (by key name):
+#: ``name: (largest magnitude, unit, what)``. A value beyond it is refused with the limit named;
+#: the limits are far beyond any masonry wall or shaking table, so good input is never refused.
+PHYSICAL_LIMITS: dict[str, tuple[float, str, str]] = {
+    **{k: (1.0e3, "m", "a length") for k in (
+        "width", "height", "thickness", "block_width", "block_height", "layer_thickness",
+        "effective_height", "radius", "length")},
+    "density": (3.0e4, "kg/m3", "a density (osmium: 22,600 kg/m3)"),
+    "top_mass": (1.0e9, "kg", "a mass"),
+    "scale": (1.0e3, "-", "a scale factor of the motion"),
+    "amplitude": (1.0e3, "m/s2", "a ground acceleration (100 g)"),
+    "amplitude_g": (100.0, "g", "a ground acceleration"),
+    "frequency": (1.0e4, "Hz", "a frequency"),
+    "kv_ratio": (1.0, "-", "the ratio kv / kh (EN 1998-5 (7.2): 0.5 or 0.33)"),
+}
+
+
+def check_physical(key: str, value, label: str | None = None) -> None:
+    """Raise ValueError when ``value`` of the key ``key`` of :data:`PHYSICAL_LIMITS` is beyond
+    its physical limit; ``label`` names the value in the message (default ``key``; the CLI
+    passes its option, e.g. ``--width``). Other keys and non-numbers pass."""
+    lim = PHYSICAL_LIMITS.get(key)
+    if (lim is None or not isinstance(value, int | float) or isinstance(value, bool)
+            or not math.isfinite(value) or abs(value) <= lim[0]):
+        return
+    unit = "" if lim[1] == "-" else f" {lim[1]}"
+    what = f"{label} " if label else ""
+    raise ValueError(f"{what}{value:g}{unit} is outside the physical range of {lim[2]}: its "
+                     f"magnitude is at most {lim[0]:g}{unit}")
+
+
+def _only_numbers(ann) -> bool:
+    """True when the annotation ``ann`` admits numbers (int, float) and None only."""
+    if typing.get_origin(ann) is Annotated:
+        ann = typing.get_args(ann)[0]
+    if typing.get_origin(ann) in (typing.Union, types.UnionType):
+        args = [a for a in typing.get_args(ann) if a is not type(None)]
+        return bool(args) and all(_only_numbers(a) for a in args)
+    return ann in (int, float)
+
+
+def _not_a_number(ann, value) -> object:
+    """The first string or boolean inside ``value`` standing where ``ann`` admits only numbers
+    (scalars, lists and tuples of numbers); ``None`` when there is none."""
+    if typing.get_origin(ann) is Annotated:
+        ann = typing.get_args(ann)[0]
+    if isinstance(value, str | bool) and _only_numbers(ann):
+        return value
+    origin = typing.get_origin(ann)
+    if origin in (typing.Union, types.UnionType):
+        for a in typing.get_args(ann):
+            if typing.get_origin(a) in (list, tuple) and isinstance(value, list | tuple):
+                return _not_a_number(a, value)
+        return None
+    if origin in (list, tuple) and isinstance(value, list | tuple):
+        args = [a for a in typing.get_args(ann) if a is not Ellipsis]
+        for i, v in enumerate(value):
+            a = args[0] if origin is list or len(args) == 1 else args[min(i, len(args) - 1)]
+            bad = _not_a_number(a, v)
+            if bad is not None:
+                return bad
+    return None
+
+
 class Strict(BaseModel):
-    """Base of every case-file table: unknown keys are errors."""
+    """Base of every case-file table: unknown keys are errors; numbers must be written as
+    numbers (``width = "0.6"`` and ``width = true`` are refused, not coerced); the keys of
+    :data:`PHYSICAL_LIMITS` are refused beyond their physical limit."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
+
+    @field_validator("*", mode="before")
+    @classmethod
+    def _strict_numbers(cls, value, info: ValidationInfo):
+        field = cls.model_fields.get(info.field_name)
+        if field is None:
+            return value
+        bad = _not_a_number(field.annotation, value)
+        if bad is not None:
+            kind = "a string" if isinstance(bad, str) else "a boolean"
+            raise ValueError(f"a number is expected, not {kind}: write it without quotes")
+        check_physical(info.field_name, value)
+        return value
 
 
 class MotionFields(Strict):
@@ -97,13 +179,40 @@ def load_toml(path) -> tuple[dict, str]:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise CaseError(f"{path}: no such case file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise CaseError(f"{path}: cannot read the case file ({exc})") from None
+    except IsADirectoryError:
+        raise CaseError(f"{path}: is a folder, not a case file") from None
+    except UnicodeDecodeError:
+        raise CaseError(f"{path}: cannot read the case file: {describe_encoding(path)}, "
+                        "not UTF-8 text") from None
+    except OSError as exc:
+        raise CaseError(f"{path}: cannot read the case file ({exc.strerror or exc})") from None
+    if not text.strip():
+        raise CaseError(f"{path}: the case file is empty")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(f"{path.name}: invalid TOML: {exc}") from None
+    if not data:
+        raise CaseError(f"{path}: the case file has only comments: no table or key")
     return data, text
+
+
+def describe_encoding(path) -> str:
+    """What a file that is not UTF-8 text looks like, in a user's words: "UTF-16 text" (byte
+    order mark or alternate zero bytes), "UTF-32 text", "binary data" (zero bytes) or "text in
+    another encoding (e.g. Latin-1)"."""
+    with open(path, "rb") as f:
+        head = f.read(4096)
+    if head.startswith((b"\xff\xfe\x00\x00", b"\x00\x00\xfe\xff")):
+        return "UTF-32 text"
+    if head.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return "UTF-16 text"
+    if len(head) >= 4 and (head[1::2].count(0) > 0.4 * len(head) / 2
+                           or head[0::2].count(0) > 0.4 * len(head) / 2):
+        return "UTF-16 text (no byte order mark)"
+    if b"\x00" in head:
+        return "binary data"
+    return "text in another encoding (e.g. Latin-1)"
 
 
 def validate(model: type[BaseModel], data: dict, path: Path, text: str):

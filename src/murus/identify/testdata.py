@@ -260,8 +260,13 @@ def read_test(path) -> ShakingTableTest:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise TestDataError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise TestDataError(f"{path}: cannot read ({exc})") from None
+    except UnicodeDecodeError:
+        from murus.config import describe_encoding
+
+        raise TestDataError(f"{path}: {describe_encoding(path)}, not UTF-8 text: save it as "
+                            "UTF-8") from None
+    except OSError as exc:
+        raise TestDataError(f"{path}: cannot read ({exc.strerror or exc})") from None
     lines = text.splitlines()
     header: dict[str, tuple[str, int]] = {}
     i = 0
@@ -491,7 +496,12 @@ def read_sequence(folder) -> TestSequence:
     if toml.exists():
         try:
             doc = tomllib.loads(toml.read_text(encoding="utf-8"))
-        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        except UnicodeDecodeError:
+            from murus.config import describe_encoding
+
+            raise TestDataError(f"{toml}: {describe_encoding(toml)}, not UTF-8 text: save it "
+                                "as UTF-8") from None
+        except tomllib.TOMLDecodeError as exc:
             raise TestDataError(f"{toml}: {' '.join(str(exc).split())}") from None
         name = str(doc.get("name", name))
         tests = doc.get("test")

@@ -135,12 +135,22 @@ def _read_text(path: Path) -> str:
         raise MotionFormatError(f"{path.name}: is a directory, not a record file") from None
     except OSError as exc:
         raise MotionFormatError(f"{path.name}: cannot read ({exc.strerror})") from None
-    if b"\x00" in raw:
-        raise MotionFormatError(f"{path.name}: binary file (NUL bytes), not a text record")
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")) or b"\x00" in raw:
+        from murus.config import describe_encoding
+
+        kind = describe_encoding(path)
+        hint = (": save it as UTF-8 (or ASCII) text" if kind.startswith("UTF")
+                else ", not a text record")
+        raise MotionFormatError(f"{path.name}: {kind}{hint}")
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError:
         return raw.decode("latin-1")
+
+
+def _num(x) -> str:
+    """A number as a user wrote it (``5``, ``0.01``), never a numpy repr."""
+    return f"{float(x):.10g}"
 
 
 _ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.\-()]*):(.*)$")
@@ -179,14 +189,14 @@ def detect_format(path, text: str | None = None) -> str:
 def _check_units(src: _Src, declared: str, given: str | None, lineno: int | None) -> str:
     if given is not None and normalize_units(given) != declared:
         raise src.err(
-            lineno, f"file declares units {declared!r} but units={given!r} was given"
+            lineno, f"the file declares units {declared} but units {given} were given"
         )
     return declared
 
 
 def _check_dt(src: _Src, dt: float, lineno: int | None) -> float:
     if not (math.isfinite(dt) and dt > 0):
-        raise src.err(lineno, f"time step dt = {dt!r} is not positive")
+        raise src.err(lineno, f"time step dt = {_num(dt)} s is not positive")
     return dt
 
 
@@ -217,7 +227,8 @@ def _read_at2(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotio
     npts = int(ntok)
     dt = _check_dt(src, src.num(dtok, 4), 4)
     if dt_arg is not None and not math.isclose(dt_arg, dt, rel_tol=1e-9):
-        raise src.err(4, f"file declares DT = {dt!r} s but dt={dt_arg!r} was given")
+        raise src.err(4, f"the file declares DT = {_num(dt)} s but a time step of "
+                         f"{_num(dt_arg)} s was given")
     vals, where = src.values(4)
     if vals.size != npts:
         last = where[-1] if where else 4
@@ -268,7 +279,8 @@ def _read_esm(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotio
     sdt, ldt = need("SAMPLING_INTERVAL_S")
     dt = _check_dt(src, src.num(sdt, ldt), ldt)
     if dt_arg is not None and not math.isclose(dt_arg, dt, rel_tol=1e-9):
-        raise src.err(ldt, f"file declares SAMPLING_INTERVAL_S = {dt!r} but dt={dt_arg!r}")
+        raise src.err(ldt, f"the file declares SAMPLING_INTERVAL_S = {_num(dt)} s but a time step "
+                                  f"of {_num(dt_arg)} s was given")
     sn, ln = need("NDATA")
     if not re.fullmatch(r"\d+", sn):
         raise src.err(ln, f"NDATA {_short(sn)} is not a whole number")
@@ -410,7 +422,8 @@ def _read_cosmos(src: _Src, units: str | None, dt_arg: float | None) -> GroundMo
     dt_ms = float(reals[61])
     dt = _check_dt(src, dt_ms / 1000.0, None)
     if dt_arg is not None and not math.isclose(dt_arg, dt, rel_tol=1e-9):
-        raise src.err(None, f"file declares dt = {dt!r} s but dt={dt_arg!r} was given")
+        raise src.err(None, f"the file declares dt = {_num(dt)} s but a time step of "
+                            f"{_num(dt_arg)} s was given")
     # data lines run until the 'End-of-data' line (or the next block / end of file)
     j = i + 1
     stop = j
@@ -487,8 +500,9 @@ def _read_csv(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotio
     elif units is not None:
         uname = normalize_units(units, src.name)
     else:
-        raise src.err(None, "units not declared: pass units='g', 'm/s2' or 'cm/s2' (or add a "
-                            "'# units: ...' line)")
+        raise src.err(None, "units not declared: give them (--units g, m/s2 or cm/s2 on the "
+                            "command line; units = \"g\" in a case file) or add a "
+                            "'# units: g' line to the file")
     fac = UNITS[uname]
     data = np.asarray(rows, dtype=np.float64)
     n = data.shape[0]
@@ -504,7 +518,8 @@ def _read_csv(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotio
         tok = tok.split()[0] if tok.split() else tok
         dt_hdr = _check_dt(src, src.num(tok, lno), lno)
         if dt_arg is not None and not math.isclose(dt_arg, dt_hdr, rel_tol=1e-9):
-            raise src.err(lno, f"file declares dt = {dt_hdr!r} s but dt={dt_arg!r} was given")
+            raise src.err(lno, f"the file declares dt = {_num(dt_hdr)} s but a time step of "
+                                   f"{_num(dt_arg)} s was given")
     meta = {"format": "csv", "source_file": str(src.path), "units_in": uname}
     for key in ("name", "event", "station", "component"):
         if key in hdr:
@@ -514,15 +529,16 @@ def _read_csv(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotio
     if ncol == 1:
         dt = dt_hdr if dt_hdr is not None else dt_arg
         if dt is None:
-            raise src.err(None, "one-column file without a time step: pass dt=... (or add a "
-                                "'# dt: ...' line)")
+            raise src.err(None, "one-column file without a time step: give it (--dt on the command "
+                                "line; dt = ... in a case file) or add a '# dt: 0.01' line")
         return _make(src, data[:, 0] * fac, _check_dt(src, float(dt), None), meta)
     t = data[:, 0]
     steps = np.diff(t)
     bad = np.nonzero(~(steps > 0))[0]
     if bad.size:
         r = int(bad[0]) + 1
-        raise src.err(rowline[r], f"time {t[r]!r} s does not increase (previous {t[r - 1]!r} s)")
+        raise src.err(rowline[r], f"time {_num(t[r])} s does not increase "
+                                  f"(previous {_num(t[r - 1])} s)")
     acc = data[:, 1] * fac
     acc_v = data[:, 2] * fac if ncol == 3 else None
     span_dt = float((t[-1] - t[0]) / (n - 1))
@@ -530,11 +546,11 @@ def _read_csv(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotio
     if uniform:
         dt = dt_hdr if dt_hdr is not None else span_dt
         if dt_hdr is not None and not math.isclose(dt_hdr, span_dt, rel_tol=1e-6):
-            raise src.err(hdr["dt"][1], f"dt = {dt_hdr!r} s disagrees with the time column "
-                                        f"({span_dt!r} s)")
+            raise src.err(hdr["dt"][1], f"dt = {_num(dt_hdr)} s disagrees with the time "
+                                        f"column ({_num(span_dt)} s)")
         if dt_arg is not None and not math.isclose(dt_arg, span_dt, rel_tol=1e-6):
-            raise src.err(None, f"dt={dt_arg!r} was given but the time column has a step of "
-                                f"{span_dt!r} s")
+            raise src.err(None, f"a time step of {_num(dt_arg)} s was given but the time "
+                                f"column has a step of {_num(span_dt)} s")
         if t[0] != 0.0:
             meta["t0"] = float(t[0])
         return _make(src, acc, float(dt), meta, acc_v)
@@ -602,11 +618,12 @@ def read(path, units: str | None = None, dt: float | None = None, scale: float =
     text = _read_text(path)
     fmt = detect_format(path, text) if format is None else format.lower()
     if fmt not in _READERS:
-        raise MotionFormatError(f"{path.name}: unknown format {format!r} (use {FORMATS})")
+        raise MotionFormatError(f"{path.name}: unknown format '{format}' (use {FORMATS})")
     if dt is not None:
         dt = float(dt)
         if not (math.isfinite(dt) and dt > 0):
-            raise MotionFormatError(f"{path.name}: dt={dt!r} must be a positive number")
+            raise MotionFormatError(f"{path.name}: the time step {_num(dt)} s must be a positive "
+                                     "number")
     if units is not None:
         normalize_units(units, path.name)
     src = _Src(path, text)

@@ -84,6 +84,9 @@ def pseudo_static(
     from murus.retaining.pseudostatic import Assumptions, critical_acceleration
 
     try:
+        from murus.config import check_physical
+
+        check_physical("kv_ratio", kv_ratio, "--kv-ratio")
         if interface_delta and (delta is not None or delta_ratio is not None):
             raise ValueError("give --interface-delta, --delta or --delta-ratio, not several")
         kw = {}

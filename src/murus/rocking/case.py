@@ -49,7 +49,7 @@ from typing import Literal
 from pydantic import Field, field_validator, model_validator
 
 from murus import G
-from murus.config import CaseError, MotionFields, Strict, fail_at, load_toml, validate
+from murus.config import MotionFields, Strict, fail_at, load_toml, validate
 
 
 class BodyCfg(Strict):
@@ -433,9 +433,10 @@ def _read_record(m: MotionCfg, path: Path, text: str):
     try:
         gm = read(f, units=m.units, dt=m.dt, scale=m.scale, format=m.format)
     except MotionFormatError as exc:
-        raise CaseError(str(exc)) from None
+        raise fail_at(path, text, ("motion", "file"), f"motion file {exc}") from None
     except ValueError as exc:
-        raise CaseError(f"{f.name}: {exc}") from None
+        raise fail_at(path, text, ("motion", "file"), f"motion file {f.name}: {exc}") from None
     if gm.npts < 2:
-        raise CaseError(f"{f.name}: the record has fewer than two samples")
+        raise fail_at(path, text, ("motion", "file"),
+                      f"motion file {f.name}: the record has fewer than two samples")
     return gm

@@ -58,6 +58,11 @@ def _make_body(block, width, height, thickness, density, top_mass):
         return seed002_block(block)
     if width is None or height is None:
         raise ValueError("give the wall as --block block1..block6 or as --width and --height")
+    from murus.config import check_physical
+
+    for key, v in (("width", width), ("height", height), ("thickness", thickness),
+                   ("density", density), ("top_mass", top_mass)):
+        check_physical(key, v, "--" + key.replace("_", "-"))
     return RigidBlock(width=width, height=height, thickness=thickness, density=density,
                       top_mass=top_mass, name="wall")
 
