@@ -25,6 +25,14 @@ class _Group(TyperGroup):
     on standard error and exit code 130 (no traceback); outputs are published atomically by
     :mod:`murus.outputs`, so they are left as they were before the command."""
 
+    def main(self, args=None, *rest, **kwargs):
+        import sys
+
+        from murus.outputs import set_command
+
+        set_command(sys.argv[1:] if args is None else args)
+        return super().main(args, *rest, **kwargs)
+
     def invoke(self, ctx):
         try:
             return super().invoke(ctx)

@@ -234,6 +234,30 @@ def _remove_created(created: list[Path]) -> None:
             d.rmdir()
 
 
+def _times(paths: Iterable[Path]) -> dict[Path, tuple[int, int]]:
+    """Access and modification times of existing folders (restored after a failure, so that
+    a failed command leaves even the folders' times as they were)."""
+    out = {}
+    for p in paths:
+        with contextlib.suppress(OSError):
+            st = os.stat(p)
+            out[p] = (st.st_atime_ns, st.st_mtime_ns)
+    return out
+
+
+def _restore_times(times: dict[Path, tuple[int, int]]) -> None:
+    for p, ns in times.items():
+        with contextlib.suppress(OSError):
+            os.utime(p, ns=ns)
+
+
+def _nearest_existing(p: Path) -> Path:
+    anc = p.parent if str(p.parent) else Path(".")
+    while not anc.exists() and anc != anc.parent:
+        anc = anc.parent
+    return anc
+
+
 def _chmod_tree(root: Path) -> None:
     dm, fm = dir_mode(), file_mode()
     os.chmod(root, dm)
@@ -315,6 +339,7 @@ def write_file(out, write: Callable[[Path], object]) -> Path:
         ``out``.
     """
     out = Path(out)
+    times = _times([_nearest_existing(out)])
     created = _make_parents(out)
     tmp = None
     try:
@@ -332,6 +357,7 @@ def write_file(out, write: Callable[[Path], object]) -> Path:
             with contextlib.suppress(OSError):
                 tmp.unlink()
         _remove_created(created)
+        _restore_times(times)
         raise
     return out
 
@@ -375,12 +401,14 @@ def staged_dir(out, command: str = "murus", names: Iterable[str] | None = None):
     removed in every case."""
     out = check_dir(out, names)
     exists = out.is_dir()
+    times = _times([out if exists else _nearest_existing(out)])
     created = [] if exists else _make_parents(out)
     try:
         tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.murus-",
                                     dir=out if exists else out.parent))
     except BaseException:
         _remove_created(created)
+        _restore_times(times)
         raise
     try:
         yield tmp
@@ -396,6 +424,8 @@ def staged_dir(out, command: str = "murus", names: Iterable[str] | None = None):
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         _remove_created(created)
+        if not out.exists() or exists:
+            _restore_times(times)
         raise
     shutil.rmtree(tmp, ignore_errors=True)
 
@@ -414,9 +444,17 @@ def _publish_into(tmp: Path, out: Path, files: list[str], command: str) -> None:
     made: list[Path] = []
     removed: list[str] = []
     manifest = out / MANIFEST
-    manifest_old = manifest.read_bytes() if manifest.exists() else None
+    manifest_old = backup / MANIFEST if manifest.exists() else None
+    touched = {out} | {out / a for rel in [*files, *stale] for a in Path(rel).parents[:-1]}
+    times = _times(sorted(touched))
     with _hold_sigint():
         try:
+            backup.mkdir()
+            if manifest_old is not None:  # a hard link keeps the old file (inode, times)
+                try:
+                    os.link(manifest, manifest_old)
+                except OSError:
+                    shutil.copy2(manifest, manifest_old)
             # a manifest covering old and new files first, so that an interrupted move
             # (power cut) still lists everything murus may have written
             _replace_text(out, MANIFEST, _manifest_text(command, sorted(set(listed) | set(files))),
@@ -461,7 +499,8 @@ def _publish_into(tmp: Path, out: Path, files: list[str], command: str) -> None:
                 if manifest_old is None:
                     manifest.unlink()
                 else:
-                    _replace_bytes(out, MANIFEST, manifest_old, tmp)
+                    os.replace(manifest_old, manifest)
+            _restore_times(times)
             raise
     # stale files removed: drop the folders murus emptied (never a folder with other files)
     for rel in removed:
@@ -482,8 +521,23 @@ def _replace_text(out: Path, rel: str, text: str, tmp: Path) -> None:
     _replace_bytes(out, rel, text.encode("utf-8"), tmp)
 
 
+_command: list[str] | None = None
+
+
+def set_command(args) -> None:
+    """Record the arguments of the running ``murus`` command (set by the CLI entry point)."""
+    global _command
+    _command = [str(a) for a in args]
+
+
 def command_line() -> str:
-    """The command line of this process, as recorded in manifests."""
+    """The command recorded in a manifest: ``murus`` and the arguments given (as set by the
+    CLI entry point; else this process's arguments when it is the ``murus`` program)."""
+    import shlex
     import sys
 
-    return " ".join(["murus", *sys.argv[1:]]) if sys.argv else "murus"
+    if _command is not None:
+        return shlex.join(["murus", *_command])
+    if sys.argv and os.path.basename(sys.argv[0]).removesuffix(".exe") == "murus":
+        return shlex.join(["murus", *sys.argv[1:]])
+    return "murus"
