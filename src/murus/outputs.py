@@ -436,8 +436,9 @@ def _publish_into(tmp: Path, out: Path, files: list[str], command: str) -> None:
     _collisions(out, files, set(listed))
     stale = [f for f in listed if f not in set(files)
              and (out / f).is_file() and not (out / f).is_symlink()]
-    tmp_rel = tmp.relative_to(out).as_posix()
-    stale = [f for f in stale if not f.startswith(tmp_rel + "/")]
+    root = out.resolve()  # never follow a link out of ``out`` to remove a file
+    stale = [f for f in stale if (out / f).resolve().parent.is_relative_to(root)
+             and (out / f).parent.resolve() == (out / f).resolve().parent]
     dm, fm = dir_mode(), file_mode()
     backup = tmp / ".old"
     done: list[tuple[str, bool]] = []  # (relative path, had an old version)
