@@ -108,18 +108,15 @@ def run(
     from murus.dem.case import is_dem_case
     from murus.outputs import OutputError, check_dir
 
-    dem = is_dem_case(case)
-    if dem:
-        from murus.dem.case import output_names as names
-    else:
-        from murus.rocking.output import output_names as names
-    try:
-        check_dir(out, names(not no_figure))
-    except OutputError as exc:
-        _out_error(exc)
-    if dem:
+    if is_dem_case(case):
         _run_dem(case, out, not no_figure, progress)
         return
+    from murus.rocking.output import output_names
+
+    try:
+        check_dir(out, output_names(not no_figure))
+    except OutputError as exc:
+        _out_error(exc)
     from murus.config import CaseError
     from murus.rocking.case import build, load_case, run_case
     from murus.rocking.output import write_outputs
@@ -148,11 +145,16 @@ def run(
 def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
     """The DEM branch of ``murus run``."""
     from murus.config import CaseError
-    from murus.dem.case import build, load_case, run_case, summary_line, write_outputs
+    from murus.dem.case import build, load_case, output_names, run_case, summary_line, write_outputs
+    from murus.outputs import OutputError, check_dir
 
     try:
+        check_dir(out)
         cfg, path, text = load_case(case)
         built = build(cfg, path, text)
+        check_dir(out, output_names(figure and built.figure))  # before the run
+    except OutputError as exc:
+        _out_error(exc)
     except CaseError as exc:
         fail(str(exc).splitlines()[0])
     try:
@@ -161,8 +163,6 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
         fail(f"{case.name}: {str(exc).splitlines()[0]}")
     if res.result.status == "unstable":
         fail(f"{case.name}: {res.result.message}")
-    from murus.outputs import OutputError
-
     try:
         write_outputs(res, out, figure=figure and built.figure)
     except OutputError as exc:
