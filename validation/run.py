@@ -24,6 +24,13 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", default=str(ROOT / "VALIDATION.md"))
     args = ap.parse_args()
+    from murus.outputs import OutputError, check_file, write_text
+
+    try:  # checked before the (minutes of) computation
+        check_file(args.out, (".md",))
+    except OutputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        raise SystemExit(2) from None
     import eurocode
     import identify
     import motion
@@ -43,7 +50,7 @@ def main() -> None:
              retaining_behaviour.section(),
              retaining_backfill.section(), studies.section(),
              identify.section()]
-    Path(args.out).write_text("\n".join(parts))
+    write_text(args.out, "\n".join(parts))
     print(f"wrote {args.out}")
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import typer
+from typer.core import TyperGroup
 
 from murus import cliutil
 from murus.identify.cli import app as lab_app
@@ -18,7 +19,30 @@ from murus.retaining.cli import app as retaining_app
 from murus.rocking.design_cli import app as design_app
 from murus.studies.cli import app as study_app
 
+
+class _Group(TyperGroup):
+    """The top-level group: Ctrl-C anywhere in a command ends with one line, ``interrupted``,
+    on standard error and exit code 130 (no traceback); outputs are published atomically by
+    :mod:`murus.outputs`, so they are left as they were before the command."""
+
+    def main(self, args=None, *rest, **kwargs):
+        import sys
+
+        from murus.outputs import set_command
+
+        set_command(sys.argv[1:] if args is None else args)
+        return super().main(args, *rest, **kwargs)
+
+    def invoke(self, ctx):
+        try:
+            return super().invoke(ctx)
+        except KeyboardInterrupt:
+            typer.echo("interrupted", err=True)
+            raise typer.Exit(code=130) from None
+
+
 app = typer.Typer(
+    cls=_Group,
     rich_markup_mode=None,
     name="murus",
     help="Seismic assessment of masonry walls: rocking, ground motions, Eurocode checks.",
@@ -44,6 +68,32 @@ fail = cliutil.fail
 cliutil.warnings_as_notes()
 
 
+def _version(value: bool) -> None:
+    if value:
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            v = version("murus")
+        except PackageNotFoundError:  # pragma: no cover - running from a bare source tree
+            import murus
+
+            v = getattr(murus, "__version__", "unknown")
+        typer.echo(f"murus {v}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(False, "--version", is_eager=True, callback=_version,
+                                 help="Print the version and exit."),
+) -> None:
+    """Seismic assessment of masonry walls: rocking, ground motions, Eurocode checks."""
+
+
+def _out_error(exc) -> None:
+    fail(str(exc))
+
+
 @app.command()
 def run(
     case: Path = typer.Argument(..., help="Case file (TOML)."),
@@ -57,10 +107,17 @@ def run(
     a distinct-element case ([dem] table) writes summary.json, histories.csv, blocks.png and
     an optional VTK series."""
     from murus.dem.case import is_dem_case
+    from murus.outputs import OutputError, check_dir
 
     if is_dem_case(case):
         _run_dem(case, out, not no_figure, progress)
         return
+    from murus.rocking.output import output_names
+
+    try:
+        check_dir(out, output_names(not no_figure))
+    except OutputError as exc:
+        _out_error(exc)
     from murus.config import CaseError
     from murus.rocking.case import build, load_case, run_case
     from murus.rocking.output import write_outputs
@@ -73,7 +130,10 @@ def run(
         fail(str(exc).splitlines()[0])
     if not result.success:
         fail(f"{case}: {result.message}")
-    write_outputs(result, out, figure=not no_figure)
+    try:
+        write_outputs(result, out, figure=not no_figure)
+    except OutputError as exc:
+        _out_error(exc)
     s = result.summary()
     events = (f"impacts = {s['impacts']}" if "impacts" in s
               else f"zero crossings = {s['crossings']}")
@@ -86,11 +146,16 @@ def run(
 def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
     """The DEM branch of ``murus run``."""
     from murus.config import CaseError
-    from murus.dem.case import build, load_case, run_case, summary_line, write_outputs
+    from murus.dem.case import build, load_case, output_names, run_case, summary_line, write_outputs
+    from murus.outputs import OutputError, check_dir
 
     try:
+        check_dir(out)
         cfg, path, text = load_case(case)
         built = build(cfg, path, text)
+        check_dir(out, output_names(figure and built.figure))  # before the run
+    except OutputError as exc:
+        _out_error(exc)
     except CaseError as exc:
         fail(str(exc).splitlines()[0])
     try:
@@ -99,7 +164,10 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
         fail(f"{case.name}: {str(exc).splitlines()[0]}")
     if res.result.status == "unstable":
         fail(f"{case.name}: {res.result.message}")
-    write_outputs(res, out, figure=figure and built.figure)
+    try:
+        write_outputs(res, out, figure=figure and built.figure)
+    except OutputError as exc:
+        _out_error(exc)
     typer.echo(f"{summary_line(case.name, res)} -> {out}")
 
 
@@ -120,7 +188,8 @@ def demo(
     examples: Path | None = typer.Option(None, help="Folder holding demo/*.toml."),
 ) -> None:
     """Run the demonstration cases (examples/demo/*.toml) and write their outputs."""
-    from murus.rocking.output import atomic_dir
+    from murus.outputs import OutputError, check_dir
+    from murus.rocking.output import atomic_dir, output_names
 
     ex = _examples_dir(examples)
     if ex is None:
@@ -128,6 +197,11 @@ def demo(
     cases = sorted((ex / "demo").glob("*.toml"))
     if not cases:
         fail(f"{ex / 'demo'}: no case files")
+    names = ["demo_summary.csv"] + [f"{c.stem}/{n}" for c in cases for n in output_names()]
+    try:
+        check_dir(out, names)
+    except OutputError as exc:
+        _out_error(exc)
 
     def write(tmp: Path) -> None:
         from murus.config import CaseError
@@ -153,7 +227,10 @@ def demo(
                        f"impacts = {n}, overturned = {s['overturned']}")
         (tmp / "demo_summary.csv").write_text("\n".join(lines) + "\n")
 
-    atomic_dir(out, write)
+    try:
+        atomic_dir(out, write, names=names)
+    except OutputError as exc:
+        _out_error(exc)
     typer.echo(f"outputs in {out}/")
 
 

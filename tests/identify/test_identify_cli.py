@@ -7,6 +7,7 @@ import pytest
 from typer.testing import CliRunner
 
 from murus.identify.cli import app
+from murus.outputs import MANIFEST
 
 runner = CliRunner()
 
@@ -21,7 +22,7 @@ def seq(tmp_path_factory):
 
 
 def test_synthesize_writes_the_sequence(seq):
-    names = sorted(p.name for p in seq.iterdir())
+    names = sorted(p.name for p in seq.iterdir() if p.name != MANIFEST)
     assert names == ["01_WN01.csv", "02_S01.csv", "03_WN02.csv", "04_S02.csv", "05_WN03.csv",
                      "sequence.toml", "truth.json"]
 
@@ -30,7 +31,7 @@ def test_frf(seq, tmp_path):
     r = runner.invoke(app, ["frf", str(seq / "01_WN01.csv"), "--out", str(tmp_path / "o")])
     assert r.exit_code == 0, r.output
     assert "| 1 |" in r.output
-    files = sorted(p.name for p in (tmp_path / "o").iterdir())
+    files = sorted(p.name for p in (tmp_path / "o").iterdir() if p.name != MANIFEST)
     assert files == ["frf.png", "frf.svg", "modes.json", "modes.md"]
     d = json.loads((tmp_path / "o" / "modes.json").read_text())
     truth = json.loads((seq / "truth.json").read_text())["tests"][0]

@@ -9,6 +9,7 @@ from typer.testing import CliRunner
 from murus.cli import app
 from murus.motion import read
 from murus.motion.synthetic import ramp_velocity
+from murus.outputs import MANIFEST
 
 runner = CliRunner()
 
@@ -84,7 +85,7 @@ def test_generate_ec8(tmp_path):
     r = runner.invoke(app, ["motion", "generate", "ec8", "--ag", "0.25", "--ground", "B",
                             "--type", "1", "--n", "3", "--seed", "1", "--out", str(out)])
     assert r.exit_code == 0, r.output
-    names = sorted(p.name for p in out.iterdir())
+    names = sorted(p.name for p in out.iterdir() if p.name != MANIFEST)
     assert names == ["ec8_B1_01.csv", "ec8_B1_02.csv", "ec8_B1_03.csv", "report.json",
                      "report.txt", "spectra.png"]
     rep = json.loads((out / "report.json").read_text())

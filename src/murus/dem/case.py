@@ -840,11 +840,19 @@ def write_files(run: CaseRun, folder: Path, figure: bool = True) -> None:
         write_series(folder / "vtk", run.frames, binary=True)
 
 
+def output_names(figure: bool = True) -> list[str]:
+    """Relative paths written by :func:`write_files` that are known before the run (the
+    ``vtk/`` series is checked when it is published)."""
+    return ["summary.json", "histories.csv"] + (["blocks.png"] if figure else [])
+
+
 def write_outputs(run: CaseRun, out: Path, figure: bool = True) -> Path:
-    """Write the outputs of one run into ``out`` atomically (nothing left on failure)."""
+    """Write the outputs of one run into ``out`` with :func:`murus.outputs.write_dir`
+    (nothing of the user's replaced or deleted; ``out`` unchanged on failure)."""
     from murus.rocking.output import atomic_dir
 
-    return atomic_dir(out, lambda tmp: write_files(run, tmp, figure))
+    return atomic_dir(out, lambda tmp: write_files(run, tmp, figure),
+                      names=output_names(figure))
 
 
 def summary_line(name: str, run: CaseRun) -> str:

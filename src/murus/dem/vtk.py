@@ -201,21 +201,11 @@ def _polydata(points, verts, polys, point_data, cell_data, binary) -> str:
 
 
 def _atomic_write_text(path: Path, text: str) -> Path:
-    """Write ``text`` to a temporary sibling of ``path`` and rename it into place."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
-    return path
+    """Write ``text`` atomically with :func:`murus.outputs.write_text` (temporary sibling,
+    then rename; umask permissions)."""
+    from murus.outputs import write_text
+
+    return write_text(path, text)
 
 
 # ----------------------------------------------------------------------------- writers

@@ -11,8 +11,6 @@ when every step has succeeded. The library (scipy, matplotlib) is imported insid
 from __future__ import annotations
 
 import math
-import shutil
-import tempfile
 from pathlib import Path
 
 import typer
@@ -44,15 +42,16 @@ def _save(fig, stem: Path) -> None:
     fig.savefig(stem.with_suffix(".svg"))
 
 
-def _publish(tmp: Path, out: Path) -> list[Path]:
-    """Move every file of ``tmp`` into ``out`` (created); returns the new paths."""
-    out.mkdir(parents=True, exist_ok=True)
-    moved = []
-    for p in sorted(tmp.iterdir()):
-        dest = out / p.name
-        shutil.move(str(p), dest)
-        moved.append(dest)
-    return moved
+def _staged(out: Path, names=None):
+    """:func:`murus.outputs.staged_dir`: a temporary folder whose files are published into
+    ``out`` at the end (only files murus wrote there before are replaced)."""
+    from murus.outputs import command_line, staged_dir
+
+    return staged_dir(out, command_line(), names)
+
+
+def _written(tmp: Path) -> list[str]:
+    return sorted(p.relative_to(tmp).as_posix() for p in tmp.rglob("*") if p.is_file())
 
 
 def _pyplot():
@@ -67,22 +66,32 @@ def _pyplot():
 def _write_outputs(out: Path, figures: dict, files: dict[str, str]) -> None:
     """Save ``figures`` (stem -> Figure, PNG and SVG) and ``files`` (name -> text) in a
     temporary folder, then move them all into ``out``: nothing is written if a step fails."""
+    from murus.outputs import OutputError
+
     plt = _pyplot()
-    with tempfile.TemporaryDirectory() as td:
-        tmp = Path(td)
-        for stem, fig in figures.items():
-            fig.tight_layout()
-            _save(fig, tmp / stem)
-            plt.close(fig)
-        for name, text in files.items():
-            (tmp / name).write_text(text, encoding="utf-8")
-        for p in _publish(tmp, out):
-            typer.echo(f"wrote {p}")
+    try:
+        with _staged(out) as tmp:
+            for stem, fig in figures.items():
+                fig.tight_layout()
+                _save(fig, tmp / stem)
+                plt.close(fig)
+            for name, text in files.items():
+                (tmp / name).write_text(text, encoding="utf-8")
+            written = _written(tmp)
+    except OutputError as exc:
+        fail(exc)
+    for name in written:
+        typer.echo(f"wrote {out / name}")
 
 
-def _check_out(out: Path) -> None:
-    if out.exists() and not out.is_dir():
-        fail(f"{out}: exists and is not a folder")
+def _check_out(out: Path, names=None) -> None:
+    """Refuse a bad ``--out`` before any computation (:func:`murus.outputs.check_dir`)."""
+    from murus.outputs import OutputError, check_dir
+
+    try:
+        check_dir(out, names)
+    except OutputError as exc:
+        fail(exc)
 
 
 _NPERSEG = typer.Option(None, "--nperseg", help="Welch segment length [samples] (default: "
@@ -110,7 +119,7 @@ def frf(
     from murus.identify.testdata import read_test
 
     if out is not None:
-        _check_out(out)
+        _check_out(out, ["frf.png", "frf.svg", "modes.md", "modes.json"])
     try:
         test = read_test(test_file)
         res = identify(test, nperseg=nperseg, f_min=f_min, f_max=f_max, n_modes=n_modes)
@@ -167,7 +176,7 @@ def sequence(
     from murus.identify.modal import evolution
     from murus.identify.testdata import read_sequence
 
-    _check_out(out)
+    _check_out(out, ["summary.json", "report.md"])
     try:
         crit = Criterion(cantilever_below=cantilever_below, rocking_above=rocking_above,
                          min_rotation=min_rotation)
@@ -188,50 +197,54 @@ def sequence(
     from murus.identify.classify import plot_lifted_length, plot_rotations
     from murus.identify.compressive import plot_contact_length
     from murus.identify.modal import plot_damping_evolution, plot_frequency_evolution
+    from murus.outputs import OutputError
 
     figs = []
-    with tempfile.TemporaryDirectory() as td:
-        tmp = Path(td)
-        for stem, fn in (("frequency", plot_frequency_evolution),
-                         ("damping", plot_damping_evolution)):
-            ax = fn(evo)
-            ax.figure.tight_layout()
-            _save(ax.figure, tmp / stem)
-            figs.append(f"{stem}.png")
-            plt.close(ax.figure)
-        if comp is not None:
-            ax = plot_contact_length(comp)
-            ax.figure.tight_layout()
-            _save(ax.figure, tmp / "compressive_length")
-            figs.append("compressive_length.png")
-            plt.close(ax.figure)
-            (tmp / "compressive_length.csv").write_text(comp.to_csv(), encoding="utf-8")
-        by_label = {e.label: e for e in seq.seismic}
-        for c in classes:
-            ax = plot_rotations(by_label[c.name].test, classification=c)
-            ax.figure.tight_layout()
-            _save(ax.figure, tmp / f"rotations_{c.name}")
-            plt.close(ax.figure)
-        for e in seq.seismic:
-            if e.test.has_lvdt:
-                ax = plot_lifted_length(e.test, closure=closure)
+    try:
+        with _staged(out, ["summary.json", "report.md"]) as tmp:
+            for stem, fn in (("frequency", plot_frequency_evolution),
+                             ("damping", plot_damping_evolution)):
+                ax = fn(evo)
                 ax.figure.tight_layout()
-                _save(ax.figure, tmp / f"lifted_{e.label}")
+                _save(ax.figure, tmp / stem)
+                figs.append(f"{stem}.png")
                 plt.close(ax.figure)
-        summary = {"sequence": seq.name, "folder": str(sequence_dir),
-                   "table1": seq.table1(), "evolution": evo.rows(),
-                   "classification": [c.to_dict() for c in classes],
-                   "compressive_length": comp.rows if comp is not None else None,
-                   "criterion": {"cantilever_below": cantilever_below,
-                                 "rocking_above": rocking_above,
-                                 "min_rotation_rad": min_rotation},
-                   "closure_m": closure, "cantilever": cant}
-        (tmp / "summary.json").write_text(dumps(summary),
-                                          encoding="utf-8")
-        (tmp / "report.md").write_text(_report(seq, evo, classes, comp, crit, closure, figs)
-                                       + _cantilever_report(cant), encoding="utf-8")
-        for p in _publish(tmp, out):
-            typer.echo(f"wrote {p}")
+            if comp is not None:
+                ax = plot_contact_length(comp)
+                ax.figure.tight_layout()
+                _save(ax.figure, tmp / "compressive_length")
+                figs.append("compressive_length.png")
+                plt.close(ax.figure)
+                (tmp / "compressive_length.csv").write_text(comp.to_csv(), encoding="utf-8")
+            by_label = {e.label: e for e in seq.seismic}
+            for c in classes:
+                ax = plot_rotations(by_label[c.name].test, classification=c)
+                ax.figure.tight_layout()
+                _save(ax.figure, tmp / f"rotations_{c.name}")
+                plt.close(ax.figure)
+            for e in seq.seismic:
+                if e.test.has_lvdt:
+                    ax = plot_lifted_length(e.test, closure=closure)
+                    ax.figure.tight_layout()
+                    _save(ax.figure, tmp / f"lifted_{e.label}")
+                    plt.close(ax.figure)
+            summary = {"sequence": seq.name, "folder": str(sequence_dir),
+                       "table1": seq.table1(), "evolution": evo.rows(),
+                       "classification": [c.to_dict() for c in classes],
+                       "compressive_length": comp.rows if comp is not None else None,
+                       "criterion": {"cantilever_below": cantilever_below,
+                                     "rocking_above": rocking_above,
+                                     "min_rotation_rad": min_rotation},
+                       "closure_m": closure, "cantilever": cant}
+            (tmp / "summary.json").write_text(dumps(summary),
+                                              encoding="utf-8")
+            (tmp / "report.md").write_text(_report(seq, evo, classes, comp, crit, closure, figs)
+                                           + _cantilever_report(cant), encoding="utf-8")
+            written = _written(tmp)
+    except OutputError as exc:
+        fail(exc)
+    for name in written:
+        typer.echo(f"wrote {out / name}")
 
 
 def _cantilever_rows(seq, evo, modulus, density, thickness) -> dict | None:
@@ -331,20 +344,22 @@ def synthesize(
     """Write a virtual test sequence (cantilever + rigid rocking wall with sensor noise,
     murus.identify.synth) in the documented format, with sequence.toml and truth.json."""
     from murus.identify.synth import synthesize_sequence
+    from murus.outputs import OutputError
 
-    if out_dir.exists() and (not out_dir.is_dir() or any(out_dir.iterdir())):
+    if out_dir.is_dir() and any(out_dir.iterdir()):
+        # a sequence folder is read as a whole: never mix it with other files
         fail(f"{out_dir}: exists and is not an empty folder")
+    _check_out(out_dir)
     try:
         lv = [float(x) for x in levels.split(",") if x.strip()]
     except ValueError:
         fail(f"--levels must be comma-separated numbers [g], got {levels!r}")
-    with tempfile.TemporaryDirectory() as td:
-        tmp = Path(td) / "seq"
-        try:
+    try:
+        with _staged(out_dir) as tmp:
             synthesize_sequence(tmp, seed=seed, levels=lv, wn_duration=wn_duration, fs=fs)
-        except _errors() as exc:
-            fail(exc)
-        moved = _publish(tmp, out_dir)
+            moved = _written(tmp)
+    except (*_errors(), OutputError) as exc:
+        fail(exc)
     typer.echo(f"wrote {len(moved)} files to {out_dir}")
 
 
@@ -399,7 +414,8 @@ def calibrate(
     from murus.rocking.restraints import Pivot, RestraintError
 
     if out is not None:
-        _check_out(out)
+        _check_out(out, ["calibration.png", "calibration.svg", "calibration.md",
+                         "calibration.json"])
     names = [p.strip() for p in params.split(",") if p.strip()]
     try:
         init = {k: (2.0 if k == "A0" else 1.0) for k in names}

@@ -1,23 +1,20 @@
 """``murus motion`` commands: info, spectrum, generate ec8, ramp.
 
 Thin layer over the library. Bad input exits with code 2 and a one-line message on stderr;
-outputs are written into a temporary directory (or file) next to the target and renamed at the
-end, so a failed command leaves nothing half-written. Heavy imports stay inside the commands.
+outputs are written with :mod:`murus.outputs` (a temporary folder or file published at the
+end; in an existing folder only files murus wrote there before are replaced), so a failed
+command leaves nothing half-written and nothing of the user's is touched. Heavy imports stay
+inside the commands.
 """
 
 from __future__ import annotations
 
 import json
 import math
-import os
-import shutil
-import tempfile
-from contextlib import contextmanager
 from pathlib import Path
 
 import typer
 
-from murus.cliutil import fail as _fail
 from murus.cliutil import guard
 
 app = typer.Typer(
@@ -40,26 +37,18 @@ def _guard():
     return guard(MotionFormatError, ValueError, ImportError, OSError)
 
 
-@contextmanager
-def _staged_dir(out: Path):
-    """Yield a temporary directory; on success move its files into ``out`` (created)."""
-    out = Path(out)
-    if out.exists() and not out.is_dir():
-        _fail(f"{out}: exists and is not a directory")
-    parent = out.resolve().parent
-    parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=parent))
-    try:
-        yield tmp
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    if not out.exists():
-        os.replace(tmp, out)
-    else:
-        for p in tmp.iterdir():
-            os.replace(p, out / p.name)
-        shutil.rmtree(tmp, ignore_errors=True)
+def _staged_dir(out: Path, names=None):
+    """:func:`murus.outputs.staged_dir`: a temporary folder published into ``out`` on
+    success (only files murus wrote there before are replaced)."""
+    from murus.outputs import command_line, staged_dir
+
+    return staged_dir(out, command_line(), names)
+
+
+def _check_dir(out: Path, names) -> None:
+    from murus.outputs import check_dir
+
+    check_dir(out, names)
 
 
 def _load(file: Path, units: str | None, dt: float | None):
@@ -119,11 +108,12 @@ def spectrum(
             raise ValueError(f"--damping {damping} must be in [0, 1)")
         if n_periods < 2:
             raise ValueError("--n-periods must be >= 2")
+        _check_dir(out, ["spectrum.csv", "spectrum.png"])
         from murus.motion.spectra import default_periods, response_spectrum
 
         gm = _load(file, units, dt)
         sp = response_spectrum(gm, default_periods(n_periods), damping)
-        with _staged_dir(out) as tmp:
+        with _staged_dir(out, ["spectrum.csv", "spectrum.png"]) as tmp:
             lines = ["period,sd,sv,sa,psv,psa"]
             for row in zip(sp.period, sp.sd, sp.sv, sp.sa, sp.psv, sp.psa, strict=True):
                 lines.append(",".join(f"{x:.10g}" for x in row))
@@ -140,6 +130,9 @@ def spectrum(
             ax.figure.savefig(tmp / "spectrum.png", dpi=120)
             plt.close(ax.figure)
     typer.echo(f"wrote {out}/spectrum.csv and {out}/spectrum.png")
+
+
+_EC8_NAMES = ["report.txt", "report.json", "spectra.png"]
 
 
 @generate_app.command("ec8")
@@ -176,11 +169,12 @@ def generate_ec8_cmd(
         rng = (0.2 * t1, 2.0 * t1) if t1 else (t_lo, t_hi)
         if not 0 < rng[0] < rng[1]:
             raise ValueError("period range must satisfy 0 < T_lo < T_hi")
+        _check_dir(out, _EC8_NAMES)
         agm = ag * G
         recs = generate_ec8(agm, ground, spectrum_type, n=n, seed=seed, dt=dt,
                             stationary=stationary)
         rep = check_ec8(recs, agm, ground, spectrum_type, period_range=rng)
-        with _staged_dir(out) as tmp:
+        with _staged_dir(out, _EC8_NAMES) as tmp:
             for r in recs:
                 write(r, tmp / f"{r.name}.csv")
             (tmp / "report.txt").write_text(rep.to_text() + "\n")
@@ -213,6 +207,9 @@ def ramp(
     with _guard():
         from murus.motion.io import write
         from murus.motion.synthetic import harmonic_ramp
+        from murus.outputs import check_file
+
+        check_file(out, (".csv", ".at2"))
 
         for key, val in (("--amplitude-rate", amplitude_rate), ("--frequency", frequency),
                          ("--duration", duration), ("--dt", dt)):

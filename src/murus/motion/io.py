@@ -36,9 +36,7 @@ column that does not increase. The last data line is always read and dt is never
 from __future__ import annotations
 
 import math
-import os
 import re
-import tempfile
 import warnings
 from pathlib import Path
 
@@ -637,17 +635,9 @@ def read(path, units: str | None = None, dt: float | None = None, scale: float =
 
 
 def _atomic_write(path: Path, text: str) -> None:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    from murus.outputs import write_text
+
+    write_text(path, text)
 
 
 def _clean(s) -> str:

@@ -15,8 +15,9 @@ from pathlib import Path
 
 import typer
 
-from murus.cliutil import dumps
+from murus.cliutil import dumps, guard
 from murus.cliutil import fail as _fail
+from murus.outputs import OutputError
 
 app = typer.Typer(
     rich_markup_mode=None,
@@ -173,12 +174,22 @@ def _collapse_errors():
     return (*_errors(), CollapseError, DemWallError, ModelError, JointError)
 
 
-def _prepare_out(out) -> None:
-    from pathlib import Path
+def _prepare_out(out, names=None) -> None:
+    """Refuse a bad ``--out`` folder before any computation (:func:`murus.outputs.check_dir`;
+    an OutputError is a ValueError)."""
+    from murus.outputs import check_dir
 
-    p = Path(out)
-    if p.exists() and not p.is_dir():
-        raise ValueError(f"--out {out}: exists and is not a directory")
+    check_dir(out, names)
+
+
+def _staged(out, names=None):
+    from murus.outputs import command_line, staged_dir
+
+    return staged_dir(out, command_line(), names)
+
+
+_COLLAPSE_FILES = ["d_top.csv", "summary.json", "collapse.png"]
+_BIAXIAL_FILES = ["biaxial.png", "biaxial.svg", "biaxial.csv", "biaxial.json"]
 
 
 _STONE_H = typer.Option(None, "--stone-height", help="Course height [m] (needed for the "
@@ -237,7 +248,7 @@ def collapse(
     from murus.retaining.collapse import collapse_run, peak_ratio_check
 
     try:
-        _prepare_out(out)
+        _prepare_out(out, _COLLAPSE_FILES)
         wall = _dem_wall(preset_name, base, stone_height)
         kw = dict(stiffness_scale=stiffness_scale, xi=xi, threshold=threshold, t_max=t_max,
                   damping_frame=damping_frame, backfill=backfill)
@@ -271,16 +282,15 @@ def collapse(
     from murus.retaining.collapse import plot_collapse
 
     d = Path(out)
-    d.mkdir(parents=True, exist_ok=True)
-    res.history_csv(d / "d_top.csv")
-    with open(d / "summary.json", "w") as fh:
-        fh.write(dumps(summary))
     state = f"collapse at t = {res.t_col:.2f} s" if res.collapsed else "no collapse"
-    ax = plot_collapse(res.polygons, res.displacement, (res.disc_centres, res.disc_radii),
-                       res.disc_displacement,
-                       f"{wall.name}, {frequency:g} Hz, vertical {res.vertical}: {state}")
-    ax.figure.savefig(d / "collapse.png", dpi=120)
-    plt.close(ax.figure)
+    with guard(OutputError), _staged(out, _COLLAPSE_FILES) as tmp:
+        res.history_csv(tmp / "d_top.csv")
+        (tmp / "summary.json").write_text(dumps(summary))
+        ax = plot_collapse(res.polygons, res.displacement, (res.disc_centres, res.disc_radii),
+                           res.disc_displacement,
+                           f"{wall.name}, {frequency:g} Hz, vertical {res.vertical}: {state}")
+        ax.figure.savefig(tmp / "collapse.png", dpi=120)
+        plt.close(ax.figure)
     if res.collapsed:
         typer.echo(f"{wall.name} {frequency:g} Hz ({res.vertical}): A_col = {res.A_col:.3f} "
                    f"m/s2 at t_col = {res.t_col:.2f} s; A_pseudo = {res.A_pseudo:.3f} m/s2, "
@@ -428,6 +438,8 @@ def behaviour_factor_cmd(
         n_workers = workers if workers is not None else (
             st.executor.get("workers") if kind == st.executor["kind"] else None)
         check_folder(folder, st.digest())  # another study: refused before anything is written
+    with guard(OutputError):
+        _prepare_out(folder)  # not a file, under a file, the current folder, unwritable
     n = len(st.tasks())
     typer.echo(f"{st.name}: {st.wall.name}, {len(st.cases)} S2 runs and "
                f"{n - len(st.cases)} S1 checks -> {folder}")
@@ -491,7 +503,7 @@ def calibrate_backfill(
 
     try:
         if out is not None:
-            _prepare_out(out)
+            _prepare_out(out, _BIAXIAL_FILES)
         if target is not None and not (0.0 < target < 90.0):
             raise ValueError(f"--target must be an angle in (0, 90) deg, got {target!r}")
         joint = Joint(kn=kn, ks=kn, friction_deg=friction, rolling=rolling)
@@ -515,8 +527,6 @@ def calibrate_backfill(
                    f"{cal.phi_peak_deg:.2f} deg ({state}; runs mu_r -> phi: {runs})")
     if out is None:
         return
-    import tempfile
-
     import matplotlib
 
     matplotlib.use("Agg")
@@ -525,8 +535,7 @@ def calibrate_backfill(
     from murus.dem.biaxial import plot_biaxial
 
     dest = Path(out)
-    with tempfile.TemporaryDirectory() as td:
-        tmp = Path(td)
+    with guard(OutputError), _staged(out, _BIAXIAL_FILES) as tmp:
         ax = plot_biaxial(res)
         ax.figure.tight_layout()
         ax.figure.savefig(tmp / "biaxial.png", dpi=120)
@@ -546,9 +555,6 @@ def calibrate_backfill(
                                       "phi_peak_deg": cal.phi_peak_deg,
                                       "converged": cal.converged, "runs": cal.history}
         (tmp / "biaxial.json").write_text(dumps(summary), encoding="utf-8")
-        dest.mkdir(parents=True, exist_ok=True)
-        for p in sorted(tmp.iterdir()):
-            p.replace(dest / p.name)
     typer.echo(f"wrote {dest}/biaxial.png, .svg, .csv, .json")
 
 
@@ -570,8 +576,12 @@ def weighted_response_cmd(
 
     import numpy as np
 
+    from murus.outputs import check_file, write_file
     from murus.retaining.sections import SectionsError, weighted_response
 
+    if out is not None:
+        with guard(OutputError):
+            check_file(out, (".csv",))
     try:
         w = [float(x) for x in weights.split(",") if x.strip()]
     except ValueError:
@@ -603,5 +613,7 @@ def weighted_response_cmd(
     if out is not None:
         cols = np.column_stack([res.time, res.levels, res.section_times.T])
         header = "t_s,d_top_m," + ",".join(f"t_section{k + 1}_s" for k in range(len(hs)))
-        np.savetxt(out, cols, delimiter=",", fmt="%.9g", header=header, comments="")
+        with guard(OutputError):
+            write_file(out, lambda p: np.savetxt(p, cols, delimiter=",", fmt="%.9g",
+                                                 header=header, comments=""))
         typer.echo(f"wrote {out}")

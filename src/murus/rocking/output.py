@@ -1,12 +1,11 @@
 """Writers of rocking results: ``summary.json``, ``timeseries.csv`` and ``response.png``,
-written into a temporary folder renamed at the end, so that nothing is left half-written."""
+published with :mod:`murus.outputs` (temporary folder, manifest, nothing of the user's
+deleted), so that nothing is left half-written."""
 
 from __future__ import annotations
 
 import json
 import math
-import shutil
-import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
@@ -60,28 +59,18 @@ def _winkler_csv(result) -> str:
     return "\n".join([header] + [fmt.format(*row) for row in cols]) + "\n"
 
 
-def atomic_dir(out: Path, write: Callable[[Path], None]) -> Path:
-    """Run ``write(tmp)`` in a temporary sibling of ``out`` and move it into place when it
-    succeeds; on any error nothing is left at ``out`` (an existing ``out`` is replaced only
-    after success)."""
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
-    try:
-        write(tmp)
-        if out.exists():
-            old = out.parent / f".{out.name}.old"
-            if old.exists():
-                shutil.rmtree(old)
-            out.rename(old)
-            tmp.rename(out)
-            shutil.rmtree(old)
-        else:
-            tmp.rename(out)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    return out
+def atomic_dir(out: Path, write: Callable[[Path], None], names=None) -> Path:
+    """Run ``write(tmp)`` in a temporary folder and publish its files into ``out`` with
+    :func:`murus.outputs.write_dir`: an existing ``out`` keeps every file murus did not write
+    there (only the files of its manifest are replaced); on any error ``out`` is as it was."""
+    from murus.outputs import command_line, write_dir
+
+    return write_dir(out, write, command=command_line(), names=names)
+
+
+def output_names(figure: bool = True) -> list[str]:
+    """Relative paths written by :func:`write_result_files`."""
+    return ["summary.json", "timeseries.csv"] + (["response.png"] if figure else [])
 
 
 def write_result_files(result, folder: Path, figure: bool = True) -> None:
@@ -104,5 +93,6 @@ def write_result_files(result, folder: Path, figure: bool = True) -> None:
 
 
 def write_outputs(result, out: Path, figure: bool = True) -> Path:
-    """Write the outputs of one run into ``out`` atomically."""
-    return atomic_dir(out, lambda tmp: write_result_files(result, tmp, figure))
+    """Write the outputs of one run into ``out`` (:func:`murus.outputs.write_dir`)."""
+    return atomic_dir(out, lambda tmp: write_result_files(result, tmp, figure),
+                      names=output_names(figure))

@@ -112,6 +112,7 @@ def run(
     with _guard():
         kind, scheduler = executor_choice(executor, serial, dask, scheduler)
     with _guard():
+        from murus.outputs import check_dir, check_file
         from murus.studies.study import load_study
         from murus.studies.sweep import run_plan
 
@@ -121,6 +122,9 @@ def run(
         plan = st.plan()
         folder = out if out is not None else Path(st.output) if st.output else \
             study.parent / study.stem
+        check_dir(folder)  # not a file, under a file, the current folder, unwritable
+        if st.figure:
+            check_file(folder / st.figure, _FIGURES, label="[output] figure")
     typer.echo(f"{st.name}: {plan.n_histories:,} histories ({len(plan.points)} grid nodes x "
                f"{plan.n_records} records) in {len(plan.chunks())} chunks -> {folder}")
     with _guard():
@@ -149,6 +153,9 @@ def run(
         raise typer.Exit(1)
 
 
+_FIGURES = (".png", ".svg", ".pdf")
+
+
 def _plot(ds, png: Path, record: str | None) -> Path:
     import matplotlib
 
@@ -165,11 +172,12 @@ def _plot(ds, png: Path, record: str | None) -> Path:
         if record is not None and record not in [str(r) for r in ds["record"].values]:
             raise ValueError(f"record {record!r} is not in the result")
         ax = plot_rocking_spectrum(ds, record=record)
-    png.parent.mkdir(parents=True, exist_ok=True)
-    tmp = png.with_name(f".{png.stem}.tmp{png.suffix or '.png'}")
-    ax.figure.savefig(tmp, dpi=120)
-    plt.close(ax.figure)
-    tmp.replace(png)
+    from murus.outputs import write_file
+
+    try:
+        write_file(png, lambda tmp: ax.figure.savefig(tmp, dpi=120))
+    finally:
+        plt.close(ax.figure)
     return png
 
 
@@ -182,11 +190,13 @@ def plot(
 ) -> None:
     """Plot a result: a rocking spectrum, or fragility curves when the sweep has 'im'."""
     with _guard():
+        from murus.outputs import check_file
         from murus.studies.sweep import open_result
 
         path = result / "result.nc" if result.is_dir() else result
-        ds = open_result(path)
         png = out if out is not None else path.with_suffix(".png")
+        check_file(png, _FIGURES)
+        ds = open_result(path)
         _plot(ds, png, record)
     typer.echo(f"figure: {png}")
 
