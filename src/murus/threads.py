@@ -18,9 +18,10 @@ issue 15 item 6). Two things made it much worse and are set here:
 - **Thread count.** :class:`Governor` decides the thread count of each chunk of steps of a
   run: it starts from :func:`choose_threads` (the cores of this process's CPU affinity minus
   the other runnable threads of the machine, read from ``/proc/loadavg``), times every chunk,
-  and now and then times a short part of a chunk on the other choice (one thread against the
-  many), keeping the faster with a 5 % margin. The probe interval doubles (8 to 128 chunks)
-  while the choice holds and falls back to 8 when the current choice slows down by 30 %. The
+  in parts of at most 200 steps, and now and then times a part of 50 steps on the other choice
+  (one thread against the many), keeping the faster with a 5 % margin. The probe interval
+  doubles (8 to 128 parts) while the choice holds and falls back to 8 when the current choice
+  slows down by 30 %. The
   results do not depend on the thread count (the kernels sum in a fixed order), so switching
   changes only the speed.
 
@@ -36,7 +37,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import time
 
 __all__ = ["choose_threads", "others_running", "usable_cores", "configure_layer", "resolve",
            "using", "Governor"]
@@ -102,15 +102,13 @@ def others_running(samples: int = 3) -> float:
     ``/proc`` is missing, the 1-minute load average minus one (which then counts this process's
     threads as others too)."""
     vals = []
-    for i in range(samples):
+    for _ in range(samples):
         try:
             with open("/proc/loadavg") as f:
                 running = int(f.read().split()[3].split("/")[0])
         except (OSError, ValueError, IndexError):  # pragma: no cover - not Linux
             return max(0.0, os.getloadavg()[0] - 1.0) if hasattr(os, "getloadavg") else 0.0
         vals.append(max(0, running - _own_running()))
-        if i + 1 < samples:
-            time.sleep(0.0005)
     vals.sort()
     return float(vals[len(vals) // 2])
 
@@ -173,10 +171,14 @@ class Governor:
         Fraction by which the other choice must be faster to be taken.
     fixed : bool
         Always ``cap`` threads, no probes (a count fixed by the user).
+    part : int
+        Largest part of a chunk timed on its own [steps] (a step of a model with enough pairs
+        for the parallel loop takes 0.05 ms or more: a part lasts 10 ms or more, and the
+        kernel call costs some 0.03 ms).
     """
 
     def __init__(self, cap: int, start: int | None = None, base: int = 8, longest: int = 128,
-                 margin: float = 0.05, fixed: bool = False):
+                 margin: float = 0.05, fixed: bool = False, part: int = 200):
         self.cap = max(1, int(cap))
         self.fixed = bool(fixed)
         if fixed:
@@ -188,6 +190,7 @@ class Governor:
         if self.cur > 1:
             self.many = self.cur
         self.base = base
+        self.part = max(1, int(part))
         self.longest = longest
         self.margin = margin
         self.interval = base
@@ -202,17 +205,17 @@ class Governor:
     def _load_choice(self) -> int:
         return choose_threads(self.cap, usable_cores(), others_running())
 
-    def plan(self, n: int) -> list[tuple[int, int]]:
-        """Split ``n`` steps into ``(steps, threads)`` parts: all on the current count, or a
-        probe of about a quarter of the steps on the other choice first."""
-        if (self.fixed or self.cap == 1 or not self.warm or self.cost is None
-                or self.since < self.interval):
-            return [(n, self.cur)]
-        if self.cur == 1:
-            self.many = max(2, self._load_choice()) if self.cap > 2 else 2
-        alt = 1 if self.cur > 1 else self.many
-        p = n if n < 8 else max(4, n // 4)
-        return [(p, alt)] + ([(n - p, self.cur)] if n > p else [])
+    def next(self, n: int) -> tuple[int, int]:
+        """The next part of the ``n`` steps left in a chunk: ``(steps, threads)``, at most
+        ``part`` steps on the current count, or a probe of ``part // 4`` steps on the other
+        choice (one thread against the many)."""
+        if self.fixed:
+            return n, self.cur
+        if self.cap > 1 and self.warm and self.cost is not None and self.since >= self.interval:
+            if self.cur == 1:
+                self.many = max(2, self._load_choice()) if self.cap > 2 else 2
+            return min(n, max(1, self.part // 4)), (1 if self.cur > 1 else self.many)
+        return min(n, self.part), self.cur
 
     def record(self, threads: int, steps: int, seconds: float) -> None:
         """Time of a part of ``steps`` steps run on ``threads`` threads [s]."""

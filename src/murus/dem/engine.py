@@ -285,12 +285,13 @@ def _chunk(m, n: int, moving: bool) -> None:
     nth = numba.get_num_threads()
     gov = getattr(m, "_threads", None)
     if m.pairs.shape[0] < m.P[K.P_PARMIN]:
-        gov, plan = None, [(n, 1)]
+        gov, nth1 = None, 1
     else:
-        plan = gov.plan(n) if gov is not None else [(n, nth)]
+        nth1 = nth
     s = 0
     try:
-        for k, th in plan:
+        while s < n:
+            k, th = gov.next(n - s) if gov is not None else (n - s, nth1)
             numba.set_num_threads(th)
             t0 = _time.perf_counter()
             out = K.run_chunk(k, m.P, m.E, m.C, m.S, vhalf[s:s + k], vfull[s:s + k],
