@@ -194,7 +194,7 @@ class Governor:
         self.longest = longest
         self.margin = margin
         self.interval = base
-        self.since = 0
+        self.since = max(0, base - 2)  # the first probe after two timed parts
         self.cost: float | None = None  # EMA of the current choice [s per step]
         self.ref: float | None = None  # its value at the last decision
         self.warm = False  # the first chunk of a run may load the kernels: not timed
