@@ -26,39 +26,78 @@ def test_choose_threads(cap, cores, others, want):
     assert T.choose_threads(cap, cores, others) == want
 
 
-def test_governor_switches_to_the_faster_choice_and_backs_off():
-    g = T.Governor(2, start=2, base=2, longest=8, part=100)
-    assert g.next(1000) == (100, 2)  # parts of at most 100 steps
-    g.record(2, 100, 99.0)  # the first part may load the kernels: not counted
+class Load:
+    """Others running, as set by the test; the governor reads it at every part."""
+
+    def __init__(self, x=0.0):
+        self.x = x
+
+    def __call__(self):
+        return self.x
+
+
+def _gov(load, **kw):
+    return T.Governor(2, cores=2, load=load, load_every=0.0, **kw)
+
+
+def test_governor_follows_the_load_with_hysteresis():
+    load = Load(0.0)
+    g = _gov(load, part=100)
+    assert g.cur == 2 and g.next(1000) == (100, 2)  # idle: both threads, parts of 100 steps
+    load.x = 1.0  # another process starts spinning
+    assert g.next(1000) == (100, 2)  # smoothed over two readings: 0.5 rounds to 0
+    assert g.next(1000) == (100, 1)  # 0.75: one thread
+    assert g.next(1000) == (100, 1)
+    load.x = 0.0  # it stops: 0.44 rounds to 0, both threads again
+    assert g.next(1000) == (100, 2)
+    assert g.switches == 2
+    g = _gov(Load(3.0))
+    assert g.cur == 1  # busy from the start
+
+
+def test_governor_timing_overrides_the_load_after_two_probes():
+    g = _gov(Load(0.0), base=2, longest=8, part=100)
+    assert g.next(1000) == (100, 2)
+    g.record(2, 100, 99.0)  # the first part may wake the threads: not counted
     for _ in range(2):
         assert g.next(1000) == (100, 2)
         g.record(2, 100, 1.0)  # 0.01 s per step on two threads
     assert g.next(1000) == (25, 1)  # probe: a quarter part on one thread
-    g.record(1, 25, 0.2)  # 0.008 s per step: faster by more than 5 %
-    assert g.cur == 1 and g.switches == 1 and g.interval == 2
+    g.record(1, 25, 0.175)  # 0.007 s per step: faster by more than 20 %
+    assert g.cur == 2 and g.pending
+    assert g.next(1000) == (25, 1)  # confirm at once
+    g.record(1, 25, 0.175)
+    assert g.cur == 1 and g.switches == 1
     for _ in range(2):
         assert g.next(1000) == (100, 1)
-        g.record(1, 100, 0.8)
+        g.record(1, 100, 0.7)
     assert g.next(1000) == (25, 2)  # probe of the many
     g.record(2, 25, 0.25)  # 0.01 s per step: slower, stay, probe half as often
-    assert g.cur == 1 and g.interval == 4
-    g.record(1, 100, 0.8)
-    g.record(1, 100, 0.8)
+    assert g.cur == 1 and g.interval == 4 and not g.pending
+    g.record(1, 100, 0.7)
+    g.record(1, 100, 0.7)
     assert g.next(1000) == (100, 1)  # 2 of 4 parts since the probe
     for _ in range(3):
         g.record(1, 100, 2.0)  # slowed down by more than 30 %: look again soon
     assert g.interval == 2
     assert g.next(10) == (10, 2)  # a probe of the many, cut to the steps left
-    assert g.steps == {2: 325, 1: 725}
+    assert g.steps == {2: 325, 1: 750}
 
 
-def test_governor_margin_keeps_the_current_choice():
-    g = T.Governor(2, start=2, base=1, part=100)
+def test_governor_margin_and_a_single_probe_keep_the_choice():
+    g = _gov(Load(0.0), base=1, part=100)
     g.record(2, 100, 5.0)
     g.record(2, 100, 1.0)
     assert g.next(100) == (25, 1)
-    g.record(1, 25, 0.245)  # 2 % faster: inside the 5 % margin
-    assert g.cur == 2 and g.interval == 2
+    g.record(1, 25, 0.22)  # 12 % faster: inside the 20 % margin
+    assert g.cur == 2 and not g.pending and g.interval == 2
+    g.record(2, 100, 1.0)
+    g.record(2, 100, 1.0)
+    assert g.next(100) == (25, 1)
+    g.record(1, 25, 0.15)  # one probe in favour...
+    assert g.pending and g.next(100) == (25, 1)
+    g.record(1, 25, 0.3)  # ...not confirmed
+    assert g.cur == 2 and not g.pending
 
 
 def test_fixed_governor_never_probes():

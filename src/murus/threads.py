@@ -15,15 +15,18 @@ issue 15 item 6). Two things made it much worse and are set here:
   sleep at once) before the layer is loaded, unless the user set it. It has no effect when the
   OpenMP runtime was already loaded by another package, nor on the ``workqueue`` and ``tbb``
   layers (both already yield); the governor below covers those cases.
-- **Thread count.** :class:`Governor` decides the thread count of each chunk of steps of a
-  run: it starts from :func:`choose_threads` (the cores of this process's CPU affinity minus
-  the other runnable threads of the machine, read from ``/proc/loadavg``), times every chunk,
-  in parts of at most 200 steps, and now and then times a part of 50 steps on the other choice
-  (one thread against the many), keeping the faster with a 5 % margin. The probe interval
-  doubles (8 to 128 parts) while the choice holds and falls back to 8 when the current choice
-  slows down by 30 %. The
-  results do not depend on the thread count (the kernels sum in a fixed order), so switching
-  changes only the speed.
+- **Thread count.** :class:`Governor` decides the thread count of each part (at most 200
+  steps) of a run. Its first guide is the load: :func:`choose_threads` gives the cores of this
+  process's CPU affinity minus the other runnable threads of the machine, read from
+  ``/proc/loadavg`` (at most every 20 ms, smoothed over two readings), so a run moves to one
+  thread when another process starts spinning on the second core and back when it stops. Its
+  second guide is time, for what the load does not show (a CPU quota, a core shared with the
+  host): every part is timed, and now and then a part of 50 steps runs on the other choice
+  (one thread against the many); two such probes in a row faster by 20 % override the load's
+  choice until the load changes. The probe interval doubles (8 to 128 parts) while the choice
+  holds and falls back to 8 when the current choice slows down by 30 %. The results do not
+  depend on the thread count (the kernels sum in a fixed order) nor on the split into parts,
+  so the choice changes only the speed.
 
 Who decides (first match wins): a ``threads=`` argument (:func:`murus.dem.engine.run`,
 ``settle``, :func:`murus.rocking.simulate_batch`); the environment variable ``MURUS_THREADS``
@@ -37,6 +40,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import time
 
 __all__ = ["choose_threads", "others_running", "usable_cores", "configure_layer", "resolve",
            "using", "Governor"]
@@ -157,64 +161,98 @@ def using(n: int | None):
 
 
 class Governor:
-    """Thread count of each chunk of steps of one run (module doc).
+    """Thread count of each part of the chunks of steps of one run (module doc).
 
     Parameters
     ----------
     cap : int
         Largest thread count (>= 1).
     start : int, optional
-        Count of the first chunk (default: :func:`choose_threads` from the machine's load).
+        Count of the first part (default: the load's choice).
     base, longest : int
-        Shortest and longest interval between probes [chunks].
+        Shortest and longest interval between timing probes [parts].
     margin : float
-        Fraction by which the other choice must be faster to be taken.
+        Fraction by which the other choice must be faster, in two probes in a row, to be taken
+        against the load's choice (the time of a part varies by some 10 % with its content:
+        contact rebuilds, the number of active contacts).
     fixed : bool
         Always ``cap`` threads, no probes (a count fixed by the user).
     part : int
         Largest part of a chunk timed on its own [steps] (a step of a model with enough pairs
         for the parallel loop takes 0.05 ms or more: a part lasts 10 ms or more, and the
         kernel call costs some 0.03 ms).
+    load : callable, optional
+        ``load() -> others`` (default :func:`others_running`), read at most every
+        ``load_every`` seconds and smoothed over two readings.
+    cores : int, optional
+        Cores of the run (default :func:`usable_cores`).
     """
 
     def __init__(self, cap: int, start: int | None = None, base: int = 8, longest: int = 128,
-                 margin: float = 0.05, fixed: bool = False, part: int = 200):
+                 margin: float = 0.2, fixed: bool = False, part: int = 200,
+                 load=None, cores: int | None = None, load_every: float = 0.02):
         self.cap = max(1, int(cap))
         self.fixed = bool(fixed)
-        if fixed:
-            start = self.cap
-        self.many = self.cap
-        if start is None:
-            start = self._load_choice() if self.cap > 1 else 1
-        self.cur = max(1, min(self.cap, int(start)))
-        if self.cur > 1:
-            self.many = self.cur
         self.base = base
-        self.part = max(1, int(part))
         self.longest = longest
         self.margin = margin
-        self.interval = base
-        self.since = max(0, base - 2)  # the first probe after two timed parts
-        self.cost: float | None = None  # EMA of the current choice [s per step]
-        self.ref: float | None = None  # its value at the last decision
-        self.warm = False  # the first chunk of a run may load the kernels: not timed
+        self.part = max(1, int(part))
+        self.load = others_running if load is None else load
+        self.cores = usable_cores() if cores is None else int(cores)
+        self.load_every = load_every
         self.switches = 0
         self.probes = 0
         self.steps: dict[int, int] = {}  # steps run on each thread count
+        self.others = 0.0
+        self.t_load = -1e300
+        self.target = self.cap
+        if not self.fixed and self.cap > 1:
+            self.others = float(self.load())
+            self.t_load = time.monotonic()
+            self.target = choose_threads(self.cap, self.cores, self.others)
+        self.cur = self.cap if self.fixed else (self.target if start is None
+                                                else max(1, min(self.cap, int(start))))
+        self._reset()
 
-    def _load_choice(self) -> int:
-        return choose_threads(self.cap, usable_cores(), others_running())
+    def _reset(self) -> None:
+        self.interval = self.base
+        self.since = max(0, self.base - 2)  # the first probe after two timed parts
+        self.cost: float | None = None  # EMA of the current choice [s per step]
+        self.ref: float | None = None  # its value at the last decision
+        self.warm = False  # the first part after a change may wake threads: not timed
+        self.pending = False  # one probe in favour of the other choice
+
+    def _alt(self) -> int:
+        if self.cur > 1:
+            return 1
+        return max(2, choose_threads(self.cap, self.cores, 0.0) if self.target == 1
+                   else self.target)
+
+    def _follow_load(self) -> None:
+        now = time.monotonic()
+        if now - self.t_load < self.load_every:
+            return
+        self.t_load = now
+        self.others = 0.5 * self.others + 0.5 * float(self.load())
+        t = choose_threads(self.cap, self.cores, self.others)
+        if t != self.target:
+            self.target = t
+            if t != self.cur:
+                self.cur = t
+                self.switches += 1
+                self._reset()
 
     def next(self, n: int) -> tuple[int, int]:
         """The next part of the ``n`` steps left in a chunk: ``(steps, threads)``, at most
-        ``part`` steps on the current count, or a probe of ``part // 4`` steps on the other
-        choice (one thread against the many)."""
+        ``part`` steps on the current count, or a timing probe of ``part // 4`` steps on the
+        other choice (one thread against the many). The load is read first: when its choice
+        changes, the count follows it."""
         if self.fixed:
             return n, self.cur
-        if self.cap > 1 and self.warm and self.cost is not None and self.since >= self.interval:
-            if self.cur == 1:
-                self.many = max(2, self._load_choice()) if self.cap > 2 else 2
-            return min(n, max(1, self.part // 4)), (1 if self.cur > 1 else self.many)
+        if self.cap > 1:
+            self._follow_load()
+            if self.warm and self.cost is not None and self.since >= self.interval:
+                return min(n, max(1, self.part // 4)), self._alt()
         return min(n, self.part), self.cur
 
     def record(self, threads: int, steps: int, seconds: float) -> None:
@@ -225,10 +263,10 @@ class Governor:
         if self.fixed:
             return
         x = seconds / steps
-        if not self.warm:
-            self.warm = True
-            return
         if threads == self.cur:
+            if not self.warm:
+                self.warm = True
+                return
             self.cost = x if self.cost is None else 0.7 * self.cost + 0.3 * x
             if self.ref is None:
                 self.ref = self.cost
@@ -240,14 +278,19 @@ class Governor:
         self.probes += 1
         self.since = 0
         if self.cost is not None and x < (1.0 - self.margin) * self.cost:
-            self.cur = threads
-            self.cost = x
-            self.ref = x
-            self.interval = self.base
-            self.switches += 1
-        else:
-            self.ref = self.cost
-            self.interval = min(2 * self.interval, self.longest)
+            if self.pending:  # the second probe in a row: take it
+                self.cur = threads
+                self.switches += 1
+                self._reset()
+                self.warm = True
+                self.cost = self.ref = x
+                return
+            self.pending = True
+            self.interval = 0  # confirm at the next part
+            return
+        self.pending = False
+        self.ref = self.cost
+        self.interval = min(2 * max(self.interval, self.base // 2), self.longest)
 
     @classmethod
     def for_run(cls, threads: int | None = None) -> Governor:
