@@ -11,14 +11,17 @@ are fixed when a process first runs a parallel kernel):
   300,000 iterations before an idle thread sleeps: ``GOMP_SPINCOUNT=300000``);
 - ``short spin``: murus's governor, OpenMP threads spinning 10,000 iterations (about 0.3 ms
   here) before they sleep (``GOMP_SPINCOUNT=10000``), between passive and the old default;
-- ``workqueue``: numba's own ``workqueue`` layer with murus's governor.
+- ``workqueue``: numba's own ``workqueue`` layer with murus's governor;
+- ``tbb`` (only when asked for with ``--configs``; needs the ``tbb`` package): numba's TBB
+  layer (work stealing) with murus's governor.
 
 The busy processes (``while True: pass``) are started by the worker of each configuration,
 bounded to 10 minutes of life, and killed when its measurements end. Runs alternate between
-the modes (default, one thread, two threads) from the same state; the table gives the median
-of the repeats.
+the modes (default, one thread, two threads) from the same state; the table gives the mean of
+the repeats (ratios of sums over the same stretch of time).
 
-``python benchmarks/bench_threads.py [--out benchmarks/RESULTS_threads.md] [--quick]``
+``python benchmarks/bench_threads.py [--out benchmarks/RESULTS_threads.md] [--quick]
+[--configs murus,before,...]``
 """
 
 from __future__ import annotations
@@ -43,9 +46,28 @@ CONFIGS = {
     "before": {"MURUS_THREADS": "2", "GOMP_SPINCOUNT": "300000"},
     "short spin": {"GOMP_SPINCOUNT": "10000"},
     "workqueue": {"NUMBA_THREADING_LAYER": "workqueue"},
+    "tbb": {"NUMBA_THREADING_LAYER": "tbb"},  # only with --configs (needs the tbb package)
 }
+DEFAULT_CONFIGS = "murus,before,short spin,workqueue"
 NFILL = 5000
 BUSY = (0, 1, 2)
+DECISION = (
+    "What murus does (`murus.threads`): (1) OpenMP threads sleep as soon as they are idle "
+    "(`OMP_WAIT_POLICY=passive`, set before numba loads its threading layer unless the user "
+    "chose a wait policy): libgomp's default spin of 300,000 iterations at the end of each "
+    "parallel region takes the core from the thread that still has work whenever anything "
+    "else runs (the 'before' rows), and a short spin of 10,000 iterations is not enough of a "
+    "cure (the 'short spin' rows); numba's `workqueue` layer also yields, but runs even a "
+    "one-thread region on a worker thread (a hand-over per region), where OpenMP runs it on "
+    "the calling thread. TBB (pip package `tbb`, 6.9 MB wheel, 20 MB installed, Intel "
+    "Simplified Software License in its metadata) is not a dependency: `--configs tbb` "
+    "measures it where it is installed. (2) A distinct-element run chooses its thread count "
+    "per part of at most 200 steps: one thread while the other runnable threads of the "
+    "machine (from /proc/loadavg) leave no core free, all of them otherwise, with timing "
+    "probes of the other choice as a check; `simulate_batch` keeps all threads (one parallel "
+    "loop over whole histories: a shared core delays it little, the 'rocking default / 1' "
+    "column). The results do not depend on the thread count. Override: `threads=N`, "
+    "`MURUS_THREADS=N` or an explicit `NUMBA_NUM_THREADS`.")
 SPIN = "import time\nt = time.time() + 600\nwhile time.time() < t:\n    pass\n"
 
 
@@ -85,7 +107,7 @@ def worker(name: str, path: str, quick: bool) -> dict:
 
     m0 = Model.load(path)
     steps = 150 if quick else 300
-    reps = int(os.environ.get("BENCH_REPS", 2 if quick else 3))
+    reps = int(os.environ.get("BENCH_REPS", 2 if quick else 4))
     default = None
     models, motions = rocking_case()
 
@@ -122,7 +144,7 @@ def worker(name: str, path: str, quick: bool) -> dict:
                     if k == "dem" and th is None:
                         share.append(s1)
             out["rows"].append({"busy": nb, "load": load0, "others": others,
-                                "t": {k: statistics.median(v) for k, v in res.items()},
+                                "t": {k: statistics.mean(v) for k, v in res.items()},
                                 "all": res, "one_share": statistics.mean(share)})
         finally:
             for p in procs:
@@ -137,6 +159,8 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", default=str(HERE / "RESULTS_threads.md"))
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--configs", default=DEFAULT_CONFIGS,
+                    help=f"comma-separated, of {', '.join(CONFIGS)}")
     ap.add_argument("--worker", nargs=2, metavar=("CONFIG", "STATE"), help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.worker:
@@ -148,7 +172,8 @@ def main() -> None:
         state = str(Path(tmp) / "disc_case.npz")
         info = build(state, a.quick)
         res = {}
-        for name, env in CONFIGS.items():
+        for name in a.configs.split(","):
+            env = CONFIGS[name]
             e = {k: v for k, v in os.environ.items()
                  if k not in ("NUMBA_NUM_THREADS", "MURUS_THREADS", "OMP_WAIT_POLICY",
                               "GOMP_SPINCOUNT", "NUMBA_THREADING_LAYER")}
@@ -159,10 +184,12 @@ def main() -> None:
             if p.returncode:
                 sys.exit(f"worker {name} failed:\n{p.stderr[-2000:]}")
             res[name] = json.loads(p.stdout.strip().splitlines()[-1])
-    write(Path(a.out), res, info, load0, os.getloadavg(), time.perf_counter() - t0, a.quick)
+    write(Path(a.out), res, info, load0, os.getloadavg(), time.perf_counter() - t0,
+          "" if a.configs == DEFAULT_CONFIGS else f' --configs "{a.configs}"', a.quick)
 
 
-def write(out: Path, res: dict, info: dict, load0, load1, total: float, quick: bool) -> None:
+def write(out: Path, res: dict, info: dict, load0, load1, total: float, extra: str,
+          quick: bool) -> None:
     import numba
 
     L = []
@@ -173,7 +200,7 @@ def write(out: Path, res: dict, info: dict, load0, load1, total: float, quick: b
       f"{platform.python_version()}, numba {numba.__version__}; load average (1, 5, 15 min) at "
       f"the start {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}, at the end {load1[0]:.2f} "
       f"{load1[1]:.2f} {load1[2]:.2f} (this benchmark included). "
-      f"Command: `python benchmarks/bench_threads.py`{' --quick' if quick else ''}; total "
+      f"Command: `python benchmarks/bench_threads.py{' --quick' if quick else ''}{extra}`; total "
       f"{total:.0f} s.")
     w("")
     r0 = res["murus"]
@@ -181,7 +208,8 @@ def write(out: Path, res: dict, info: dict, load0, load1, total: float, quick: b
       f"{info['pairs']} candidate pairs, dt = {info['dt']:.3g} s) after 300 settling steps, "
       f"{r0['steps']} steps per run from the same state (one sample every 25 steps); rocking, "
       "`simulate_batch` of the six blocks of seed 002 under 4 far-field records x 10 scales "
-      f"(240 histories of 20 s). Median of {r0['reps']} runs per mode, the modes alternated. "
+      f"(240 histories of 20 s). Mean of {r0['reps']} runs per mode, the modes alternated "
+      "(A B C C B A ...), so that a ratio is one of sums over the same stretch of time. "
       "Busy: `while True: pass` processes started by the benchmark. 'others' is the number "
       "of other runnable threads read from /proc/loadavg when the measurement starts "
       "(background jobs of other users included); 'share 1' the fraction of the DEM steps the "
@@ -202,13 +230,16 @@ def write(out: Path, res: dict, info: dict, load0, load1, total: float, quick: b
               f"| {t['dem:2'] / t['dem:1']:.2f} | {row['one_share']:.2f} "
               f"| {t['rock:1']:.3f} | {t['rock:None'] / t['rock:1']:.2f} |")
     w("")
-    b, m = res["before"]["rows"], res["murus"]["rows"]
-    w("Default of murus against the default before (time ratio, < 1: murus now faster): DEM "
-      + ", ".join(f"{x['busy']} busy {y['t']['dem:None'] / x['t']['dem:None']:.2f}"
-                  for x, y in zip(b, m, strict=True))
-      + "; rocking batch "
-      + ", ".join(f"{x['busy']} busy {y['t']['rock:None'] / x['t']['rock:None']:.2f}"
-                  for x, y in zip(b, m, strict=True)) + ".")
+    if "before" in res and "murus" in res:
+        b, m = res["before"]["rows"], res["murus"]["rows"]
+        w("Default of murus against the default before (time ratio, < 1: murus now faster): "
+          "DEM " + ", ".join(f"{x['busy']} busy {y['t']['dem:None'] / x['t']['dem:None']:.2f}"
+                             for x, y in zip(b, m, strict=True))
+          + "; rocking batch "
+          + ", ".join(f"{x['busy']} busy {y['t']['rock:None'] / x['t']['rock:None']:.2f}"
+                      for x, y in zip(b, m, strict=True)) + ".")
+        w("")
+    w(DECISION)
     w("")
     w("Environment of the configurations: "
       + "; ".join(f"{n}: layer {r['layer']}, OMP_WAIT_POLICY={r['omp_wait_policy'] or '-'}, "
