@@ -215,6 +215,15 @@ def write(out: Path, res: dict, info: dict, load0, load1, total: float, extra: s
       "(background jobs of other users included); 'share 1' the fraction of the DEM steps the "
       "default ran on one thread.")
     w("")
+    idle = [row["others"] for r in res.values() for row in r["rows"] if row["busy"] == 0]
+    if max(idle) >= 1:
+        w(f"**Measured under background load**: other jobs held the machine during this run "
+          f"({min(idle):.0f} to {max(idle):.0f} other runnable threads in the rows without busy "
+          "processes of the benchmark), so the rows 'busy 0' are not idle and the absolute "
+          "times vary from configuration to configuration (they ran minutes apart); compare "
+          "ratios within a configuration and condition. Re-run on an idle machine for the idle "
+          "speed.")
+        w("")
     w("Ratios are times over the time on one thread in the same configuration and condition "
       "(< 1: faster than one thread). Goal: default / 1 thread <= 1.10 with 1 and 2 busy "
       "processes, and the idle speed of 2 threads kept.")

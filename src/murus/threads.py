@@ -10,9 +10,12 @@ issue 15 item 6). Two things made it much worse and are set here:
 - **Wait policy.** Numba's default threading layer on Linux is OpenMP (GNU libgomp) when it is
   installed; libgomp's threads spin for about 300,000 iterations at the end of each region
   before they sleep, and on a busy machine that spinning takes the core from the thread that
-  has the work left: measured 4 to 14 times slower than one thread (``benchmarks/
-  bench_threads.py``). :func:`configure_layer` sets ``OMP_WAIT_POLICY=passive`` (idle threads
-  sleep at once) before the layer is loaded, unless the user set it. It has no effect when the
+  has the work left: 13 to 36 times slower than one thread on a 2-core machine shared with
+  other jobs (``benchmarks/bench_threads.py``). :func:`configure_layer` sets
+  ``OMP_WAIT_POLICY=passive`` (idle threads sleep at once) before the layer is loaded, unless
+  the user set it. The price on an idle machine is a wake-up per parallel region: in a
+  near-idle measurement, 300 steps of the disc case took 0.112 s on two sleeping threads,
+  0.103 s on two spinning ones and 0.14 s on one. It has no effect when the
   OpenMP runtime was already loaded by another package, nor on the ``workqueue`` and ``tbb``
   layers (both already yield); the governor below covers those cases.
 - **Thread count.** :class:`Governor` decides the thread count of each part (at most 200
