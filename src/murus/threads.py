@@ -17,7 +17,9 @@ issue 15 item 6). Two things made it much worse and are set here:
   near-idle measurement, 300 steps of the disc case took 0.112 s on two sleeping threads,
   0.103 s on two spinning ones and 0.14 s on one. It has no effect when the
   OpenMP runtime was already loaded by another package, nor on the ``workqueue`` and ``tbb``
-  layers (both already yield); the governor below covers those cases.
+  layers (both already yield; numba takes ``tbb`` first where the ``tbb`` package is
+  installed: measured once under background load, default / one thread 0.91 to 1.35 over two
+  identical configurations, as noisy as that load); the governor below covers those cases.
 - **Thread count.** :class:`Governor` decides the thread count of each part (at most 200
   steps) of a run. Its first guide is the load: :func:`choose_threads` gives the cores of this
   process's CPU affinity minus the other runnable threads of the machine, read from
