@@ -150,7 +150,7 @@ def test_wait_policy_set_unless_the_user_chose(monkeypatch):
 
 def test_others_running_reads_the_machine():
     x = T.others_running()
-    assert x >= 0.0 and x == int(x)
+    assert x >= 0.0
     assert T.usable_cores() >= 1
 
 
