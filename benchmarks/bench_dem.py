@@ -229,7 +229,7 @@ def _one_run(m: Model, steps: int, threads: int) -> dict:
     c0 = int(m.C[K.C_REBUILD])
     p0 = 0
     t0 = time.perf_counter()
-    res = m.run(duration=sample, sample_dt=sample)
+    res = m.run(duration=sample, sample_dt=sample, threads=threads)
     wall = time.perf_counter() - t0
     p0 = m.pairs.shape[0]
     return {"threads": threads, "steps": res.steps, "wall": wall, "updates": res.contact_updates,

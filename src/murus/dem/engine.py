@@ -50,6 +50,7 @@ from dataclasses import dataclass, field
 import numba
 import numpy as np
 
+from murus import threads as _threads
 from murus.dem import kernels as K
 
 __all__ = ["RunResult", "SettleResult", "Probe", "body_probe", "relative_probe", "tilt_probe",
@@ -279,21 +280,32 @@ def _chunk(m, n: int, moving: bool) -> None:
         vhalf = vfull
     grav = m.gravity_vector(ts if moving else np.full(n, m.time))
     gdot = m.gravity_rate(ts) if moving else np.zeros((n, 2))
-    # few pairs: one thread (the kernels' docstring of run_chunk)
+    # thread count per part of the chunk (murus.threads); few pairs: one thread (the kernels'
+    # docstring of run_chunk); the results do not depend on the split nor on the count
     nth = numba.get_num_threads()
-    few = nth > 1 and m.pairs.shape[0] < m.P[K.P_PARMIN]
-    if few:
-        numba.set_num_threads(1)
+    gov = getattr(m, "_threads", None)
+    if m.pairs.shape[0] < m.P[K.P_PARMIN]:
+        gov, nth1 = None, 1
+    else:
+        nth1 = nth
+    s = 0
     try:
-        out = K.run_chunk(n, m.P, m.E, m.C, m.S, vhalf, vfull, grav, gdot, m.bpresc,
-                          m.bpos, m.bang,
-                          m.bvel, m.bomg, m.bmass, m.binert, m.bkin, m.brad, m.blast,
-                          m.bsnap, m.sbody, m.skind, m.svs, m.svn, m.srad, m.sgroup, m.lv, m.wv,
-                          m.jprops, m.jtab, m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr, m.bext)
+        while s < n:
+            k, th = gov.next(n - s) if gov is not None else (n - s, nth1)
+            numba.set_num_threads(th)
+            t0 = _time.perf_counter()
+            out = K.run_chunk(k, m.P, m.E, m.C, m.S, vhalf[s:s + k], vfull[s:s + k],
+                              grav[s:s + k], gdot[s:s + k], m.bpresc, m.bpos, m.bang,
+                              m.bvel, m.bomg, m.bmass, m.binert, m.bkin, m.brad, m.blast,
+                              m.bsnap, m.sbody, m.skind, m.svs, m.svn, m.srad, m.sgroup, m.lv,
+                              m.wv, m.jprops, m.jtab, m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr,
+                              m.bext)
+            m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr = out
+            if gov is not None:
+                gov.record(th, k, _time.perf_counter() - t0)
+            s += k
     finally:
-        if few:
-            numba.set_num_threads(nth)
-    m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr = out
+        numba.set_num_threads(nth)
     m.snap_time = m.time - m.dt
 
 
@@ -327,12 +339,13 @@ def unbalanced_ratio(m) -> float:
 
 def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
            check_every: int = 100, dt: float | None = None, reset: bool = True,
-           external: Callable | None = None) -> SettleResult:
+           external: Callable | None = None, threads: int | None = None) -> SettleResult:
     """Static solution under gravity (at the current tilt) and the external forces
     ``model.bext`` with local damping ``alpha``: step until the unbalanced-force ratio is below
     ``tol`` (module doc). ``external(model)``, if given, updates ``model.bext`` every
     ``check_every`` steps. The base and the ``"prescribed"`` bodies do not move and the model
-    time does not advance."""
+    time does not advance. ``threads``: numba threads (default: chosen per chunk of steps by
+    :mod:`murus.threads` from the machine's load)."""
     if not (0 <= alpha < 1):
         raise ValueError(f"alpha must be in [0, 1), got {alpha!r}")
     _set_dt(m, dt)
@@ -343,6 +356,7 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     converged = False
     presc = m.bpresc.copy()
     m.bpresc[:] = 0.0
+    m._threads = _threads.Governor.for_run(threads)
     try:
         with _SigInt() as sig:
             while done < max_steps and not sig.hit:
@@ -357,6 +371,7 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
                     converged = True
                     break
     finally:
+        m._threads = None
         m.bpresc[:] = presc
     m.bvel[:] = 0.0
     m.bomg[:] = 0.0
@@ -374,7 +389,8 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         local_damping: float = 0.0, probes: dict | None = None, every: int | None = None,
         sample_dt: float = 0.01, stop=None, max_steps: int | None = None,
         progress: bool = False, external: Callable | None = None,
-        external_every: int | None = None, damping_frame: str = "base") -> RunResult:
+        external_every: int | None = None, damping_frame: str = "base",
+        threads: int | None = None) -> RunResult:
     """Dynamic run up to ``t_end`` (or ``duration`` from now) [s].
 
     xi, freq : mass-proportional damping, fraction of critical at frequency [Hz];
@@ -392,7 +408,10 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
     progress : show a rich progress bar;
     external : callable(model) updating ``model.bext`` (external forces and moments) in place,
         called before the first step and every ``external_every`` steps (default: at each
-        sample) of the model's step count.
+        sample) of the model's step count;
+    threads : numba threads (default: chosen per chunk of steps by :mod:`murus.threads`: one
+        thread while other processes hold the cores, else ``numba.get_num_threads()``; an
+        explicit ``NUMBA_NUM_THREADS`` or ``MURUS_THREADS`` fixes it too).
     """
     _set_dt(m, dt)
     if (duration is None) == (t_end is None):
@@ -432,6 +451,7 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
     u0 = int(m.C[K.C_UPDATES])
     done = 0
     bar = None
+    m._threads = _threads.Governor.for_run(threads)
     if progress:
         from rich.progress import Progress
         bar = Progress(transient=True)
@@ -473,6 +493,7 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                     message = f"interrupted at t={m.time:.6g} s (save() to resume)"
                     break
     finally:
+        m._threads = None
         if bar is not None:
             bar.stop()
     wall = _time.perf_counter() - t0

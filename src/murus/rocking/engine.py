@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from murus import threads as _threads
 from murus.rocking import kernels as K
 from murus.rocking.excitation import Excitation, as_excitation
 from murus.rocking.model import ModelError, as_model
@@ -422,11 +423,16 @@ def simulate_batch(
     omega0: float = 0.0,
     rtol: float = 1e-9,
     max_steps: int = 50_000_000,
+    threads: int | None = None,
 ) -> BatchResult:
     """Run every model under every motion, in parallel over the cores (event-driven method).
 
     Each case is computed by the same kernel as :func:`simulate`, so that its summary is the
-    same number for number; only the histories are not kept."""
+    same number for number; only the histories are not kept. ``threads``: numba threads
+    (default: ``MURUS_THREADS``, else ``numba.get_num_threads()``; :mod:`murus.threads`). The
+    batch is one parallel loop over whole histories, so a thread that shares its core with
+    another process delays it little: the default keeps every thread on a busy machine too
+    (``benchmarks/bench_threads.py``)."""
     mdls = [as_model(m) for m in models]
     excs = [as_excitation(m) for m in motions]
     if not mdls or not excs:
@@ -446,10 +452,14 @@ def simulate_batch(
     Pc = np.ascontiguousarray(Pm[im])
     Xc = np.ascontiguousarray(Xm[ix])
 
+    fixed = _threads.resolve(threads)
+
     def run(sel):
-        return K.batch_event(Pc[sel], Xc[sel], ag_flat, av_flat, offsets[ix][sel],
-                             lengths[ix][sel], t_end_m[ix][sel], np.full(sel.size, float(theta0)),
-                             np.full(sel.size, float(omega0)), float(rtol), int(max_steps))
+        with _threads.using(fixed):
+            return K.batch_event(Pc[sel], Xc[sel], ag_flat, av_flat, offsets[ix][sel],
+                                 lengths[ix][sel], t_end_m[ix][sel],
+                                 np.full(sel.size, float(theta0)),
+                                 np.full(sel.size, float(omega0)), float(rtol), int(max_steps))
 
     raw = run(np.arange(nc))
     # the iterated variant of seed 000 eq. 16: re-run the cases whose largest rotation moved
