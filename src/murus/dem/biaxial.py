@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import math
 import time as _time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -98,8 +99,10 @@ class BiaxialResult:
 
 @dataclass
 class CalibrationResult:
-    """Rolling coefficient ``rolling`` giving ``phi_peak_deg`` near ``target_deg``; ``history``
-    the (rolling, phi_peak_deg) pairs tried, in order."""
+    """Rolling coefficient ``rolling`` giving ``phi_peak_deg`` near ``target_deg`` [deg];
+    ``history`` the (rolling, mean phi_peak_deg) pairs tried, in order; ``status`` and
+    ``message`` say how the search ended (:func:`calibrate_rolling`); ``result`` the test of
+    the first assembly at ``rolling``."""
 
     rolling: float
     phi_peak_deg: float
@@ -107,6 +110,10 @@ class CalibrationResult:
     converged: bool
     history: list
     result: BiaxialResult | None = None
+    status: str = ""
+    message: str = ""
+    std_deg: float = math.nan  # standard deviation over the assemblies at ``rolling`` [deg]
+    phi_seeds: tuple = ()  # peak angle of each assembly at ``rolling`` [deg]
 
 
 def disc_assembly(n: int, radius=(0.02, 0.03), seed: int = 0, aspect: float = 2.0,
@@ -371,55 +378,98 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
 
 def calibrate_rolling(target_phi_deg: float, joint: Joint | None = None,
                       bracket=(0.0, 1.0), tol_deg: float = 0.5, max_runs: int = 8,
-                      seeds=(0,), **kw) -> CalibrationResult:
+                      seeds=(0,), progress: Callable | None = None,
+                      **kw) -> CalibrationResult:
     """Rolling coefficient mu_r of ``joint`` (default kn = ks = 1e9 Pa/m, friction 30 deg) for
     which :func:`biaxial_test` (keywords ``kw``) gives the peak friction angle
-    ``target_phi_deg`` within ``tol_deg``: the two ends of ``bracket`` are run first, then
-    regula falsi (Illinois variant) on phi_peak(mu_r), at most ``max_runs`` evaluations in all.
-    Each evaluation is the mean peak angle over the assemblies ``seeds``: the peak of a
-    200-disc sample scatters by several degrees from one assembly to the next (strain
-    localisation), so that one seed gives a noisy phi(mu_r) near its saturation.
-    ``converged`` is False, with the closest run, if the target is outside the bracket's angles
-    (e.g. seed 001's 45 deg of the mock-ups may exceed what discs reach with the given
-    interparticle friction) or the noise stops the iteration."""
+    ``target_phi_deg`` [deg] within ``tol_deg`` [deg], at most ``max_runs`` values of mu_r.
+
+    Each value of mu_r is evaluated as the mean peak angle over the assemblies ``seeds`` (the
+    same assemblies at every mu_r, common random numbers): the peak of one 200-disc sample
+    scatters by about 3 deg from one assembly to the next (strain localisation), so that one
+    seed gives a phi(mu_r) that is not monotone, while the mean over a fixed set of assemblies
+    is as monotone as each of them. The two ends of ``bracket`` are run first; then bisection
+    on the bracket, the point placed by linear interpolation while the bracket shrinks from
+    both sides and at the middle otherwise (safeguarded regula falsi). Every new point is
+    checked to lie between the angles of the current bracket's ends: a phi(mu_r) that is not
+    monotone stops the search (status ``"non_monotone"``, more assemblies or discs are needed).
+
+    Returns a :class:`CalibrationResult`: ``status`` ``"converged"``, ``"outside_bracket"``
+    (the target is not between the angles of the bracket's ends: e.g. seed 001's 45 deg of the
+    mock-ups may exceed what discs reach with the given interparticle friction),
+    ``"non_monotone"`` or ``"max_runs"``; ``converged`` True only for the first; ``rolling``
+    and ``phi_peak_deg`` the closest value tried; ``std_deg`` the standard deviation of the peak
+    angle over the assemblies at that value (the scatter of one sample; the standard error of
+    the mean is ``std_deg / sqrt(len(seeds))``). ``progress(done, total)``, if given, is called
+    after each biaxial test (tests done, most tests of the search)."""
     from dataclasses import replace
 
     joint = joint or Joint(kn=1e9, ks=1e9, friction_deg=30.0)
+    seeds = tuple(seeds)
+    if not seeds:
+        raise ValueError("seeds must name at least one assembly")
+    if not tol_deg > 0:
+        raise ValueError(f"tol_deg must be positive, got {tol_deg!r}")
+    target = float(target_phi_deg)
     hist = []
-    results = {}
+    runs = {}
+    total = int(max_runs) * len(seeds)
 
     def f(mu):
-        rs = [biaxial_test(replace(joint, rolling=float(mu)), seed=s, **kw) for s in seeds]
+        rs = []
+        for s_ in seeds:
+            rs.append(biaxial_test(replace(joint, rolling=float(mu)), seed=s_, **kw))
+            if progress is not None:
+                progress(sum(len(v) for v in runs.values()) + len(rs), total)
         phi = float(np.mean([r.phi_peak_deg for r in rs]))
         hist.append((float(mu), phi))
-        results[float(mu)] = rs[0]
-        return phi - target_phi_deg
+        runs[float(mu)] = rs
+        return phi
+
+    def done(status, message):
+        mu, phi = min(hist, key=lambda h: abs(h[1] - target))
+        rs = runs[mu]
+        phis = tuple(float(r.phi_peak_deg) for r in rs)
+        std = float(np.std(phis, ddof=1)) if len(phis) > 1 else math.nan
+        return CalibrationResult(mu, phi, target, status == "converged", hist, rs[0],
+                                 status=status, message=message, std_deg=std,
+                                 phi_seeds=phis)
 
     a, b = float(bracket[0]), float(bracket[1])
+    if not b > a:
+        raise ValueError(f"bracket must be (low, high) with low < high, got {bracket!r}")
     fa, fb = f(a), f(b)
-    best = min(hist, key=lambda h: abs(h[1] - target_phi_deg))
-    if fa * fb > 0:
-        return CalibrationResult(best[0], best[1], target_phi_deg, False, hist, results[best[0]])
+    if fa > fb:
+        return done("non_monotone", f"the bracket's ends are not in order: mu_r = {a:g} gives "
+                    f"{fa:.2f} deg > {fb:.2f} deg at mu_r = {b:g}")
+    if not fa - tol_deg <= target <= fb + tol_deg:
+        return done("outside_bracket", f"the target {target:g} deg is outside the angles "
+                    f"{fa:.2f}-{fb:.2f} deg of mu_r = {a:g}-{b:g}")
     side = 0
-    while len(hist) < max_runs:
-        best = min(hist, key=lambda h: abs(h[1] - target_phi_deg))
-        if abs(best[1] - target_phi_deg) <= tol_deg:
-            break
-        c = (a * fb - b * fa) / (fb - fa)
+    while True:
+        best = min(hist, key=lambda h: abs(h[1] - target))
+        if abs(best[1] - target) <= tol_deg:
+            return done("converged", f"mu_r = {best[0]:.4g} gives {best[1]:.2f} deg "
+                        f"(target {target:g} +- {tol_deg:g} deg)")
+        if len(hist) >= max_runs:
+            return done("max_runs", f"{max_runs} values of mu_r tried, the closest gives "
+                        f"{best[1]:.2f} deg (target {target:g} +- {tol_deg:g} deg)")
+        c = a + (target - fa) / (fb - fa) * (b - a) if fb > fa else 0.5 * (a + b)
+        if side in (-2, 2) or not a < c < b:  # the same end kept twice: bisect
+            c = 0.5 * (a + b)
         fc = f(c)
-        if fc * fb > 0:
+        if not fa <= fc <= fb:
+            return done("non_monotone", "the mean peak angle is not monotone in mu_r: "
+                        f"{fa:.2f}, {fc:.2f}, {fb:.2f} deg at mu_r = {a:.4g}, {c:.4g}, {b:.4g} "
+                        "(average more assemblies or use more discs)")
+        if fc > target:
             b, fb = c, fc
-            if side == -1:
-                fa *= 0.5
-            side = -1
+            side = side - 1 if side < 0 else -1
         else:
             a, fa = c, fc
-            if side == 1:
-                fb *= 0.5
-            side = 1
-    best = min(hist, key=lambda h: abs(h[1] - target_phi_deg))
-    return CalibrationResult(best[0], best[1], target_phi_deg,
-                             abs(best[1] - target_phi_deg) <= tol_deg, hist, results[best[0]])
+            side = side + 1 if side > 0 else 1
+        if side in (-3, 3):
+            side = 0
 
 
 def plot_biaxial(result: BiaxialResult, ax=None):

@@ -33,6 +33,14 @@ It stays as set between calls; ``settle`` and ``run`` also accept ``external``, 
 every ``external_every`` steps (the force is constant between calls: an explicit load history
 sampled at that interval). The kernels see it as a plain array.
 
+Interpenetration: a settle or a run stops (settle: not converged; run: status
+``"interpenetration"``) when two bodies overlap by more than :data:`OVERLAP_LIMIT` (10 %) of the
+smallest dimension of the smaller of the two (:func:`body_sizes`: a polygon's smallest width
+across, a disc's diameter); the overlap is the largest penetration ``-gap`` of an active
+sub-contact, read from the contact arrays after each chunk of steps. An overlap that deep means
+a contact stiffness far too low for the loads (e.g. ``kn = 1e-3`` Pa/m lets a block sink through
+its base): the result would not be a result.
+
 Checkpoints: :meth:`Model.save` / :meth:`Model.load`. Runs are deterministic: a run stopped by
 ``max_steps`` or Ctrl-C (caught between chunks of steps, the state is always consistent), saved,
 loaded and resumed reproduces the uninterrupted run bit for bit.
@@ -52,8 +60,20 @@ import numpy as np
 
 from murus.dem import kernels as K
 
-__all__ = ["RunResult", "SettleResult", "Probe", "body_probe", "relative_probe", "tilt_probe",
-           "stop_when", "stable_dt", "settle", "run", "energy", "probe_from_spec"]
+__all__ = ["OVERLAP_LIMIT", "RunResult", "SettleResult", "body_sizes", "overlap_fraction",
+           "Probe", "body_probe", "relative_probe", "tilt_probe", "stop_when", "stable_dt",
+           "settle", "run", "energy", "probe_from_spec"]
+
+
+#: Largest overlap of two bodies, as a fraction of the smallest dimension of the smaller one,
+#: beyond which :func:`settle` and :func:`run` stop (module doc).
+OVERLAP_LIMIT = 0.1
+
+#: Most steps of one call of the kernel (its inputs hold 64 bytes per step).
+_MAX_CHUNK = 1_000_000
+
+#: Run statuses that are a result: the run reached its end or its stop condition.
+OK_STATUSES = ("completed", "stopped")
 
 
 # ---------------------------------------------------------------------- probes
@@ -151,16 +171,23 @@ def stop_when(probe: Callable, op: str, value: float) -> Callable:
 # ---------------------------------------------------------------------- results
 @dataclass
 class SettleResult:
+    """Outcome of :func:`settle`: ``converged``, the steps taken, the final unbalanced-force
+    ratio [-], a one-line ``message`` and the largest overlap ``overlap`` [-] of two bodies
+    (fraction of the smaller one's smallest dimension, :func:`overlap_fraction`)."""
+
     converged: bool
     steps: int
     ratio: float  # final unbalanced-force ratio
     message: str = ""
+    overlap: float = 0.0
 
 
 @dataclass
 class RunResult:
     """History of a dynamic run. ``t`` [s]; ``values[name]`` sampled with it (probes and the
-    energy terms ``energy.*``); status: completed | stopped | interrupted | max_steps."""
+    energy terms ``energy.*``); status: completed | stopped (a stop condition) | interrupted |
+    max_steps | unstable (non-finite positions) | interpenetration (two bodies overlap by more
+    than :data:`OVERLAP_LIMIT` of their size); :attr:`ok` for the first two."""
 
     t: np.ndarray
     values: dict = field(default_factory=dict)
@@ -173,6 +200,11 @@ class RunResult:
 
     def __getitem__(self, name):
         return self.values[name]
+
+    @property
+    def ok(self) -> bool:
+        """True when the run reached its end or its stop condition."""
+        return self.status in OK_STATUSES
 
 
 # ---------------------------------------------------------------------- time step
@@ -234,6 +266,59 @@ def _set_dt(m, dt) -> None:
         m.step_offset = int(m.C[K.C_STEP])
     m.dt = float(dt)
     m.P[K.P_DT] = m.dt
+
+
+# ---------------------------------------------------------------------- overlaps
+def body_sizes(m) -> np.ndarray:
+    """Smallest dimension [m] of each body: the smallest width across of a convex polygon (the
+    smallest extent of its vertices along its edge normals), the diameter of a disc, the
+    smallest of its parts for a clump. Computed once per model (bodies do not change shape)."""
+    m.build()
+    cached = m.__dict__.get("_body_sizes")
+    if cached is not None and cached.shape[0] == m.nbody:
+        return cached
+    size = np.full(m.nbody, np.inf)
+    for s, v in zip(m.poly_shape, m._outer, strict=True):
+        e = np.roll(v, -1, axis=0) - v
+        nrm = np.column_stack([e[:, 1], -e[:, 0]])
+        ln = np.hypot(nrm[:, 0], nrm[:, 1])
+        nrm = nrm[ln > 0] / ln[ln > 0, None]
+        proj = v @ nrm.T
+        w = float(np.min(proj.max(0) - proj.min(0))) if nrm.size else 0.0
+        b = m.sbody[s]
+        size[b] = min(size[b], w)
+    for s in m.disc_shape:
+        b = m.sbody[s]
+        size[b] = min(size[b], 2.0 * float(m.srad[s]))
+    m.__dict__["_body_sizes"] = size
+    return size
+
+
+def overlap_fraction(m) -> tuple[float, int, int, float]:
+    """Largest overlap of two bodies in the current contact arrays: ``(fraction, a, b,
+    depth)`` with ``depth`` [m] the largest penetration of an active sub-contact between the
+    bodies a and b and ``fraction`` = depth / the smaller of their :func:`body_sizes` [-];
+    ``(0, -1, -1, 0)`` when nothing overlaps. Cheap (NumPy over the contact arrays)."""
+    on = m.sid >= 0
+    if not on.any():
+        return 0.0, -1, -1, 0.0
+    depth = np.where(on, -m.sf[..., K.F_GAP], 0.0).max(axis=1)
+    if not depth.max() > 0:
+        return 0.0, -1, -1, 0.0
+    size = body_sizes(m)
+    ba = m.sbody[m.pairs[:, 0]]
+    bb = m.sbody[m.pairs[:, 1]]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        frac = depth / np.minimum(size[ba], size[bb])
+    frac = np.where(np.isfinite(frac), frac, np.where(depth > 0, np.inf, 0.0))
+    k = int(np.argmax(frac))
+    return float(frac[k]), int(ba[k]), int(bb[k]), float(depth[k])
+
+
+def _overlap_message(m, frac, a, b, depth, limit) -> str:
+    return (f"bodies {a} and {b} interpenetrate by {depth:.3g} m, {100 * frac:.3g} % of the "
+            f"smaller one's smallest dimension (limit {100 * limit:g} %): the contact "
+            "stiffness kn is too low for the loads")
 
 
 # ---------------------------------------------------------------------- energy
@@ -327,12 +412,15 @@ def unbalanced_ratio(m) -> float:
 
 def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
            check_every: int = 100, dt: float | None = None, reset: bool = True,
-           external: Callable | None = None) -> SettleResult:
+           external: Callable | None = None,
+           max_overlap: float | None = OVERLAP_LIMIT) -> SettleResult:
     """Static solution under gravity (at the current tilt) and the external forces
     ``model.bext`` with local damping ``alpha``: step until the unbalanced-force ratio is below
     ``tol`` (module doc). ``external(model)``, if given, updates ``model.bext`` every
     ``check_every`` steps. The base and the ``"prescribed"`` bodies do not move and the model
-    time does not advance."""
+    time does not advance. Settling stops, not converged, when two bodies overlap by more than
+    ``max_overlap`` (fraction of the smaller one's smallest dimension, :func:`overlap_fraction`;
+    None: no check)."""
     if not (0 <= alpha < 1):
         raise ValueError(f"alpha must be in [0, 1), got {alpha!r}")
     _set_dt(m, dt)
@@ -343,6 +431,8 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     converged = False
     presc = m.bpresc.copy()
     m.bpresc[:] = 0.0
+    over = None
+    frac = 0.0
     try:
         with _SigInt() as sig:
             while done < max_steps and not sig.hit:
@@ -353,6 +443,12 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
                 m.step_offset += n  # settling does not advance the model time
                 done += n
                 ratio = unbalanced_ratio(m)
+                if max_overlap is not None:
+                    frac, *rest = overlap_fraction(m)
+                    if frac > max_overlap or not np.all(np.isfinite(m.bpos)):
+                        over = _overlap_message(m, frac, *rest, max_overlap) \
+                            if frac > max_overlap else "non-finite positions"
+                        break
                 if ratio < tol:
                     converged = True
                     break
@@ -365,8 +461,12 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     if reset:
         m.reset_reference()
     msg = (f"settled in {done} steps, ratio {ratio:.2e}" if converged
+           else f"not settled after {done} steps: {over}" if over is not None
+           else f"not settled after {done} steps: no contact carries the load (the blocks "
+           "fall freely, or passed through each other: a contact stiffness far too low?)"
+           if ratio == math.inf
            else f"not settled after {done} steps, ratio {ratio:.2e} > {tol:g}")
-    return SettleResult(converged, done, ratio, msg)
+    return SettleResult(converged, done, ratio, msg, frac)
 
 
 def run(m, duration: float | None = None, *, t_end: float | None = None,
@@ -374,7 +474,8 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         local_damping: float = 0.0, probes: dict | None = None, every: int | None = None,
         sample_dt: float = 0.01, stop=None, max_steps: int | None = None,
         progress: bool = False, external: Callable | None = None,
-        external_every: int | None = None, damping_frame: str = "base") -> RunResult:
+        external_every: int | None = None, damping_frame: str = "base",
+        max_overlap: float | None = OVERLAP_LIMIT) -> RunResult:
     """Dynamic run up to ``t_end`` (or ``duration`` from now) [s].
 
     xi, freq : mass-proportional damping, fraction of critical at frequency [Hz];
@@ -389,10 +490,15 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         survive a checkpoint);
     stop : callable(model) -> bool (or a list), checked at each sample;
     max_steps : stop after that many steps of this call (status ``max_steps``);
-    progress : show a rich progress bar;
+    progress : False (nothing), True (a :func:`murus.progress.progress` block: a bar in a
+        terminal, a line every 10 s on stderr otherwise) or a callable ``progress(done,
+        total)`` called after each chunk with the steps done and the steps of the call;
     external : callable(model) updating ``model.bext`` (external forces and moments) in place,
         called before the first step and every ``external_every`` steps (default: at each
-        sample) of the model's step count.
+        sample) of the model's step count;
+    max_overlap : the run stops with status ``"interpenetration"`` when two bodies overlap by
+        more than this fraction of the smaller one's smallest dimension (checked after each
+        chunk of steps, :func:`overlap_fraction`; None: no check).
     """
     _set_dt(m, dt)
     if (duration is None) == (t_end is None):
@@ -432,16 +538,18 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
     u0 = int(m.C[K.C_UPDATES])
     done = 0
     bar = None
-    if progress:
-        from rich.progress import Progress
-        bar = Progress(transient=True)
-        bar.start()
-        task = bar.add_task("murus.dem", total=remaining)
+    report = progress if callable(progress) else None
+    if progress is True:
+        from murus.progress import progress as _progress
+        bar = _progress(remaining, "DEM run", unit="steps")
+        bar.__enter__()
+        report = bar.update
+    total = remaining
     try:
         with _SigInt() as sig:
             while remaining > 0:
                 rel = int(m.C[K.C_STEP]) - m.step_offset
-                n = min(every - rel % every, remaining)
+                n = min(every - rel % every, remaining, _MAX_CHUNK)
                 if external is not None:
                     if rel % external_every == 0 or done == 0:
                         external(m)
@@ -455,6 +563,8 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                 _chunk(m, n, moving)
                 done += n
                 remaining -= n
+                if report is not None:
+                    report(done, total)
                 if (int(m.C[K.C_STEP]) - m.step_offset) % every == 0:
                     _sample(m)
                     hit = [getattr(c, "__name__", "stop") for c in stops if c(m)]
@@ -466,15 +576,20 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                     status = "unstable"
                     message = "non-finite positions: lower dt"
                     break
-                if bar is not None:
-                    bar.update(task, advance=n)
+                if max_overlap is not None:
+                    frac, *rest = overlap_fraction(m)
+                    if frac > max_overlap:
+                        status = "interpenetration"
+                        message = (f"at t={m.time:.6g} s "
+                                   + _overlap_message(m, frac, *rest, max_overlap))
+                        break
                 if sig.hit:
                     status = "interrupted"
                     message = f"interrupted at t={m.time:.6g} s (save() to resume)"
                     break
     finally:
         if bar is not None:
-            bar.stop()
+            bar.__exit__(None, None, None)
     wall = _time.perf_counter() - t0
     vals = {k: np.asarray(v, float) for k, v in m.history.items() if k != "t"}
     return RunResult(t=np.asarray(m.history["t"], float), values=vals, status=status,
