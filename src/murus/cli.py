@@ -93,10 +93,10 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
         built = build(cfg, path, text)
     except CaseError as exc:
         fail(str(exc).splitlines()[0])
-    from murus.progress import progress as show
+    from murus.cliprogress import LazyProgress
 
     error = None
-    with show(None, f"{case.name}", unit="steps", quiet=not progress) as bar:
+    with LazyProgress(f"{case.name}", unit="steps", quiet=not progress) as bar:
         bar.update(0, info="settling" if built.settle is not None else "")
         try:
             res = run_case(built, progress=lambda d, t: bar.update(d, t, info="run"))

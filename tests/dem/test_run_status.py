@@ -121,6 +121,13 @@ def test_good_run_is_ok(tmp_path):
     s = json.loads((out / "summary.json").read_text())
     assert s["ok"] is True and s["status"] == "completed"
     assert r.stderr == ""  # --no-progress: nothing on stderr
+    # by default, progress lines on stderr (not a terminal: a line at the start, every 10 s
+    # and at the end), the summary alone on stdout
+    r = CliRunner().invoke(app, ["run", str(_case(tmp_path)), "--out", str(tmp_path / "o2")])
+    assert r.exit_code == 0, r.output
+    last = r.stderr.strip().splitlines()[-1]
+    assert last.startswith("case.toml: ") and last.endswith("(done)") and "steps (100 %)" in last
+    assert len(r.stdout.strip().splitlines()) == 1
 
 
 @pytest.mark.parametrize("kn, dem, extra, key", [
