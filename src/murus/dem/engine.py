@@ -315,6 +315,19 @@ def overlap_fraction(m) -> tuple[float, int, int, float]:
     return float(frac[k]), int(ba[k]), int(bb[k]), float(depth[k])
 
 
+def _overlap_beyond(m, limit: float):
+    """``overlap_fraction(m)`` when it exceeds ``limit``, else None; a quick bound first (no
+    slot, active or not, deeper than ``limit`` times the smallest body) keeps the check to a
+    few microseconds when nothing is near the limit."""
+    if m.sf.size == 0:
+        return None
+    size = body_sizes(m)
+    if not -float(m.sf[..., K.F_GAP].min()) > limit * float(size.min()):
+        return None
+    hit = overlap_fraction(m)
+    return hit if hit[0] > limit else None
+
+
 def _overlap_message(m, frac, a, b, depth, limit) -> str:
     return (f"bodies {a} and {b} interpenetrate by {depth:.3g} m, {100 * frac:.3g} % of the "
             f"smaller one's smallest dimension (limit {100 * limit:g} %): the contact "
@@ -432,7 +445,6 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     presc = m.bpresc.copy()
     m.bpresc[:] = 0.0
     over = None
-    frac = 0.0
     try:
         with _SigInt() as sig:
             while done < max_steps and not sig.hit:
@@ -443,12 +455,13 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
                 m.step_offset += n  # settling does not advance the model time
                 done += n
                 ratio = unbalanced_ratio(m)
-                if max_overlap is not None:
-                    frac, *rest = overlap_fraction(m)
-                    if frac > max_overlap or not np.all(np.isfinite(m.bpos)):
-                        over = _overlap_message(m, frac, *rest, max_overlap) \
-                            if frac > max_overlap else "non-finite positions"
-                        break
+                if not np.all(np.isfinite(m.bpos)):
+                    over = "non-finite positions (lower dt)"
+                    break
+                hit = None if max_overlap is None else _overlap_beyond(m, max_overlap)
+                if hit is not None:
+                    over = _overlap_message(m, *hit, max_overlap)
+                    break
                 if ratio < tol:
                     converged = True
                     break
@@ -466,7 +479,7 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
            "fall freely, or passed through each other: a contact stiffness far too low?)"
            if ratio == math.inf
            else f"not settled after {done} steps, ratio {ratio:.2e} > {tol:g}")
-    return SettleResult(converged, done, ratio, msg, frac)
+    return SettleResult(converged, done, ratio, msg, overlap_fraction(m)[0])
 
 
 def run(m, duration: float | None = None, *, t_end: float | None = None,
@@ -576,13 +589,11 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                     status = "unstable"
                     message = "non-finite positions: lower dt"
                     break
-                if max_overlap is not None:
-                    frac, *rest = overlap_fraction(m)
-                    if frac > max_overlap:
-                        status = "interpenetration"
-                        message = (f"at t={m.time:.6g} s "
-                                   + _overlap_message(m, frac, *rest, max_overlap))
-                        break
+                hit = None if max_overlap is None else _overlap_beyond(m, max_overlap)
+                if hit is not None:
+                    status = "interpenetration"
+                    message = f"at t={m.time:.6g} s " + _overlap_message(m, *hit, max_overlap)
+                    break
                 if sig.hit:
                     status = "interrupted"
                     message = f"interrupted at t={m.time:.6g} s (save() to resume)"
