@@ -67,7 +67,8 @@ def _err(r) -> str:
 def test_body_sizes_and_overlap_of_a_settled_block():
     # a 0.4 x 0.2 m block (2000 kg/m3, t = 1 m) on a fixed base, kn = 1e6 Pa/m: at rest the
     # contact carries m g over L = 0.4 m, so the overlap is m g / (kn L t) = 3.92 mm, 1.96 % of
-    # the block's smallest dimension (0.2 m)
+    # the block's thickness along the contact normal (its height, 0.2 m); the smallest widths
+    # across of the bodies (body_sizes): 0.2 m, 0.2 m, 0.1 m and a disc's diameter
     m = Model(joint=Joint(kn=1e6, ks=1e6, friction_deg=30.0))
     m.add_rectangle(2.0, 0.2, center=(0.0, -0.1), kinematic="fixed")
     m.add_rectangle(0.4, 0.2, center=(0.0, 0.1), angle=0.0)
@@ -85,7 +86,7 @@ def test_body_sizes_and_overlap_of_a_settled_block():
 
 
 def test_soft_contact_stops_the_settling_and_the_run(tmp_path):
-    # kn = 1e5 Pa/m: the static overlap would be 39 mm, 19.6 % of the block height > 10 %
+    # kn = 1e5 Pa/m: the static overlap would be 39 mm, 19.6 % of the block's height > 10 %
     m = Model(joint=Joint(kn=1e5, ks=1e5, friction_deg=30.0))
     m.add_rectangle(2.0, 0.2, center=(0.0, -0.1), kinematic="fixed")
     m.add_rectangle(0.4, 0.2, center=(0.0, 0.1))

@@ -236,15 +236,18 @@ def _advance(m: Model, nsteps: int, alpha: float) -> None:
         m.history.clear()
 
 
-def _check_overlap(m: Model, where: str) -> None:
-    """RuntimeError when two bodies interpenetrate by more than the engine's limit
-    (:data:`murus.dem.engine.OVERLAP_LIMIT` of the smaller one's smallest dimension)."""
+def _check_overlap(m: Model, where: str, walls) -> None:
+    """RuntimeError when two discs interpenetrate by more than the engine's limit
+    (:data:`murus.dem.engine.OVERLAP_LIMIT` of the smaller one's diameter). The contacts with
+    the ``walls`` are left out: their compliance (a tenth of the discs' stiffness, for the
+    servo) is a device of the test, and a disc presses into a wall by up to about 10 % of its
+    diameter at the peak."""
     from murus.dem.engine import OVERLAP_LIMIT, overlap_fraction
 
-    frac, a, b, depth = overlap_fraction(m)
+    frac, a, b, depth = overlap_fraction(m, exclude=walls)
     if frac > OVERLAP_LIMIT:
-        raise RuntimeError(f"{where}: bodies {a} and {b} interpenetrate by {depth:.3g} m, "
-                           f"{100 * frac:.3g} % of the smaller one's smallest dimension (limit "
+        raise RuntimeError(f"{where}: discs {a} and {b} interpenetrate by {depth:.3g} m, "
+                           f"{100 * frac:.3g} % of the diameter of the smaller one (limit "
                            f"{100 * OVERLAP_LIMIT:g} %): kn is too low for sigma3")
 
 
@@ -339,7 +342,7 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
     else:
         raise RuntimeError(f"compaction to sigma3={sigma3:g} Pa did not converge in "
                            f"{max_compaction_steps} steps (stresses {sig})")
-    _check_overlap(m, "compaction")
+    _check_overlap(m, "compaction", box.walls)
     if compaction_friction_deg is not None:
         m.update_joint(joint)
     box.move(np.zeros(4), tc)
@@ -375,7 +378,7 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
             ev.append(acc[2] / nacc)
             acc[:] = 0.0
             nacc = 0
-            _check_overlap(m, f"shear at {100 * eps:.2f} % axial strain")
+            _check_overlap(m, f"shear at {100 * eps:.2f} % axial strain", box.walls)
             if progress is not None:
                 progress(eps, max_strain)
     e1a = np.array(e1)

@@ -850,7 +850,8 @@ def run_case(built: Built, progress=False) -> CaseRun:
 
     A settling that does not converge (the unbalanced-force ratio stays above
     ``settle_tolerance``, or two blocks interpenetrate by more than
-    :data:`murus.dem.engine.OVERLAP_LIMIT` = 10 % of the smaller one's smallest dimension) skips
+    :data:`murus.dem.engine.OVERLAP_LIMIT` = 10 % of the thinner one's thickness along the
+    contact normal) skips
     the dynamic run: the result then has status ``"not_settled"`` and the settling's message
     (:attr:`CaseRun.ok` is False). ``progress``: False, True (a bar) or a callable
     ``progress(done, total)`` (steps), see :func:`murus.dem.engine.run`."""
