@@ -36,7 +36,8 @@ sampled at that interval). The kernels see it as a plain array.
 Interpenetration: a settle or a run stops (settle: not converged; run: status
 ``"interpenetration"``) when two bodies overlap by more than :data:`OVERLAP_LIMIT` (10 %) of the
 thickness, along the contact normal, of the thinner of the two (:func:`overlap_fraction`: a
-block sinking into its base, of the block's height; a disc, of its diameter); the overlap is the
+block sinking into its base, of the block's height; a disc, of its diameter; kinematic bodies,
+the boundaries of the model, count as infinitely thick); the overlap is the
 penetration ``-gap`` of an active sub-contact, read from the contact arrays after each chunk of
 steps. An overlap that deep means a contact stiffness far too low for the loads (e.g. ``kn =
 1e-3`` Pa/m lets a block sink through its base): the result would not be a result. (The
@@ -325,10 +326,12 @@ def body_sizes(m) -> np.ndarray:
 
 
 def _extent(m, body: np.ndarray, nx: np.ndarray, ny: np.ndarray) -> np.ndarray:
-    """Extent [m] of each ``body`` along the world direction (nx, ny) (its thickness there)."""
+    """Extent [m] of each ``body`` along the world direction (nx, ny) (its thickness there);
+    infinite for a kinematic body (a boundary of the model)."""
     c, s = np.cos(m.bang[body]), np.sin(m.bang[body])
     lx, ly = nx * c + ny * s, -nx * s + ny * c  # the direction in the body frame
-    return _proj_extent(_outlines(m)[body], lx[:, None], ly[:, None])
+    ext = _proj_extent(_outlines(m)[body], lx[:, None], ly[:, None])
+    return np.where(m.bkin[body] == 0, ext, np.inf)
 
 
 def overlap_fraction(m, exclude=None) -> tuple[float, int, int, float]:
@@ -336,7 +339,8 @@ def overlap_fraction(m, exclude=None) -> tuple[float, int, int, float]:
     depth)`` with ``depth`` [m] the penetration of an active sub-contact between the bodies a
     and b and ``fraction`` = depth / the thickness, along the contact normal, of the thinner
     of the two [-] (a block sinking into its base: the block's height; a disc: its
-    diameter); ``(0, -1, -1, 0)`` when nothing overlaps. ``exclude``: bodies whose contacts
+    diameter; a kinematic body counts as infinitely thick); ``(0, -1, -1, 0)`` when nothing
+    overlaps. ``exclude``: bodies whose contacts
     are left out. Cheap: NumPy over the contact arrays, the thicknesses only for the
     sub-contacts deeper than the limit could allow (:func:`body_sizes`)."""
     m.build()
@@ -362,7 +366,7 @@ def overlap_fraction(m, exclude=None) -> tuple[float, int, int, float]:
         ext = np.minimum(_extent(m, ba[sel], nx[sel], ny[sel]),
                          _extent(m, bb[sel], nx[sel], ny[sel]))
         with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(ext > 0, depth[sel] / ext, np.inf)
+            return np.where(ext > 0, depth[sel] / ext, np.inf)  # (depth / inf = 0)
 
     # the exact fraction of the sub-contact of largest bound, then of every sub-contact whose
     # bound reaches it (the others cannot exceed it)
@@ -379,8 +383,8 @@ def _overlap_beyond(m, limit: float):
     few microseconds when nothing is near the limit."""
     if m.sf.size == 0:
         return None
-    size = body_sizes(m)
-    if not -float(m.sf[..., K.F_GAP].min()) > 0.99 * limit * float(size.min()):
+    size = body_sizes(m)[m.bkin == 0]
+    if size.size == 0 or not -float(m.sf[..., K.F_GAP].min()) > 0.99 * limit * float(size.min()):
         return None
     hit = overlap_fraction(m)
     return hit if hit[0] > limit else None
