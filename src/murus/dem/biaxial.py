@@ -114,6 +114,7 @@ class CalibrationResult:
     message: str = ""
     std_deg: float = math.nan  # standard deviation over the assemblies at ``rolling`` [deg]
     phi_seeds: tuple = ()  # peak angle of each assembly at ``rolling`` [deg]
+    se_deg: float = math.nan  # standard error of the calibrated angle [deg]
 
 
 def disc_assembly(n: int, radius=(0.02, 0.03), seed: int = 0, aspect: float = 2.0,
@@ -404,27 +405,41 @@ def calibrate_rolling(target_phi_deg: float, joint: Joint | None = None,
                       seeds=(0,), progress: Callable | None = None,
                       **kw) -> CalibrationResult:
     """Rolling coefficient mu_r of ``joint`` (default kn = ks = 1e9 Pa/m, friction 30 deg) for
-    which :func:`biaxial_test` (keywords ``kw``) gives the peak friction angle
-    ``target_phi_deg`` [deg] within ``tol_deg`` [deg], at most ``max_runs`` values of mu_r.
+    which the mean peak friction angle of :func:`biaxial_test` (keywords ``kw``) over the
+    assemblies ``seeds`` is ``target_phi_deg`` [deg]; at most ``max_runs`` values of mu_r.
 
-    Each value of mu_r is evaluated as the mean peak angle over the assemblies ``seeds`` (the
-    same assemblies at every mu_r, common random numbers): the peak of one 200-disc sample
-    scatters by about 3 deg from one assembly to the next (strain localisation), so that one
-    seed gives a phi(mu_r) that is not monotone, while the mean over a fixed set of assemblies
-    is as monotone as each of them. The two ends of ``bracket`` are run first; then bisection
-    on the bracket, the point placed by linear interpolation while the bracket shrinks from
-    both sides and at the middle otherwise (safeguarded regula falsi). Every new point is
-    checked to lie between the angles of the current bracket's ends: a phi(mu_r) that is not
-    monotone stops the search (status ``"non_monotone"``, more assemblies or discs are needed).
+    The peak angle of one 200-disc sample scatters by about 3.5 deg from one assembly to the
+    next and from one mu_r to a close one (strain localisation: the sample is chaotic), so that
+    phi(mu_r) of one assembly is not monotone at the scale of a few hundredths of mu_r. Each
+    value of mu_r is therefore evaluated on every assembly of ``seeds``, and the search
+    accounts for the noise of the means, estimated from the scatter over the assemblies
+    (``s``, pooled over the values tried; ``se = s sqrt(2 / len(seeds))`` for the difference
+    of two means):
 
-    Returns a :class:`CalibrationResult`: ``status`` ``"converged"``, ``"outside_bracket"``
-    (the target is not between the angles of the bracket's ends: e.g. seed 001's 45 deg of the
-    mock-ups may exceed what discs reach with the given interparticle friction),
-    ``"non_monotone"`` or ``"max_runs"``; ``converged`` True only for the first; ``rolling``
-    and ``phi_peak_deg`` the closest value tried; ``std_deg`` the standard deviation of the peak
-    angle over the assemblies at that value (the scatter of one sample; the standard error of
-    the mean is ``std_deg / sqrt(len(seeds))``). ``progress(done, total)``, if given, is called
-    after each biaxial test (tests done, most tests of the search)."""
+    1. the two ends of ``bracket`` are run; their means must increase by more than 2 se
+       (status ``"non_monotone"`` otherwise) and enclose the target within ``tol_deg``
+       (``"outside_bracket"``);
+    2. bisection, the point placed by linear interpolation while the bracket shrinks from
+       both sides and at the middle otherwise, while the angles of the bracket's ends differ by
+       more than 6 se (below, a new point would not be resolved from the ends); a mean outside
+       the angles of the ends by more than 3 se stops the search (``"non_monotone"``: more
+       assemblies or discs are needed); a mean within ``tol_deg`` of the target ends it;
+    3. if the bisection stopped at the noise level: the straight line fitted (least squares)
+       to every test inside the last bracket resolved above the noise (the final bracket and
+       the point that split it) gives mu_r at the target, within the final bracket; its slope
+       must exceed 2 standard errors (``"non_monotone"`` otherwise); the assemblies are then
+       run at that mu_r (if ``max_runs`` allows) and the line fitted again with them.
+
+    Without scatter (one seed, or identical results) the noise is taken as zero and the
+    search is the plain bisection with the stop at ``tol_deg``.
+
+    Returns a :class:`CalibrationResult`: ``status`` ``"converged"``, ``"outside_bracket"``,
+    ``"non_monotone"`` or ``"max_runs"`` (``converged`` only for the first); ``rolling`` [-];
+    ``phi_peak_deg`` the mean angle over the assemblies at ``rolling`` (when they were run
+    there; else the fitted line's value); ``std_deg`` their standard deviation (the scatter of
+    one sample) and ``phi_seeds`` each of them; ``se_deg`` the standard error of the
+    calibrated angle (of the fitted line at ``rolling``, or of the mean). ``progress(done,
+    total)``, if given, is called after each biaxial test (tests done, most tests)."""
     from dataclasses import replace
 
     joint = joint or Joint(kn=1e9, ks=1e9, friction_deg=30.0)
@@ -433,10 +448,13 @@ def calibrate_rolling(target_phi_deg: float, joint: Joint | None = None,
         raise ValueError("seeds must name at least one assembly")
     if not tol_deg > 0:
         raise ValueError(f"tol_deg must be positive, got {tol_deg!r}")
+    if int(max_runs) < 2:
+        raise ValueError(f"max_runs must be at least 2, got {max_runs!r}")
     target = float(target_phi_deg)
-    hist = []
-    runs = {}
+    hist = []  # (mu, mean phi) in order
+    runs = {}  # mu -> results over the seeds
     total = int(max_runs) * len(seeds)
+    S = len(seeds)
 
     def f(mu):
         rs = []
@@ -449,42 +467,61 @@ def calibrate_rolling(target_phi_deg: float, joint: Joint | None = None,
         runs[float(mu)] = rs
         return phi
 
-    def done(status, message):
-        mu, phi = min(hist, key=lambda h: abs(h[1] - target))
-        rs = runs[mu]
-        phis = tuple(float(r.phi_peak_deg) for r in rs)
+    def scatter():  # pooled standard deviation over the assemblies [deg]
+        if S < 2:
+            return 0.0
+        v = [np.var([r.phi_peak_deg for r in rs], ddof=1) for rs in runs.values()]
+        return float(math.sqrt(np.mean(v)))
+
+    def done(status, message, mu=None, phi=None, se=math.nan):
+        if mu is None:
+            mu, phi = min(hist, key=lambda h: abs(h[1] - target))
+            se = scatter() / math.sqrt(S) if S > 1 else math.nan
+        rs = runs.get(mu)
+        phis = tuple(float(r.phi_peak_deg) for r in rs) if rs else ()
+        if rs:
+            phi = float(np.mean(phis))
         std = float(np.std(phis, ddof=1)) if len(phis) > 1 else math.nan
-        return CalibrationResult(mu, phi, target, status == "converged", hist, rs[0],
+        first = rs[0] if rs else runs[min(runs, key=lambda m_: abs(m_ - mu))][0]
+        return CalibrationResult(mu, phi, target, status == "converged", hist, first,
                                  status=status, message=message, std_deg=std,
-                                 phi_seeds=phis)
+                                 phi_seeds=phis, se_deg=se)
 
     a, b = float(bracket[0]), float(bracket[1])
     if not b > a:
         raise ValueError(f"bracket must be (low, high) with low < high, got {bracket!r}")
     fa, fb = f(a), f(b)
-    if fa > fb:
-        return done("non_monotone", f"the bracket's ends are not in order: mu_r = {a:g} gives "
-                    f"{fa:.2f} deg > {fb:.2f} deg at mu_r = {b:g}")
+    se = scatter() * math.sqrt(2.0 / S)
+    if not fb - fa > 2.0 * se:
+        return done("non_monotone", f"the bracket's ends do not increase beyond the noise: "
+                    f"mu_r = {a:g} gives {fa:.2f} deg, {b:g} gives {fb:.2f} deg (2 standard "
+                    f"errors: {2 * se:.2f} deg)")
     if not fa - tol_deg <= target <= fb + tol_deg:
         return done("outside_bracket", f"the target {target:g} deg is outside the angles "
                     f"{fa:.2f}-{fb:.2f} deg of mu_r = {a:g}-{b:g}")
     side = 0
+    wide = (a, b)  # the last bracket resolved above the noise (the window of the final fit)
     while True:
         best = min(hist, key=lambda h: abs(h[1] - target))
         if abs(best[1] - target) <= tol_deg:
             return done("converged", f"mu_r = {best[0]:.4g} gives {best[1]:.2f} deg "
                         f"(target {target:g} +- {tol_deg:g} deg)")
+        se = scatter() * math.sqrt(2.0 / S)
+        if se > 0 and fb - fa <= 6.0 * se:
+            break  # the noise level: fit a line over the bracket
         if len(hist) >= max_runs:
             return done("max_runs", f"{max_runs} values of mu_r tried, the closest gives "
                         f"{best[1]:.2f} deg (target {target:g} +- {tol_deg:g} deg)")
-        c = a + (target - fa) / (fb - fa) * (b - a) if fb > fa else 0.5 * (a + b)
+        wide = (a, b)
+        c = a + (target - fa) / (fb - fa) * (b - a)
         if side in (-2, 2) or not a < c < b:  # the same end kept twice: bisect
             c = 0.5 * (a + b)
         fc = f(c)
-        if not fa <= fc <= fb:
-            return done("non_monotone", "the mean peak angle is not monotone in mu_r: "
-                        f"{fa:.2f}, {fc:.2f}, {fb:.2f} deg at mu_r = {a:.4g}, {c:.4g}, {b:.4g} "
-                        "(average more assemblies or use more discs)")
+        if fc < fa - 3.0 * se or fc > fb + 3.0 * se or (se == 0 and not fa <= fc <= fb):
+            return done("non_monotone", "the mean peak angle is not monotone in mu_r beyond "
+                        f"the noise ({3 * se:.2f} deg): {fa:.2f}, {fc:.2f}, {fb:.2f} deg at "
+                        f"mu_r = {a:.4g}, {c:.4g}, {b:.4g} (average more assemblies, "
+                        "--seeds)")
         if fc > target:
             b, fb = c, fc
             side = side - 1 if side < 0 else -1
@@ -493,6 +530,42 @@ def calibrate_rolling(target_phi_deg: float, joint: Joint | None = None,
             side = side + 1 if side > 0 else 1
         if side in (-3, 3):
             side = 0
+
+    lo, hi = wide
+
+    def fit():
+        x = np.array([mu for mu, rs in runs.items() if lo <= mu <= hi for _ in rs])
+        y = np.array([r.phi_peak_deg for mu, rs in runs.items() if lo <= mu <= hi for r in rs])
+        A = np.column_stack([np.ones_like(x), x - x.mean()])
+        coef, *_ = np.linalg.lstsq(A, y, rcond=None)
+        dof = max(len(y) - 2, 1)
+        s2 = float(np.sum((y - A @ coef) ** 2)) / dof
+        cov = s2 * np.linalg.inv(A.T @ A)
+        return coef, cov, float(x.mean())
+
+    coef, cov, xm = fit()
+    if not coef[1] > 2.0 * math.sqrt(cov[1, 1]):
+        return done("non_monotone", f"over mu_r = {lo:.4g}-{hi:.4g} the peak angle does not "
+                    f"increase beyond 2 standard errors (slope {coef[1]:.3g} +- "
+                    f"{math.sqrt(cov[1, 1]):.2g} deg per unit of mu_r; average more "
+                    "assemblies, --seeds)")
+    mu = float(np.clip(xm + (target - coef[0]) / coef[1], a, b))
+    if len(hist) < max_runs and mu not in runs:
+        f(mu)
+        coef, cov, xm = fit()
+        if not coef[1] > 2.0 * math.sqrt(cov[1, 1]):
+            return done("non_monotone", f"over mu_r = {lo:.4g}-{hi:.4g} the peak angle does "
+                        f"not increase beyond 2 standard errors (slope {coef[1]:.3g} +- "
+                        f"{math.sqrt(cov[1, 1]):.2g} deg per unit of mu_r)")
+    mu_fit = float(np.clip(xm + (target - coef[0]) / coef[1], a, b))
+    g = np.array([1.0, mu - xm])
+    phi_fit = float(coef[0] + coef[1] * (mu - xm))
+    se_fit = float(math.sqrt(g @ cov @ g))
+    n_fit = sum(len(rs) for m_, rs in runs.items() if lo <= m_ <= hi)
+    msg = (f"mu_r = {mu:.4g}: the line fitted to the {n_fit} tests over mu_r = {lo:.4g}-{hi:.4g} "
+           f"gives {phi_fit:.2f} +- {se_fit:.2f} deg there (target {target:g} deg; with the "
+           f"tests at {mu:.4g}, its root is {mu_fit:.4g})")
+    return done("converged", msg, mu, phi_fit, se_fit)
 
 
 def plot_biaxial(result: BiaxialResult, ax=None):

@@ -541,11 +541,10 @@ def calibrate_backfill(
         state = "converged" if cal.converged else f"NOT converged: {cal.status}"
         nse = len(cal.phi_seeds)
         scatter = (f"; over the {nse} assemblies at mu_r = {cal.rolling:.4f}: standard "
-                   f"deviation {cal.std_deg:.2f} deg, standard error of the mean "
-                   f"{cal.std_deg / nse ** 0.5:.2f} deg" if nse > 1 else "")
-        typer.echo(f"calibration to {target:g} deg: mu_r = {cal.rolling:.4f} gives a mean "
-                   f"{cal.phi_peak_deg:.2f} deg ({state}; mean phi_peak at each mu_r tried: "
-                   f"{hist}){scatter}")
+                   f"deviation {cal.std_deg:.2f} deg" if nse > 1 else "")
+        se = f" (standard error {cal.se_deg:.2f} deg)" if cal.se_deg == cal.se_deg else ""
+        typer.echo(f"calibration to {target:g} deg: mu_r = {cal.rolling:.4f}{se}, {state}: "
+                   f"{cal.message}; mean phi_peak at each mu_r tried: {hist}{scatter}")
     failed = cal is not None and not cal.converged
     if out is None:
         if failed:
@@ -587,7 +586,8 @@ def calibrate_backfill(
                                       "converged": cal.converged, "status": cal.status,
                                       "message": cal.message, "seeds": len(cal.phi_seeds),
                                       "phi_peak_deg_assemblies": list(cal.phi_seeds),
-                                      "std_deg": cal.std_deg, "runs": cal.history}
+                                      "std_deg": cal.std_deg, "se_deg": cal.se_deg,
+                                      "runs": cal.history}
         (tmp / "biaxial.json").write_text(dumps(summary), encoding="utf-8")
         dest.mkdir(parents=True, exist_ok=True)
         for p in sorted(tmp.iterdir()):
