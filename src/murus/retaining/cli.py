@@ -526,7 +526,8 @@ def calibrate_backfill(
         raise typer.Exit(code=1) from None
     if error is not None:
         _fail(error)
-    typer.echo(f"biaxial test: {res.n} discs, friction {res.friction_deg:g} deg, mu_r = "
+    which = " of assembly 0 (the figure and table)" if nseeds > 1 else ""
+    typer.echo(f"biaxial test{which}: {res.n} discs, friction {res.friction_deg:g} deg, mu_r = "
                f"{res.rolling:.4g}, sigma3 = {res.sigma3_target / 1e3:g} kPa: phi_peak = "
                f"{res.phi_peak_deg:.2f} deg at {100 * res.strain_at_peak:.2f} % strain, "
                f"phi_cs = {res.phi_cs_deg:.2f} deg, porosity {res.porosity0:.3f}")
@@ -535,7 +536,7 @@ def calibrate_backfill(
 
         phis = np.array([r.phi_peak_deg for r in runs])
         typer.echo(f"over {nseeds} assemblies: phi_peak = {phis.mean():.2f} deg, standard "
-                   f"deviation {phis.std(ddof=1):.2f} deg (figure and table: the first)")
+                   f"deviation {phis.std(ddof=1):.2f} deg")
     if cal is not None:
         hist = ", ".join(f"{m:.3f} -> {p:.1f}" for m, p in cal.history)
         state = "converged" if cal.converged else f"NOT converged: {cal.status}"
@@ -573,7 +574,7 @@ def calibrate_backfill(
                      res.phi_deg, strict=True)]
         (tmp / "biaxial.csv").write_text("\n".join(rows) + "\n", encoding="utf-8")
         summary = {"status": cal.status if cal is not None else "completed",
-                   "ok": not failed,
+                   "ok": not failed, "assembly": res.meta.get("seed", 0),
                    "discs": res.n, "friction_deg": res.friction_deg, "rolling": res.rolling,
                    "sigma3_pa": res.sigma3_target, "phi_peak_deg": res.phi_peak_deg,
                    "phi_cs_deg": res.phi_cs_deg, "strain_at_peak": res.strain_at_peak,
