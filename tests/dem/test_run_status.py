@@ -193,3 +193,25 @@ def test_rocking_overflowing_input_names_the_key(tmp_path, solver, key):
     msg = _err(r)
     assert len(msg.splitlines()) == 1 and f"[{key}]" in msg
     assert f"line {key_line(p.read_text(), tuple(key.split('.')))}:" in msg
+
+
+def test_block_that_would_tunnel_through_its_base_is_stopped(tmp_path):
+    # kn = 1e-3 Pa/m: the stable time step is 73 s (0.2 sqrt(m / (kn L t))), in which the
+    # block falls g dt^2 / 2 ~ 26 km, through its base between two contact detections; the
+    # first step already moves it more than 10 % of its height
+    p = _case(tmp_path, "1e-3", dem="duration = 1000", extra="")
+    text = p.read_text().replace("duration = 1000\n", "duration = 1000\nsettle = false\n")
+    p.write_text(text)
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["run", str(p), "--out", str(out), "--no-progress"])
+    assert r.exit_code == 1, r.output
+    s = json.loads((out / "summary.json").read_text())
+    assert s["ok"] is False and s["status"] == "interpenetration" and s["steps"] == 1
+    assert "moves" in s["message"] and "10 %" in s["message"]
+    # with the settling: the settling stops, not converged
+    p.write_text(text.replace("settle = false\n", ""))
+    r = CliRunner().invoke(app, ["run", str(p), "--out", str(tmp_path / "o2"),
+                                 "--no-progress"])
+    assert r.exit_code == 1
+    s = json.loads((tmp_path / "o2" / "summary.json").read_text())
+    assert s["status"] == "not_settled" and "moves" in s["message"]

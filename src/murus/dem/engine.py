@@ -34,7 +34,9 @@ every ``external_every`` steps (the force is constant between calls: an explicit
 sampled at that interval). The kernels see it as a plain array.
 
 Interpenetration: a settle or a run stops (settle: not converged; run: status
-``"interpenetration"``) when two bodies overlap by more than :data:`OVERLAP_LIMIT` (10 %) of the
+``"interpenetration"``) when a dynamic body moves by more than :data:`OVERLAP_LIMIT` (10 %) of
+its smallest width in one step (it could tunnel through another body between two contact
+detections), or when two bodies overlap by more than :data:`OVERLAP_LIMIT` of the
 thickness, along the contact normal, of the thinner of the two (:func:`overlap_fraction`: a
 block sinking into its base, of the block's height; a disc, of its diameter; kinematic bodies,
 the boundaries of the model, count as infinitely thick); the overlap is the
@@ -390,6 +392,28 @@ def _overlap_beyond(m, limit: float):
     return hit if hit[0] > limit else None
 
 
+def _penetration(m, limit: float) -> str | None:
+    """The one-line reason to stop, or None: two bodies overlap by more than ``limit`` of the
+    thinner one's thickness (:func:`overlap_fraction`), or a dynamic body moves by more than
+    ``limit`` of its smallest width in one step (it could pass through another body between
+    two contact detections: a time step far too long, from a contact stiffness far too low)."""
+    hit = _overlap_beyond(m, limit)
+    if hit is not None:
+        return _overlap_message(m, *hit, limit)
+    dyn = np.nonzero(m.bkin == 0)[0]
+    if dyn.size == 0 or m.dt is None:
+        return None
+    move = (np.hypot(m.bvel[dyn, 0], m.bvel[dyn, 1]) + np.abs(m.bomg[dyn]) * m.brad[dyn]) * m.dt
+    frac = move / body_sizes(m)[dyn]
+    k = int(np.argmax(frac))
+    if not frac[k] > limit:
+        return None
+    return (f"body {int(dyn[k])} moves {move[k]:.3g} m in one time step of {m.dt:.3g} s, "
+            f"{100 * frac[k]:.3g} % of its smallest width (limit {100 * limit:g} %): it can "
+            "pass through other bodies (a contact stiffness far too low gives a time step "
+            "far too long)")
+
+
 def _overlap_message(m, frac, a, b, depth, limit) -> str:
     return (f"bodies {a} and {b} interpenetrate by {depth:.3g} m, {100 * frac:.3g} % of the "
             f"thinner one's thickness along the contact normal (limit {100 * limit:g} %): the "
@@ -520,9 +544,8 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
                 if not np.all(np.isfinite(m.bpos)):
                     over = "non-finite positions (lower dt)"
                     break
-                hit = None if max_overlap is None else _overlap_beyond(m, max_overlap)
-                if hit is not None:
-                    over = _overlap_message(m, *hit, max_overlap)
+                over = None if max_overlap is None else _penetration(m, max_overlap)
+                if over is not None:
                     break
                 if ratio < tol:
                     converged = True
@@ -651,10 +674,10 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                     status = "unstable"
                     message = "non-finite positions: lower dt"
                     break
-                hit = None if max_overlap is None else _overlap_beyond(m, max_overlap)
-                if hit is not None:
+                over = None if max_overlap is None else _penetration(m, max_overlap)
+                if over is not None:
                     status = "interpenetration"
-                    message = f"at t={m.time:.6g} s " + _overlap_message(m, *hit, max_overlap)
+                    message = f"at t={m.time:.6g} s {over}"
                     break
                 if sig.hit:
                     status = "interrupted"
