@@ -100,8 +100,9 @@ def run(
     out: Path = typer.Option(..., "--out", "-o", help="Output folder."),
     no_figure: bool = typer.Option(False, "--no-figure",
                                    help="Skip response.png (blocks.png for a DEM case)."),
-    progress: bool = typer.Option(False, "--progress/--no-progress",
-                                  help="Progress bar of a DEM run."),
+    progress: bool = typer.Option(True, "--progress/--no-progress",
+                                  help="Progress of a DEM run on stderr: a bar in a terminal, "
+                                  "a line every 10 s otherwise."),
 ) -> None:
     """Run a case file: a rocking case writes summary.json, timeseries.csv and response.png;
     a distinct-element case ([dem] table) writes summary.json, histories.csv, blocks.png and
@@ -158,10 +159,17 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
         _out_error(exc)
     except CaseError as exc:
         fail(str(exc).splitlines()[0])
-    try:
-        res = run_case(built, progress=progress)
-    except ValueError as exc:
-        fail(f"{case.name}: {str(exc).splitlines()[0]}")
+    from murus.cliprogress import LazyProgress
+
+    error = None
+    with LazyProgress(f"{case.name}", unit="steps", quiet=not progress) as bar:
+        bar.update(0, info="settling" if built.settle is not None else "")
+        try:
+            res = run_case(built, progress=lambda d, t: bar.update(d, t, info="run"))
+        except ValueError as exc:
+            error = f"{case.name}: {str(exc).splitlines()[0]}"
+    if error is not None:
+        fail(error)
     if res.result.status == "unstable":
         fail(f"{case.name}: {res.result.message}")
     try:
@@ -169,6 +177,10 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
     except OutputError as exc:
         _out_error(exc)
     typer.echo(f"{summary_line(case.name, res)} -> {out}")
+    if not res.ok and res.result.status != "interrupted":
+        # the job did not succeed: its outputs say so (summary.json "ok": false), exit 1
+        typer.echo(f"error: {case.name}: {res.result.status}: {res.result.message}", err=True)
+        raise typer.Exit(code=1)
 
 
 def _examples_dir(given: Path | None) -> Path | None:

@@ -104,3 +104,33 @@ def test_input_checks_and_plot(rolling_series):
     assert ax.get_xlabel().startswith("axial strain")
     r = rolling_series[0.1]
     assert math.isclose(math.sin(math.radians(r.phi_peak_deg)), r.stress_ratio.max())
+
+
+def test_calibration_through_the_scatter_of_the_assemblies(monkeypatch):
+    # each (assembly, mu_r) draws its peak angle from truth(mu_r) + N(0, 3.5 deg), independent
+    # from one mu_r to the next (the scatter of 200-disc samples): one assembly's phi(mu_r) is
+    # not monotone, the search over the means of 8 assemblies still converges, and the
+    # scatter it reports at the calibrated mu_r is the 3.5 deg of the draw (sample standard
+    # deviation of 8 values: within 0.5-1.5 sigma at 97 % probability)
+    def truth(mu):
+        return 27.5 + 30.0 * (1.0 - math.exp(-mu / 0.25))
+
+    def fake(joint, seed=0, **kw):
+        rng = np.random.default_rng([seed, int(round(joint.rolling * 1e9))])
+        phi = truth(joint.rolling) + 3.5 * rng.standard_normal()
+        return B.BiaxialResult(
+            axial_strain=np.zeros(1), sigma1=np.ones(1), sigma3=np.ones(1),
+            volumetric_strain=np.zeros(1), sigma3_target=1.0, phi_peak_deg=phi,
+            phi_cs_deg=phi - 3, strain_at_peak=0.0, porosity0=0.2, n=1,
+            rolling=joint.rolling, friction_deg=30.0, strain_rate=1.0, dt=1.0, steps=1,
+            wall=0.0)
+
+    monkeypatch.setattr(B, "biaxial_test", fake)
+    res = B.calibrate_rolling(37.7, seeds=range(8))
+    assert res.converged and res.status == "converged", res.message
+    assert len(res.history) <= 8 and len(res.phi_seeds) == 8
+    assert 0.5 * 3.5 < res.std_deg < 1.5 * 3.5
+    root = 0.25 * -math.log(1.0 - (37.7 - 27.5) / 30.0)  # truth(root) = 37.7
+    # within 3 standard errors (of the mean of the 3 x 8 tests around the target: 0.7 deg)
+    assert abs(truth(res.rolling) - 37.7) < 3 * 3.5 / math.sqrt(24)
+    assert res.rolling == pytest.approx(root, abs=0.05)

@@ -41,6 +41,10 @@ def test_recovers_k0_and_writes_the_report(test_file, tmp_path):
     d = json.loads((out / "calibration.json").read_text())
     # the file stores 200 Hz samples with a few digits: k0 within 1 %
     assert d["params"]["k0"] == pytest.approx(1.5, rel=0.01)
+    # progress on stderr (not a terminal: lines, the last one when the fit ends)
+    last = r.stderr.strip().splitlines()[-1]
+    assert last.startswith("lab calibrate: ") and "evaluations" in last
+    assert last.endswith("(done)")
     assert {p.name for p in out.iterdir()} - {MANIFEST} == {"calibration.json", "calibration.md",
                                                "calibration.png", "calibration.svg"}
 

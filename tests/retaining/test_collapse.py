@@ -1,9 +1,11 @@
 """Collapse protocol and behaviour factor (murus.retaining.collapse) on a cheap mock-up.
 
 The mock-up of seed 001 §3 with H/B = 1.3 and 11 mm courses (four courses and a top course);
-the joint stiffness of seed 001 Table 1 is scaled by 1e-5 (2.6e7 Pa/m: the joint closure under
-the wall's weight, 2.5e-5 m, is 1 % of the 5 % H collapse threshold) and the ramp reaches
-A_pseudo at 0.5 s instead of 2.5 s, so that each run takes a few seconds.
+the joint stiffness of seed 001 Table 1 is scaled by 1e-4 (2.6e8 Pa/m: the joint closure under
+the wall's weight, 2.5e-6 m, is 0.1 % of the 5 % H collapse threshold) and the ramp reaches
+A_pseudo at 0.5 s instead of 2.5 s, so that each run takes a few seconds. (At 1e-5 the crest
+stone presses 1.7 mm into the backstop at collapse, 10 % of its thickness: the engine stops
+such a run as an interpenetration, issue 15.)
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ from murus.retaining.collapse import (
 )
 from murus.retaining.geometry import preset
 
-KW = dict(stiffness_scale=1e-5, t_pseudo=0.5)
+KW = dict(stiffness_scale=1e-4, t_pseudo=0.5)
 
 
 @pytest.fixture(scope="module")

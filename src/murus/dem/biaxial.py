@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import math
 import time as _time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -98,8 +99,10 @@ class BiaxialResult:
 
 @dataclass
 class CalibrationResult:
-    """Rolling coefficient ``rolling`` giving ``phi_peak_deg`` near ``target_deg``; ``history``
-    the (rolling, phi_peak_deg) pairs tried, in order."""
+    """Rolling coefficient ``rolling`` giving ``phi_peak_deg`` near ``target_deg`` [deg];
+    ``history`` the (rolling, mean phi_peak_deg) pairs tried, in order; ``status`` and
+    ``message`` say how the search ended (:func:`calibrate_rolling`); ``result`` the test of
+    the first assembly at ``rolling``."""
 
     rolling: float
     phi_peak_deg: float
@@ -107,6 +110,11 @@ class CalibrationResult:
     converged: bool
     history: list
     result: BiaxialResult | None = None
+    status: str = ""
+    message: str = ""
+    std_deg: float = math.nan  # standard deviation over the assemblies at ``rolling`` [deg]
+    phi_seeds: tuple = ()  # peak angle of each assembly at ``rolling`` [deg]
+    se_deg: float = math.nan  # standard error of the calibrated angle [deg]
 
 
 def disc_assembly(n: int, radius=(0.02, 0.03), seed: int = 0, aspect: float = 2.0,
@@ -221,10 +229,27 @@ def _build(joint: Joint, n, radius, seed, aspect, density, wall_joint):
 
 
 def _advance(m: Model, nsteps: int, alpha: float) -> None:
-    """``nsteps`` steps with local damping ``alpha`` (the history of the run is dropped)."""
-    m.run(duration=nsteps * m.dt, every=nsteps, local_damping=alpha)
+    """``nsteps`` steps with local damping ``alpha`` (the history of the run is dropped; the
+    interpenetration check of the engine, 5 % of the cost of such short calls, is made by
+    :func:`_check_overlap` at each recorded sample instead)."""
+    m.run(duration=nsteps * m.dt, every=nsteps, local_damping=alpha, max_overlap=None)
     if len(m.history.get("t", ())) > 1000:  # (an empty history costs one more sample)
         m.history.clear()
+
+
+def _check_overlap(m: Model, where: str, walls) -> None:
+    """RuntimeError when two discs interpenetrate by more than the engine's limit
+    (:data:`murus.dem.engine.OVERLAP_LIMIT` of the smaller one's diameter). The contacts with
+    the ``walls`` are left out: their compliance (a tenth of the discs' stiffness, for the
+    servo) is a device of the test, and a disc presses into a wall by up to about 10 % of its
+    diameter at the peak."""
+    from murus.dem.engine import OVERLAP_LIMIT, overlap_fraction
+
+    frac, a, b, depth = overlap_fraction(m, exclude=walls)
+    if frac > OVERLAP_LIMIT:
+        raise RuntimeError(f"{where}: discs {a} and {b} interpenetrate by {depth:.3g} m, "
+                           f"{100 * frac:.3g} % of the diameter of the smaller one (limit "
+                           f"{100 * OVERLAP_LIMIT:g} %): kn is too low for sigma3")
 
 
 def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02, 0.03),
@@ -233,8 +258,8 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
                  inertial: float = 1e-3, cs_fraction: float = 0.3, damping: float = 0.3,
                  compaction_friction_deg: float | None = None, wall_joint: Joint | None = None,
                  chunk: int = 10, servo_alpha: float = 0.5, tol: float = 0.02,
-                 sample_strain: float = 0.002, max_compaction_steps: int = 400_000
-                 ) -> BiaxialResult:
+                 sample_strain: float = 0.002, max_compaction_steps: int = 400_000,
+                 progress: Callable | None = None) -> BiaxialResult:
     """Biaxial test of ``n`` discs (module doc) with the disc-disc ``joint`` (kn, ks [Pa/m],
     friction, rolling coefficient).
 
@@ -251,7 +276,9 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
     shear phase adds an integral term of time constant 50 chunks that carries the dilatancy
     velocity); tol : relative tolerance on the four wall stresses at the end of compaction
     (reached with an unbalanced-force ratio below 2e-2 for 5 chunks in a row);
-    sample_strain : axial-strain interval of the recorded (averaged) samples.
+    sample_strain : axial-strain interval of the recorded (averaged) samples;
+    progress : ``progress(strain, max_strain)`` called at each recorded sample of the shear
+    phase (axial strain reached [-], final axial strain [-]).
     """
     if not sigma3 > 0:
         raise ValueError(f"sigma3 must be positive [Pa], got {sigma3!r}")
@@ -316,6 +343,7 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
     else:
         raise RuntimeError(f"compaction to sigma3={sigma3:g} Pa did not converge in "
                            f"{max_compaction_steps} steps (stresses {sig})")
+    _check_overlap(m, "compaction", box.walls)
     if compaction_friction_deg is not None:
         m.update_joint(joint)
     box.move(np.zeros(4), tc)
@@ -351,6 +379,9 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
             ev.append(acc[2] / nacc)
             acc[:] = 0.0
             nacc = 0
+            _check_overlap(m, f"shear at {100 * eps:.2f} % axial strain", box.walls)
+            if progress is not None:
+                progress(eps, max_strain)
     e1a = np.array(e1)
     s1a = np.array(s1)
     s3a = np.array(s3)
@@ -371,55 +402,170 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
 
 def calibrate_rolling(target_phi_deg: float, joint: Joint | None = None,
                       bracket=(0.0, 1.0), tol_deg: float = 0.5, max_runs: int = 8,
-                      seeds=(0,), **kw) -> CalibrationResult:
+                      seeds=(0,), progress: Callable | None = None,
+                      **kw) -> CalibrationResult:
     """Rolling coefficient mu_r of ``joint`` (default kn = ks = 1e9 Pa/m, friction 30 deg) for
-    which :func:`biaxial_test` (keywords ``kw``) gives the peak friction angle
-    ``target_phi_deg`` within ``tol_deg``: the two ends of ``bracket`` are run first, then
-    regula falsi (Illinois variant) on phi_peak(mu_r), at most ``max_runs`` evaluations in all.
-    Each evaluation is the mean peak angle over the assemblies ``seeds``: the peak of a
-    200-disc sample scatters by several degrees from one assembly to the next (strain
-    localisation), so that one seed gives a noisy phi(mu_r) near its saturation.
-    ``converged`` is False, with the closest run, if the target is outside the bracket's angles
-    (e.g. seed 001's 45 deg of the mock-ups may exceed what discs reach with the given
-    interparticle friction) or the noise stops the iteration."""
+    which the mean peak friction angle of :func:`biaxial_test` (keywords ``kw``) over the
+    assemblies ``seeds`` is ``target_phi_deg`` [deg]; at most ``max_runs`` values of mu_r.
+
+    The peak angle of one 200-disc sample scatters by about 3.5 deg from one assembly to the
+    next and from one mu_r to a close one (strain localisation: the sample is chaotic), so that
+    phi(mu_r) of one assembly is not monotone at the scale of a few hundredths of mu_r. Each
+    value of mu_r is therefore evaluated on every assembly of ``seeds``, and the search
+    accounts for the noise of the means, estimated from the scatter over the assemblies
+    (``s``, pooled over the values tried; ``se = s sqrt(2 / len(seeds))`` for the difference
+    of two means):
+
+    1. the two ends of ``bracket`` are run; their means must increase by more than 2 se
+       (status ``"non_monotone"`` otherwise) and enclose the target within ``tol_deg``
+       (``"outside_bracket"``);
+    2. bisection, the point placed by linear interpolation while the bracket shrinks from
+       both sides and at the middle otherwise, while the angles of the bracket's ends differ by
+       more than 6 se (below, a new point would not be resolved from the ends); a mean outside
+       the angles of the ends by more than 3 se stops the search (``"non_monotone"``: more
+       assemblies or discs are needed); a mean within ``tol_deg`` of the target ends it;
+    3. if the bisection stopped at the noise level: the straight line fitted (least squares)
+       to every test inside the last bracket resolved above the noise (the final bracket and
+       the point that split it) gives mu_r at the target, within the final bracket; its slope
+       must exceed 2 standard errors (``"non_monotone"`` otherwise); the assemblies are then
+       run at that mu_r (if ``max_runs`` allows) and the line fitted again with them.
+
+    Without scatter (one seed, or identical results) the noise is taken as zero and the
+    search is the plain bisection with the stop at ``tol_deg``.
+
+    Returns a :class:`CalibrationResult`: ``status`` ``"converged"``, ``"outside_bracket"``,
+    ``"non_monotone"`` or ``"max_runs"`` (``converged`` only for the first); ``rolling`` [-];
+    ``phi_peak_deg`` the mean angle over the assemblies at ``rolling`` (when they were run
+    there; else the fitted line's value); ``std_deg`` their standard deviation (the scatter of
+    one sample) and ``phi_seeds`` each of them; ``se_deg`` the standard error of the
+    calibrated angle (of the fitted line at ``rolling``, or of the mean). ``progress(done,
+    total)``, if given, is called after each biaxial test (tests done, most tests)."""
     from dataclasses import replace
 
     joint = joint or Joint(kn=1e9, ks=1e9, friction_deg=30.0)
-    hist = []
-    results = {}
+    seeds = tuple(seeds)
+    if not seeds:
+        raise ValueError("seeds must name at least one assembly")
+    if not tol_deg > 0:
+        raise ValueError(f"tol_deg must be positive, got {tol_deg!r}")
+    if int(max_runs) < 2:
+        raise ValueError(f"max_runs must be at least 2, got {max_runs!r}")
+    target = float(target_phi_deg)
+    hist = []  # (mu, mean phi) in order
+    runs = {}  # mu -> results over the seeds
+    total = int(max_runs) * len(seeds)
+    S = len(seeds)
 
     def f(mu):
-        rs = [biaxial_test(replace(joint, rolling=float(mu)), seed=s, **kw) for s in seeds]
+        rs = []
+        for s_ in seeds:
+            rs.append(biaxial_test(replace(joint, rolling=float(mu)), seed=s_, **kw))
+            if progress is not None:
+                progress(sum(len(v) for v in runs.values()) + len(rs), total)
         phi = float(np.mean([r.phi_peak_deg for r in rs]))
         hist.append((float(mu), phi))
-        results[float(mu)] = rs[0]
-        return phi - target_phi_deg
+        runs[float(mu)] = rs
+        return phi
+
+    def scatter():  # pooled standard deviation over the assemblies [deg]
+        if S < 2:
+            return 0.0
+        v = [np.var([r.phi_peak_deg for r in rs], ddof=1) for rs in runs.values()]
+        return float(math.sqrt(np.mean(v)))
+
+    def done(status, message, mu=None, phi=None, se=math.nan):
+        if mu is None:
+            mu, phi = min(hist, key=lambda h: abs(h[1] - target))
+            se = scatter() / math.sqrt(S) if S > 1 else math.nan
+        rs = runs.get(mu)
+        phis = tuple(float(r.phi_peak_deg) for r in rs) if rs else ()
+        if rs:
+            phi = float(np.mean(phis))
+        std = float(np.std(phis, ddof=1)) if len(phis) > 1 else math.nan
+        first = rs[0] if rs else runs[min(runs, key=lambda m_: abs(m_ - mu))][0]
+        return CalibrationResult(mu, phi, target, status == "converged", hist, first,
+                                 status=status, message=message, std_deg=std,
+                                 phi_seeds=phis, se_deg=se)
 
     a, b = float(bracket[0]), float(bracket[1])
+    if not b > a:
+        raise ValueError(f"bracket must be (low, high) with low < high, got {bracket!r}")
     fa, fb = f(a), f(b)
-    best = min(hist, key=lambda h: abs(h[1] - target_phi_deg))
-    if fa * fb > 0:
-        return CalibrationResult(best[0], best[1], target_phi_deg, False, hist, results[best[0]])
+    se = scatter() * math.sqrt(2.0 / S)
+    if not fb - fa > 2.0 * se:
+        return done("non_monotone", f"the bracket's ends do not increase beyond the noise: "
+                    f"mu_r = {a:g} gives {fa:.2f} deg, {b:g} gives {fb:.2f} deg (2 standard "
+                    f"errors: {2 * se:.2f} deg)")
+    if not fa - tol_deg <= target <= fb + tol_deg:
+        return done("outside_bracket", f"the target {target:g} deg is outside the angles "
+                    f"{fa:.2f}-{fb:.2f} deg of mu_r = {a:g}-{b:g}")
     side = 0
-    while len(hist) < max_runs:
-        best = min(hist, key=lambda h: abs(h[1] - target_phi_deg))
-        if abs(best[1] - target_phi_deg) <= tol_deg:
-            break
-        c = (a * fb - b * fa) / (fb - fa)
+    wide = (a, b)  # the last bracket resolved above the noise (the window of the final fit)
+    while True:
+        best = min(hist, key=lambda h: abs(h[1] - target))
+        if abs(best[1] - target) <= tol_deg:
+            return done("converged", f"mu_r = {best[0]:.4g} gives {best[1]:.2f} deg "
+                        f"(target {target:g} +- {tol_deg:g} deg)")
+        se = scatter() * math.sqrt(2.0 / S)
+        if se > 0 and fb - fa <= 6.0 * se:
+            break  # the noise level: fit a line over the bracket
+        if len(hist) >= max_runs:
+            return done("max_runs", f"{max_runs} values of mu_r tried, the closest gives "
+                        f"{best[1]:.2f} deg (target {target:g} +- {tol_deg:g} deg)")
+        wide = (a, b)
+        c = a + (target - fa) / (fb - fa) * (b - a)
+        if side in (-2, 2) or not a < c < b:  # the same end kept twice: bisect
+            c = 0.5 * (a + b)
         fc = f(c)
-        if fc * fb > 0:
+        if fc < fa - 3.0 * se or fc > fb + 3.0 * se or (se == 0 and not fa <= fc <= fb):
+            return done("non_monotone", "the mean peak angle is not monotone in mu_r beyond "
+                        f"the noise ({3 * se:.2f} deg): {fa:.2f}, {fc:.2f}, {fb:.2f} deg at "
+                        f"mu_r = {a:.4g}, {c:.4g}, {b:.4g} (average more assemblies, "
+                        "--seeds)")
+        if fc > target:
             b, fb = c, fc
-            if side == -1:
-                fa *= 0.5
-            side = -1
+            side = side - 1 if side < 0 else -1
         else:
             a, fa = c, fc
-            if side == 1:
-                fb *= 0.5
-            side = 1
-    best = min(hist, key=lambda h: abs(h[1] - target_phi_deg))
-    return CalibrationResult(best[0], best[1], target_phi_deg,
-                             abs(best[1] - target_phi_deg) <= tol_deg, hist, results[best[0]])
+            side = side + 1 if side > 0 else 1
+        if side in (-3, 3):
+            side = 0
+
+    lo, hi = wide
+
+    def fit():
+        x = np.array([mu for mu, rs in runs.items() if lo <= mu <= hi for _ in rs])
+        y = np.array([r.phi_peak_deg for mu, rs in runs.items() if lo <= mu <= hi for r in rs])
+        A = np.column_stack([np.ones_like(x), x - x.mean()])
+        coef, *_ = np.linalg.lstsq(A, y, rcond=None)
+        dof = max(len(y) - 2, 1)
+        s2 = float(np.sum((y - A @ coef) ** 2)) / dof
+        cov = s2 * np.linalg.inv(A.T @ A)
+        return coef, cov, float(x.mean())
+
+    coef, cov, xm = fit()
+    if not coef[1] > 2.0 * math.sqrt(cov[1, 1]):
+        return done("non_monotone", f"over mu_r = {lo:.4g}-{hi:.4g} the peak angle does not "
+                    f"increase beyond 2 standard errors (slope {coef[1]:.3g} +- "
+                    f"{math.sqrt(cov[1, 1]):.2g} deg per unit of mu_r; average more "
+                    "assemblies, --seeds)")
+    mu = float(np.clip(xm + (target - coef[0]) / coef[1], a, b))
+    if len(hist) < max_runs and mu not in runs:
+        f(mu)
+        coef, cov, xm = fit()
+        if not coef[1] > 2.0 * math.sqrt(cov[1, 1]):
+            return done("non_monotone", f"over mu_r = {lo:.4g}-{hi:.4g} the peak angle does "
+                        f"not increase beyond 2 standard errors (slope {coef[1]:.3g} +- "
+                        f"{math.sqrt(cov[1, 1]):.2g} deg per unit of mu_r)")
+    mu_fit = float(np.clip(xm + (target - coef[0]) / coef[1], a, b))
+    g = np.array([1.0, mu - xm])
+    phi_fit = float(coef[0] + coef[1] * (mu - xm))
+    se_fit = float(math.sqrt(g @ cov @ g))
+    n_fit = sum(len(rs) for m_, rs in runs.items() if lo <= m_ <= hi)
+    msg = (f"mu_r = {mu:.4g}: the line fitted to the {n_fit} tests over mu_r = {lo:.4g}-{hi:.4g} "
+           f"gives {phi_fit:.2f} +- {se_fit:.2f} deg there (target {target:g} deg; with the "
+           f"tests at {mu:.4g}, its root is {mu_fit:.4g})")
+    return done("converged", msg, mu, phi_fit, se_fit)
 
 
 def plot_biaxial(result: BiaxialResult, ax=None):

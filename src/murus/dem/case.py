@@ -95,6 +95,13 @@ from murus.config import (
 Pos = float
 Point = tuple[float, float]
 
+#: Largest number of time steps of a run (beyond it a run would not end in days).
+MAX_STEPS = 1e9
+#: Largest number of samples of an analytic base motion (an array of 8-byte floats each).
+MAX_MOTION_SAMPLES = 5e7
+#: Largest memory [bytes] of the histories and VTK frames kept during a run.
+MAX_HISTORY_BYTES = 4e9
+
 
 # ---------------------------------------------------------------------- schema
 class DampingCfg(Strict):
@@ -498,6 +505,19 @@ def check_overlaps(shapes, tol: float) -> tuple[int, int, float] | None:
     return None
 
 
+def _check_clump(parts, where, tol: float, path, text) -> None:
+    """Refuse a clump whose parts overlap by more than ``tol`` [m] (the mass of the common
+    area would be counted twice); parts may touch (share an edge or a point)."""
+    for i in range(len(parts) - 1):
+        for j in range(i + 1, len(parts)):
+            d = _overlap([parts[i]], [parts[j]])
+            if d > tol:
+                raise fail_at(path, text, where + ("parts",), f"clump {where[0]}[{where[1]}]: "
+                              f"parts {i} and {j} overlap by {d:.3g} m > overlap_tolerance "
+                              f"{tol:g} m (their common area would be counted twice in the "
+                              "mass): split the clump into parts that only touch")
+
+
 def _convex_parts(parts, where, key, path, text):
     """Counter-clockwise convex polygon parts; a non-convex one is an error of its entry."""
     out = []
@@ -565,6 +585,8 @@ def build(case: DemCase, path: Path, text: str) -> Built:
         name = _material(case, mat, where, path, text)
         clump = where[0] == "blocks" and case.blocks[where[1]].kind == "clump"
         parts = _convex_parts(parts, where, "parts" if clump else "vertices", path, text)
+        if clump:
+            _check_clump(parts, where, d.overlap_tolerance, path, text)
         shapes.append(parts)
         group = grp or name
         groups.add(group)
@@ -606,6 +628,15 @@ def build(case: DemCase, path: Path, text: str) -> Built:
             raise fail_at(path, text, ("dem", "duration"), "required key is missing "
                           "(simulated time, s)")
     motion = None
+    if kind in ("sine-pulse", "cosine-pulse", "harmonic-ramp"):
+        span = duration if kind == "harmonic-ramp" else mo.cycles / mo.frequency
+        nmo = span / (mo.dt or 0.001)
+        if not nmo <= MAX_MOTION_SAMPLES:
+            key = ("motion", "dt") if mo.dt is not None else (
+                ("dem", "duration") if kind == "harmonic-ramp" else ("motion", "frequency"))
+            raise fail_at(path, text, key, f"the {kind} would have {nmo:.3g} samples of "
+                          f"{mo.dt or 0.001:g} s (limit {MAX_MOTION_SAMPLES:.0e}): raise "
+                          "[motion] dt or shorten the motion")
     if kind == "record":
         from murus.rocking.case import _read_record
 
@@ -641,6 +672,7 @@ def build(case: DemCase, path: Path, text: str) -> Built:
     if d.dt is not None and d.dt > dts * (1 + 1e-12):
         raise fail_at(path, text, ("dem", "dt"), f"dt = {d.dt:g} s exceeds the stable time step "
                       f"{dts:g} s (dt_safety {d.dt_safety:g}); lower it or leave it out")
+    _check_sizes(case, path, text, duration, dts, len(bodies))
 
     # monitors and stop
     dyn = [k for k, b in enumerate(bodies) if b[3] is None]
@@ -710,6 +742,46 @@ def build(case: DemCase, path: Path, text: str) -> Built:
                  tilt, case.output.vtk_every, case.output.figure, ref)
 
 
+def _check_sizes(case: DemCase, path: Path, text: str, duration: float, dts: float,
+                 nbody: int) -> None:
+    """Refuse, naming the key, a case whose run could not end or not fit in memory: more than
+    :data:`MAX_STEPS` time steps, or histories (and VTK frames) above :data:`MAX_HISTORY_BYTES`
+    (an overflowing input such as ``kn = 1e300`` or ``dt = 1e-300``, which would otherwise fail
+    deep inside NumPy)."""
+    d = case.dem
+    dt = d.dt if d.dt is not None else dts
+    steps = duration / dt if dt > 0 else math.inf
+    if not 1 <= steps <= MAX_STEPS:
+        if d.dt is not None:
+            key, what = ("dem", "dt"), f"dt = {d.dt:g} s"
+        elif dts < 1e-8 or steps < 1:
+            pick = max if steps > 1 else min
+            name, mat = pick(case.materials.items(), key=lambda it: max(it[1].kn, it[1].ks))
+            q = "kn" if mat.kn >= mat.ks else "ks"
+            key = ("materials", name, q)
+            what = f"{q} = {getattr(mat, q):g} Pa/m gives a stable time step of {dts:.3g} s"
+        else:
+            key, what = ("dem", "duration"), f"the time step {dt:.3g} s"
+        if steps < 1:
+            raise fail_at(path, text, key, f"{what}, longer than the duration {duration:g} s: "
+                          "the run would take no step (a contact stiffness far too low?)")
+        raise fail_at(path, text, key, f"{what}: the duration {duration:g} s would take "
+                      f"{steps:.3g} steps (limit {MAX_STEPS:.0e})")
+    every = max(1, int(round(case.output.sample_dt / dt)))
+    samples = steps / every + 2
+    cols = len(case.monitors) + 13  # t, monitors and the energy terms
+    need = samples * cols * 32.0  # Python floats in lists
+    if case.output.vtk_every:
+        need += samples / case.output.vtk_every * nbody * 400.0
+    if not need <= MAX_HISTORY_BYTES:
+        key = (("output", "vtk_every") if case.output.vtk_every and samples * cols * 32.0
+               <= MAX_HISTORY_BYTES else ("output", "sample_dt"))
+        raise fail_at(path, text, key, f"{samples:.3g} samples of the histories"
+                      + (" and VTK frames" if key[1] == "vtk_every" else "")
+                      + f" would need {need / 1e9:.3g} GB of memory (limit "
+                      f"{MAX_HISTORY_BYTES / 1e9:g} GB): raise it")
+
+
 def _height(m, dyn) -> float:
     """Height [m] of the dynamic blocks (top of the highest minus bottom of the lowest)."""
     lo, hi = math.inf, -math.inf
@@ -736,13 +808,20 @@ class CaseRun:
         self.settled = settled
         self.frames = frames
 
+    @property
+    def ok(self) -> bool:
+        """True when the run reached its end or its stop condition after a converged settling
+        (statuses ``completed``, ``stopped``); False for ``not_settled``, ``interpenetration``,
+        ``unstable``, ``max_steps``, ``interrupted``."""
+        return self.result.ok and (self.settled is None or bool(self.settled.converged))
+
     def summary(self) -> dict:
         r = self.result
         m = self.built.model
         final = {k: float(v[-1]) for k, v in r.values.items() if k in self.built.monitors}
         peak = {k: float(np.nanmax(np.abs(v))) for k, v in r.values.items()
                 if k in self.built.monitors and len(v)}
-        s = {"status": r.status, "message": r.message, "t_end": float(m.time),
+        s = {"status": r.status, "ok": self.ok, "message": r.message, "t_end": float(m.time),
              "steps": int(r.steps), "dt": float(r.dt), "wall_time_s": float(r.wall),
              "bodies": int(m.nbody), "height": float(self.built.height),
              "stop": self.built.stop_desc, "final": final, "peak_abs": peak,
@@ -766,12 +845,26 @@ def _frame(m, base=None) -> dict:
                           "body": np.concatenate([m.body_of_polygon(), m.body_of_disc()])}}
 
 
-def run_case(built: Built, progress: bool = False) -> CaseRun:
-    """Settle (if asked) and run the model of :func:`build`."""
+def run_case(built: Built, progress=False) -> CaseRun:
+    """Settle (if asked) and run the model of :func:`build`.
+
+    A settling that does not converge (the unbalanced-force ratio stays above
+    ``settle_tolerance``, or two blocks interpenetrate by more than
+    :data:`murus.dem.engine.OVERLAP_LIMIT` = 10 % of the thinner one's thickness along the
+    contact normal) skips
+    the dynamic run: the result then has status ``"not_settled"`` and the settling's message
+    (:attr:`CaseRun.ok` is False). ``progress``: False, True (a bar) or a callable
+    ``progress(done, total)`` (steps), see :func:`murus.dem.engine.run`."""
     m = built.model
     settled = None
     if built.settle is not None:
         settled = m.settle(**built.settle)
+        if not settled.converged:
+            result = m.run(duration=0.0, probes=built.run_kwargs["probes"],
+                           sample_dt=built.run_kwargs["sample_dt"], dt=built.run_kwargs["dt"])
+            result.status = "not_settled"
+            result.message = f"settling did not converge: {settled.message}"
+            return CaseRun(built, result, settled, [])
     if built.tilt is not None:
         m.set_tilt(*built.tilt)
         # gravity turned since the reference: measure energies (and displacements) from here
@@ -859,8 +952,7 @@ def summary_line(name: str, run: CaseRun) -> str:
     s = run.summary()
     vals = ", ".join(f"{k} = {v:.4g}" for k, v in s["final"].items())
     reason = s["status"] + (f" ({s['stop']})" if s["status"] == "stopped" else "")
-    st = s.get("settle")
-    if st is not None and not st["converged"]:
-        reason += f" (settling did not converge: ratio {st['ratio']:.2e})"
+    if not s["ok"] and s["message"]:
+        reason += f" ({s['message']})"
     return (f"{name}: {s['t_end']:.4g} s simulated in {s['steps']} steps, {reason}"
             + (f", {vals}" if vals else ""))

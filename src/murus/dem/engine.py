@@ -33,6 +33,20 @@ It stays as set between calls; ``settle`` and ``run`` also accept ``external``, 
 every ``external_every`` steps (the force is constant between calls: an explicit load history
 sampled at that interval). The kernels see it as a plain array.
 
+Interpenetration: a settle or a run stops (settle: not converged; run: status
+``"interpenetration"``) when a dynamic body moves by more than :data:`OVERLAP_LIMIT` (10 %) of
+its smallest width in one step (it could tunnel through another body between two contact
+detections), or when two bodies overlap by more than :data:`OVERLAP_LIMIT` of the
+thickness, along the contact normal, of the thinner of the two (:func:`overlap_fraction`: a
+block sinking into its base, of the block's height; a disc, of its diameter; kinematic bodies,
+the boundaries of the model, count as infinitely thick); the overlap is the
+penetration ``-gap`` of an active sub-contact, read from the contact arrays after each chunk of
+steps. An overlap that deep means a contact stiffness far too low for the loads (e.g. ``kn =
+1e-3`` Pa/m lets a block sink through its base): the result would not be a result. (The
+thickness along the normal, rather than a body's smallest width, so that a thin sliver pushed
+along its length, such as the 0.2 mm remainder course of a wall built course by course, does
+not stop a sound run.)
+
 Checkpoints: :meth:`Model.save` / :meth:`Model.load`. Runs are deterministic: a run stopped by
 ``max_steps`` or Ctrl-C (caught between chunks of steps, the state is always consistent), saved,
 loaded and resumed reproduces the uninterrupted run bit for bit.
@@ -53,8 +67,20 @@ import numpy as np
 from murus import threads as _threads
 from murus.dem import kernels as K
 
-__all__ = ["RunResult", "SettleResult", "Probe", "body_probe", "relative_probe", "tilt_probe",
-           "stop_when", "stable_dt", "settle", "run", "energy", "probe_from_spec"]
+__all__ = ["OVERLAP_LIMIT", "RunResult", "SettleResult", "body_sizes", "overlap_fraction",
+           "Probe", "body_probe", "relative_probe", "tilt_probe", "stop_when", "stable_dt",
+           "settle", "run", "energy", "probe_from_spec"]
+
+
+#: Largest overlap of two bodies, as a fraction of the thickness along the contact normal of
+#: the thinner one, beyond which :func:`settle` and :func:`run` stop (module doc).
+OVERLAP_LIMIT = 0.1
+
+#: Most steps of one call of the kernel (its inputs hold 64 bytes per step).
+_MAX_CHUNK = 1_000_000
+
+#: Run statuses that are a result: the run reached its end or its stop condition.
+OK_STATUSES = ("completed", "stopped")
 
 
 # ---------------------------------------------------------------------- probes
@@ -152,16 +178,24 @@ def stop_when(probe: Callable, op: str, value: float) -> Callable:
 # ---------------------------------------------------------------------- results
 @dataclass
 class SettleResult:
+    """Outcome of :func:`settle`: ``converged``, the steps taken, the final unbalanced-force
+    ratio [-], a one-line ``message`` and the largest overlap ``overlap`` [-] of two bodies
+    (fraction of the thinner one's thickness along the contact normal,
+    :func:`overlap_fraction`)."""
+
     converged: bool
     steps: int
     ratio: float  # final unbalanced-force ratio
     message: str = ""
+    overlap: float = 0.0
 
 
 @dataclass
 class RunResult:
     """History of a dynamic run. ``t`` [s]; ``values[name]`` sampled with it (probes and the
-    energy terms ``energy.*``); status: completed | stopped | interrupted | max_steps."""
+    energy terms ``energy.*``); status: completed | stopped (a stop condition) | interrupted |
+    max_steps | unstable (non-finite positions) | interpenetration (two bodies overlap by more
+    than :data:`OVERLAP_LIMIT` of their size); :attr:`ok` for the first two."""
 
     t: np.ndarray
     values: dict = field(default_factory=dict)
@@ -174,6 +208,11 @@ class RunResult:
 
     def __getitem__(self, name):
         return self.values[name]
+
+    @property
+    def ok(self) -> bool:
+        """True when the run reached its end or its stop condition."""
+        return self.status in OK_STATUSES
 
 
 # ---------------------------------------------------------------------- time step
@@ -235,6 +274,151 @@ def _set_dt(m, dt) -> None:
         m.step_offset = int(m.C[K.C_STEP])
     m.dt = float(dt)
     m.P[K.P_DT] = m.dt
+
+
+# ---------------------------------------------------------------------- overlaps
+def _outlines(m) -> np.ndarray:
+    """Each body's outline in its own frame (centroid, angle 0) as points with a radius,
+    padded to one array ``(nbody, k, 3)`` of (x, y, r) [m]: the outer vertices of its polygons
+    (r = 0) and the centres of its discs (r = the radius), so that its extent along a unit
+    direction n is ``max(p.n + r) - min(p.n - r)``, exactly. Cached per model."""
+    cached = m.__dict__.get("_outlines")
+    if cached is not None and cached.shape[0] == m.nbody:
+        return cached
+    pts = [[] for _ in range(m.nbody)]
+    for s, v in zip(m.poly_shape, m._outer, strict=True):
+        v = np.asarray(v, float)
+        pts[m.sbody[s]].append(np.column_stack([v, np.zeros(len(v))]))
+    for s in m.disc_shape:
+        c = m.lv[m.svs[s]]
+        pts[m.sbody[s]].append(np.array([[c[0], c[1], m.srad[s]]]))
+    pts = [np.concatenate(p) if p else np.zeros((1, 3)) for p in pts]
+    k = max(len(p) for p in pts)
+    out = np.array([np.concatenate([p, np.repeat(p[:1], k - len(p), axis=0)]) for p in pts])
+    m.__dict__["_outlines"] = out
+    return out
+
+
+def _proj_extent(pts: np.ndarray, lx, ly) -> np.ndarray:
+    """Extent of outlines ``pts (..., k, 3)`` along the directions (lx, ly) (broadcast)."""
+    p = pts[..., 0] * lx + pts[..., 1] * ly
+    return (p + pts[..., 2]).max(axis=-1) - (p - pts[..., 2]).min(axis=-1)
+
+
+def body_sizes(m) -> np.ndarray:
+    """Smallest width across [m] of each body: its smallest extent over the normals of its
+    polygon edges and 32 directions (exact for a convex polygon and a disc, within 0.5 % for a
+    clump): a lower bound of the thicknesses that :func:`overlap_fraction` compares a
+    penetration with. Cached per model."""
+    m.build()
+    cached = m.__dict__.get("_body_sizes")
+    if cached is not None and cached.shape[0] == m.nbody:
+        return cached
+    pts = _outlines(m)
+    ang = np.linspace(0.0, math.pi, 32, endpoint=False)
+    dirs = [np.column_stack([np.cos(ang), np.sin(ang)])]
+    for v in m._outer:
+        e = np.roll(v, -1, axis=0) - v
+        ln = np.hypot(e[:, 0], e[:, 1])
+        dirs.append(np.column_stack([-e[ln > 0, 1], e[ln > 0, 0]]) / ln[ln > 0, None])
+    dirs = np.concatenate(dirs)
+    size = _proj_extent(pts[:, None, :, :], dirs[None, :, 0, None],
+                        dirs[None, :, 1, None]).min(axis=1)
+    m.__dict__["_body_sizes"] = size
+    return size
+
+
+def _extent(m, body: np.ndarray, nx: np.ndarray, ny: np.ndarray) -> np.ndarray:
+    """Extent [m] of each ``body`` along the world direction (nx, ny) (its thickness there);
+    infinite for a kinematic body (a boundary of the model)."""
+    c, s = np.cos(m.bang[body]), np.sin(m.bang[body])
+    lx, ly = nx * c + ny * s, -nx * s + ny * c  # the direction in the body frame
+    ext = _proj_extent(_outlines(m)[body], lx[:, None], ly[:, None])
+    return np.where(m.bkin[body] == 0, ext, np.inf)
+
+
+def overlap_fraction(m, exclude=None) -> tuple[float, int, int, float]:
+    """Largest overlap of two bodies in the current contact arrays: ``(fraction, a, b,
+    depth)`` with ``depth`` [m] the penetration of an active sub-contact between the bodies a
+    and b and ``fraction`` = depth / the thickness, along the contact normal, of the thinner
+    of the two [-] (a block sinking into its base: the block's height; a disc: its
+    diameter; a kinematic body counts as infinitely thick); ``(0, -1, -1, 0)`` when nothing
+    overlaps. ``exclude``: bodies whose contacts
+    are left out. Cheap: NumPy over the contact arrays, the thicknesses only for the
+    sub-contacts deeper than the limit could allow (:func:`body_sizes`)."""
+    m.build()
+    on = m.sid >= 0
+    if exclude is not None and len(exclude):
+        ex = np.isin(m.sbody[m.pairs], np.asarray(exclude)).any(axis=1)
+        on = on & ~ex[:, None]
+    if not on.any():
+        return 0.0, -1, -1, 0.0
+    depth = np.where(on, -m.sf[..., K.F_GAP], 0.0)
+    size = body_sizes(m)
+    ba = np.repeat(m.sbody[m.pairs[:, 0]][:, None], depth.shape[1], axis=1)
+    bb = np.repeat(m.sbody[m.pairs[:, 1]][:, None], depth.shape[1], axis=1)
+    # the fraction is at most depth / (smallest width): only those above the best bound count
+    bound = depth / np.minimum(size[ba], size[bb])
+    cand = depth > 0
+    if not cand.any():
+        return 0.0, -1, -1, 0.0
+    depth, ba, bb, bound = depth[cand], ba[cand], bb[cand], bound[cand]
+    nx, ny = m.sf[..., K.F_NX][cand], m.sf[..., K.F_NY][cand]
+
+    def exact(sel):
+        ext = np.minimum(_extent(m, ba[sel], nx[sel], ny[sel]),
+                         _extent(m, bb[sel], nx[sel], ny[sel]))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(ext > 0, depth[sel] / ext, np.inf)  # (depth / inf = 0)
+
+    # the exact fraction of the sub-contact of largest bound, then of every sub-contact whose
+    # bound reaches it (the others cannot exceed it)
+    f0 = float(exact(np.array([int(np.argmax(bound))]))[0])
+    sel = np.nonzero(bound >= f0)[0]
+    frac = exact(sel)
+    k = int(sel[int(np.argmax(frac))])
+    return float(frac.max()), int(ba[k]), int(bb[k]), float(depth[k])
+
+
+def _overlap_beyond(m, limit: float):
+    """``overlap_fraction(m)`` when it exceeds ``limit``, else None; a quick bound first (no
+    slot, active or not, deeper than ``limit`` times the thinnest body) keeps the check to a
+    few microseconds when nothing is near the limit."""
+    if m.sf.size == 0:
+        return None
+    size = body_sizes(m)[m.bkin == 0]
+    if size.size == 0 or not -float(m.sf[..., K.F_GAP].min()) > 0.99 * limit * float(size.min()):
+        return None
+    hit = overlap_fraction(m)
+    return hit if hit[0] > limit else None
+
+
+def _penetration(m, limit: float) -> str | None:
+    """The one-line reason to stop, or None: two bodies overlap by more than ``limit`` of the
+    thinner one's thickness (:func:`overlap_fraction`), or a dynamic body moves by more than
+    ``limit`` of its smallest width in one step (it could pass through another body between
+    two contact detections: a time step far too long, from a contact stiffness far too low)."""
+    hit = _overlap_beyond(m, limit)
+    if hit is not None:
+        return _overlap_message(m, *hit, limit)
+    dyn = np.nonzero(m.bkin == 0)[0]
+    if dyn.size == 0 or m.dt is None:
+        return None
+    move = (np.hypot(m.bvel[dyn, 0], m.bvel[dyn, 1]) + np.abs(m.bomg[dyn]) * m.brad[dyn]) * m.dt
+    frac = move / body_sizes(m)[dyn]
+    k = int(np.argmax(frac))
+    if not frac[k] > limit:
+        return None
+    return (f"body {int(dyn[k])} moves {move[k]:.3g} m in one time step of {m.dt:.3g} s, "
+            f"{100 * frac[k]:.3g} % of its smallest width (limit {100 * limit:g} %): it can "
+            "pass through other bodies (a contact stiffness far too low gives a time step "
+            "far too long)")
+
+
+def _overlap_message(m, frac, a, b, depth, limit) -> str:
+    return (f"bodies {a} and {b} interpenetrate by {depth:.3g} m, {100 * frac:.3g} % of the "
+            f"thinner one's thickness along the contact normal (limit {100 * limit:g} %): the "
+            "contact stiffness kn is too low for the loads")
 
 
 # ---------------------------------------------------------------------- energy
@@ -339,13 +523,16 @@ def unbalanced_ratio(m) -> float:
 
 def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
            check_every: int = 100, dt: float | None = None, reset: bool = True,
-           external: Callable | None = None, threads: int | None = None) -> SettleResult:
+           external: Callable | None = None, threads: int | None = None,
+           max_overlap: float | None = OVERLAP_LIMIT) -> SettleResult:
     """Static solution under gravity (at the current tilt) and the external forces
     ``model.bext`` with local damping ``alpha``: step until the unbalanced-force ratio is below
     ``tol`` (module doc). ``external(model)``, if given, updates ``model.bext`` every
     ``check_every`` steps. The base and the ``"prescribed"`` bodies do not move and the model
-    time does not advance. ``threads``: numba threads (default: chosen per chunk of steps by
-    :mod:`murus.threads` from the machine's load)."""
+    time does not advance. Settling stops, not converged, when two bodies overlap by more than
+    ``max_overlap`` (fraction of the thinner one's thickness along the contact normal,
+    :func:`overlap_fraction`; None: no check). ``threads``: numba threads (default: chosen per
+    chunk of steps by :mod:`murus.threads` from the machine's load)."""
     if not (0 <= alpha < 1):
         raise ValueError(f"alpha must be in [0, 1), got {alpha!r}")
     _set_dt(m, dt)
@@ -357,6 +544,7 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     presc = m.bpresc.copy()
     m.bpresc[:] = 0.0
     m._threads = _threads.Governor.for_run(threads)
+    over = None
     try:
         with _SigInt() as sig:
             while done < max_steps and not sig.hit:
@@ -367,6 +555,12 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
                 m.step_offset += n  # settling does not advance the model time
                 done += n
                 ratio = unbalanced_ratio(m)
+                if not np.all(np.isfinite(m.bpos)):
+                    over = "non-finite positions (lower dt)"
+                    break
+                over = None if max_overlap is None else _penetration(m, max_overlap)
+                if over is not None:
+                    break
                 if ratio < tol:
                     converged = True
                     break
@@ -380,8 +574,12 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     if reset:
         m.reset_reference()
     msg = (f"settled in {done} steps, ratio {ratio:.2e}" if converged
+           else f"not settled after {done} steps: {over}" if over is not None
+           else f"not settled after {done} steps: no contact carries the load (the blocks "
+           "fall freely, or passed through each other: a contact stiffness far too low?)"
+           if ratio == math.inf
            else f"not settled after {done} steps, ratio {ratio:.2e} > {tol:g}")
-    return SettleResult(converged, done, ratio, msg)
+    return SettleResult(converged, done, ratio, msg, overlap_fraction(m)[0])
 
 
 def run(m, duration: float | None = None, *, t_end: float | None = None,
@@ -390,7 +588,8 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         sample_dt: float = 0.01, stop=None, max_steps: int | None = None,
         progress: bool = False, external: Callable | None = None,
         external_every: int | None = None, damping_frame: str = "base",
-        threads: int | None = None) -> RunResult:
+        threads: int | None = None,
+        max_overlap: float | None = OVERLAP_LIMIT) -> RunResult:
     """Dynamic run up to ``t_end`` (or ``duration`` from now) [s].
 
     xi, freq : mass-proportional damping, fraction of critical at frequency [Hz];
@@ -405,13 +604,18 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         survive a checkpoint);
     stop : callable(model) -> bool (or a list), checked at each sample;
     max_steps : stop after that many steps of this call (status ``max_steps``);
-    progress : show a rich progress bar;
+    progress : False (nothing), True (a :func:`murus.progress.progress` block: a bar in a
+        terminal, a line every 10 s on stderr otherwise) or a callable ``progress(done,
+        total)`` called after each chunk with the steps done and the steps of the call;
     external : callable(model) updating ``model.bext`` (external forces and moments) in place,
         called before the first step and every ``external_every`` steps (default: at each
         sample) of the model's step count;
     threads : numba threads (default: chosen per chunk of steps by :mod:`murus.threads`: one
         thread while other processes hold the cores, else ``numba.get_num_threads()``; an
         explicit ``NUMBA_NUM_THREADS`` or ``MURUS_THREADS`` fixes it too).
+    max_overlap : the run stops with status ``"interpenetration"`` when two bodies overlap by
+        more than this fraction of the thinner one's thickness along the contact normal
+        (checked after each chunk of steps, :func:`overlap_fraction`; None: no check).
     """
     _set_dt(m, dt)
     if (duration is None) == (t_end is None):
@@ -452,16 +656,18 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
     done = 0
     bar = None
     m._threads = _threads.Governor.for_run(threads)
-    if progress:
-        from rich.progress import Progress
-        bar = Progress(transient=True)
-        bar.start()
-        task = bar.add_task("murus.dem", total=remaining)
+    report = progress if callable(progress) else None
+    if progress is True:
+        from murus.progress import progress as _progress
+        bar = _progress(remaining, "DEM run", unit="steps")
+        bar.__enter__()
+        report = bar.update
+    total = remaining
     try:
         with _SigInt() as sig:
             while remaining > 0:
                 rel = int(m.C[K.C_STEP]) - m.step_offset
-                n = min(every - rel % every, remaining)
+                n = min(every - rel % every, remaining, _MAX_CHUNK)
                 if external is not None:
                     if rel % external_every == 0 or done == 0:
                         external(m)
@@ -475,6 +681,8 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                 _chunk(m, n, moving)
                 done += n
                 remaining -= n
+                if report is not None:
+                    report(done, total)
                 if (int(m.C[K.C_STEP]) - m.step_offset) % every == 0:
                     _sample(m)
                     hit = [getattr(c, "__name__", "stop") for c in stops if c(m)]
@@ -486,8 +694,11 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                     status = "unstable"
                     message = "non-finite positions: lower dt"
                     break
-                if bar is not None:
-                    bar.update(task, advance=n)
+                over = None if max_overlap is None else _penetration(m, max_overlap)
+                if over is not None:
+                    status = "interpenetration"
+                    message = f"at t={m.time:.6g} s {over}"
+                    break
                 if sig.hit:
                     status = "interrupted"
                     message = f"interrupted at t={m.time:.6g} s (save() to resume)"
@@ -495,7 +706,7 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
     finally:
         m._threads = None
         if bar is not None:
-            bar.stop()
+            bar.__exit__(None, None, None)
     wall = _time.perf_counter() - t0
     vals = {k: np.asarray(v, float) for k, v in m.history.items() if k != "t"}
     return RunResult(t=np.asarray(m.history["t"], float), values=vals, status=status,

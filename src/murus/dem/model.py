@@ -223,7 +223,8 @@ class Model:
     def add_clump(self, parts: Sequence, density: float = 2000.0, kinematic: str | None = None,
                   group: str = "default") -> int:
         """One rigid body made of several convex parts: each part a polygon (vertex array) or a
-        disc ``("disc", center, radius)``. Parts should not overlap (mass is summed)."""
+        disc ``("disc", center, radius)``. Parts may touch but not overlap (the mass is the sum
+        of the parts': an overlap deeper than 1e-9 of the clump's size is an error)."""
         out = []
         for p in parts:
             if isinstance(p, tuple) and len(p) == 3 and p[0] == "disc":
@@ -234,6 +235,7 @@ class Model:
                 out.append(("poly", _clean_polygon(p, f"body {len(self._bodies)} part {len(out)}")))
         if not out:
             raise ModelError("a clump needs at least one part")
+        _check_parts_apart(out, f"body {len(self._bodies)}")
         return self._add(out, density, kinematic, group)
 
     def set_joint(self, joint: Joint, group_a: str | None = None,
@@ -665,6 +667,22 @@ class Model:
         if m._motion_kind == "callable":
             m._motion_kind = "none"  # to be set again with set_base_motion(velocity=...)
         return m
+
+
+def _check_parts_apart(parts, where: str) -> None:
+    """ModelError when two parts of a clump overlap by more than 1e-9 of the clump's size [m]
+    (penetration depth by separating axes, :func:`murus.dem.case.check_overlaps`' geometry)."""
+    from murus.dem.case import _bbox, _overlap
+
+    box = _bbox(parts)
+    tol = 1e-9 * float(max(box[2] - box[0], box[3] - box[1]))
+    for i in range(len(parts) - 1):
+        for j in range(i + 1, len(parts)):
+            d = _overlap([parts[i]], [parts[j]])
+            if d > tol:
+                raise ModelError(f"{where}: clump parts {i} and {j} overlap by {d:.3g} m (their "
+                                 "common area would be counted twice in the mass): split the "
+                                 "clump into parts that only touch")
 
 
 def _record_velocity(acc: np.ndarray, dt: float, t: np.ndarray) -> np.ndarray:

@@ -186,14 +186,17 @@ def calibrate(model, measurements, params, *, bounds: dict | None = None,
               objective: str = "peaks", window: float = 0.25, tail: float = 2.0,
               n_peaks: int = 20, starts: int = 4, screen: int = 40, seed: int = 0,
               diff_step: float = 0.02, smooth: float = 0.02, rtol: float = 1e-8,
-              max_nfev: int = 200) -> CalibrationResult:
+              max_nfev: int = 200, progress=None) -> CalibrationResult:
     """Fit restitution parameters of ``model`` (a :class:`murus.rocking.RockingModel`) to
     ``measurements`` (a :class:`Measurement` or a list of them).
 
     ``params``: the initial values, a dict name -> value among ``PARAMETERS``; the others keep
     the values of ``model.restitution`` if it is an AmplitudeDependent law (else its
-    defaults). ``bounds``: name -> (low, high), default ``PARAMETERS``. See the module
-    docstring for the objective and the report."""
+    defaults). ``bounds``: name -> (low, high), default ``PARAMETERS``. ``progress``: a
+    callable ``progress(evaluations, None, info)`` called after each evaluation of the
+    residuals (simulations of every history), e.g. the ``update`` of a
+    :func:`murus.progress.progress` block. See the module docstring for the objective and the
+    report."""
     from scipy.optimize import least_squares
 
     from murus.rocking import simulate
@@ -271,8 +274,14 @@ def calibrate(model, measurements, params, *, bounds: dict | None = None,
             parts.append((sim - target) / scale)
         return parts
 
+    stage = {"n": 0, "info": "screening"}
+
     def residuals(x):
-        return np.concatenate(residual_parts(x))
+        r = np.concatenate(residual_parts(x))
+        stage["n"] += 1
+        if progress is not None:
+            progress(stage["n"], None, stage["info"])
+        return r
 
     # starts: the initial guess and the best of a Latin-hypercube screen of the bounds (the
     # objective is rough: impacts appear and vanish as the parameters move)
@@ -287,7 +296,8 @@ def calibrate(model, measurements, params, *, bounds: dict | None = None,
         guesses += list(pts[np.argsort(costs)[:int(starts) - 1]])
     runs = []
     best = None
-    for g in guesses:
+    for k, g in enumerate(guesses):
+        stage["info"] = f"least squares from start {k + 1}/{len(guesses)}"
         sol = least_squares(residuals, g, bounds=(lo, hi), method="trf", diff_step=diff_step,
                             x_scale=np.maximum(hi - lo, 1e-9) / 4, max_nfev=max_nfev)
         runs.append({"start": _named(names, g),

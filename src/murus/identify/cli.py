@@ -444,10 +444,17 @@ def calibrate(
             kw = {} if pivot == "corner" else {"pivot": Pivot("compressive-length")}
             mdl = RockingModel(body, AmplitudeDependent(k0=1.0, k1=0.0), **kw)
             ms.append(measurement_from_test(t, channel, model=mdl))
-        res = fit(ms[0].model, ms, init, bounds=bnd or None, objective=objective,
-                  window=window, starts=starts)
+        from murus.cliprogress import LazyProgress
+
+        with LazyProgress("lab calibrate", unit="evaluations") as bar:
+            res = fit(ms[0].model, ms, init, bounds=bnd or None, objective=objective,
+                      window=window, starts=starts, progress=bar.update)
     except (*_errors(), CalibrationError, BodyError, RestraintError) as exc:
-        fail(exc)
+        error = exc
+    else:
+        error = None
+    if error is not None:
+        fail(error)
     table = res.table()
     typer.echo(f"calibrated {', '.join(names)} on {len(ms)} test(s), objective "
                f"'{res.objective}', {res.n_residuals} residuals, cost {res.cost:.4g}")

@@ -244,9 +244,11 @@ def collapse(
     to the base)."""
     from pathlib import Path
 
+    from murus.cliprogress import LazyProgress
     from murus.retaining.backfill import BackfillError
     from murus.retaining.collapse import collapse_run, peak_ratio_check
 
+    error = None
     try:
         _prepare_out(out, _COLLAPSE_FILES)
         wall = _dem_wall(preset_name, base, stone_height)
@@ -260,13 +262,18 @@ def collapse(
             mock = wall.name.lower().startswith("mockup")
             kw["backfill_options"] = dict(
                 {"boundary": "container" if mock else "absorbing"}, **opts)
-        res = collapse_run(wall, frequency, vertical, **kw)
+        with LazyProgress(f"collapse {wall.name} {frequency:g} Hz", unit="s") as bar:
+            res = collapse_run(wall, frequency, vertical, progress=bar.update, **kw)
         checks = {}
         if check_peak and res.collapsed:
-            checks = peak_ratio_check(wall, frequency, res.A_col, vertical=vertical,
-                                      A_rate=res.A_rate, A_pseudo=res.A_pseudo, **kw)
+            with LazyProgress("S1 checks at 0.6 and 0.7 A_col", unit="s") as bar:
+                checks = peak_ratio_check(wall, frequency, res.A_col, vertical=vertical,
+                                          A_rate=res.A_rate, A_pseudo=res.A_pseudo,
+                                          progress=bar.update, **kw)
     except (*_collapse_errors(), BackfillError) as exc:
-        _fail(exc)
+        error = exc
+    if error is not None:
+        _fail(error)
     summary = res.summary()
     if check_peak:
         summary["peak_checks"] = {f"{r:g}": {"a_peak": c.a_peak, "stable": c.stable,
@@ -487,45 +494,77 @@ def calibrate_backfill(
     friction: float = typer.Option(30.0, "--friction", help="Interparticle friction [deg]."),
     n: int = typer.Option(200, "--discs", min=4, help="Discs in the sample."),
     sigma3: float = typer.Option(50e3, "--sigma3", help="Confining stress [Pa]."),
-    seeds: int = typer.Option(1, "--seeds", min=1, help="Assemblies averaged per evaluation."),
+    seeds: int | None = typer.Option(None, "--seeds", min=1, help="Assemblies averaged per "
+                                     "value of mu_r (default 8 with --target: one 200-disc "
+                                     "sample scatters by ~3 deg; 1 for a single test)."),
     kn: float = typer.Option(1e9, "--kn", help="Normal and shear contact stiffness [Pa/m]."),
     out: str | None = typer.Option(None, "--out", help="Folder for biaxial.png/.svg, "
                                    "biaxial.csv and biaxial.json."),
 ) -> None:
     """Biaxial test of the disc backfill (murus.dem.biaxial): peak and critical-state friction
     angles, with a stress-strain figure; with --target, the rolling resistance that gives it
-    (seed 001 §2: 37.7 deg)."""
+    (seed 001 §2: 37.7 deg), averaged over --seeds assemblies, with the scatter over them.
+    A calibration that does not converge writes its outputs with status not ok and exits 1."""
     from dataclasses import replace
     from pathlib import Path
 
+    from murus.cliprogress import LazyProgress
     from murus.dem.biaxial import biaxial_test, calibrate_rolling
     from murus.dem.materials import Joint, JointError
 
+    error = None
     try:
         if out is not None:
             _prepare_out(out, _BIAXIAL_FILES)
         if target is not None and not (0.0 < target < 90.0):
             raise ValueError(f"--target must be an angle in (0, 90) deg, got {target!r}")
         joint = Joint(kn=kn, ks=kn, friction_deg=friction, rolling=rolling)
+        nseeds = seeds if seeds is not None else (8 if target is not None else 1)
         if target is None:
-            res = biaxial_test(joint, n=n, sigma3=sigma3)
+            runs = []
+            with LazyProgress("biaxial test", nseeds, unit="tests") as bar:
+                for s_ in range(nseeds):
+                    runs.append(biaxial_test(joint, n=n, sigma3=sigma3, seed=s_,
+                                             progress=lambda e, em, k=s_: bar.update(k + e / em)))
+            res = runs[0]
             cal = None
         else:
-            cal = calibrate_rolling(target, joint=replace(joint, rolling=0.0), n=n,
-                                    sigma3=sigma3, seeds=tuple(range(seeds)))
+            with LazyProgress("calibrate-backfill", 8 * nseeds, unit="tests") as bar:
+                cal = calibrate_rolling(target, joint=replace(joint, rolling=0.0), n=n,
+                                        sigma3=sigma3, seeds=tuple(range(nseeds)),
+                                        progress=bar.update)
             res = cal.result
     except (*_errors(), JointError) as exc:
-        _fail(exc)
-    typer.echo(f"biaxial test: {res.n} discs, friction {res.friction_deg:g} deg, mu_r = "
+        error = exc
+    except RuntimeError as exc:  # the compaction did not converge: a job that failed
+        typer.echo(f"error: {' '.join(str(exc).split())}", err=True)
+        raise typer.Exit(code=1) from None
+    if error is not None:
+        _fail(error)
+    which = " of assembly 0 (the figure and table)" if nseeds > 1 else ""
+    typer.echo(f"biaxial test{which}: {res.n} discs, friction {res.friction_deg:g} deg, mu_r = "
                f"{res.rolling:.4g}, sigma3 = {res.sigma3_target / 1e3:g} kPa: phi_peak = "
                f"{res.phi_peak_deg:.2f} deg at {100 * res.strain_at_peak:.2f} % strain, "
                f"phi_cs = {res.phi_cs_deg:.2f} deg, porosity {res.porosity0:.3f}")
+    if cal is None and nseeds > 1:
+        import numpy as np
+
+        phis = np.array([r.phi_peak_deg for r in runs])
+        typer.echo(f"over {nseeds} assemblies: phi_peak = {phis.mean():.2f} deg, standard "
+                   f"deviation {phis.std(ddof=1):.2f} deg")
     if cal is not None:
-        runs = ", ".join(f"{m:.3f} -> {p:.1f}" for m, p in cal.history)
-        state = "converged" if cal.converged else "NOT converged"
-        typer.echo(f"calibration to {target:g} deg: mu_r = {cal.rolling:.4f} gives "
-                   f"{cal.phi_peak_deg:.2f} deg ({state}; runs mu_r -> phi: {runs})")
+        hist = ", ".join(f"{m:.3f} -> {p:.1f}" for m, p in cal.history)
+        state = "converged" if cal.converged else f"NOT converged: {cal.status}"
+        nse = len(cal.phi_seeds)
+        scatter = (f"; over the {nse} assemblies at mu_r = {cal.rolling:.4f}: standard "
+                   f"deviation {cal.std_deg:.2f} deg" if nse > 1 else "")
+        se = f" (standard error {cal.se_deg:.2f} deg)" if cal.se_deg == cal.se_deg else ""
+        typer.echo(f"calibration to {target:g} deg: mu_r = {cal.rolling:.4f}{se}, {state}: "
+                   f"{cal.message}; mean phi_peak at each mu_r tried: {hist}{scatter}")
+    failed = cal is not None and not cal.converged
     if out is None:
+        if failed:
+            _not_converged(cal)
         return
     import matplotlib
 
@@ -546,16 +585,32 @@ def calibrate_backfill(
                  zip(res.axial_strain, res.sigma1, res.sigma3, res.volumetric_strain,
                      res.phi_deg, strict=True)]
         (tmp / "biaxial.csv").write_text("\n".join(rows) + "\n", encoding="utf-8")
-        summary = {"discs": res.n, "friction_deg": res.friction_deg, "rolling": res.rolling,
+        summary = {"status": cal.status if cal is not None else "completed",
+                   "ok": not failed, "assembly": res.meta.get("seed", 0),
+                   "discs": res.n, "friction_deg": res.friction_deg, "rolling": res.rolling,
                    "sigma3_pa": res.sigma3_target, "phi_peak_deg": res.phi_peak_deg,
                    "phi_cs_deg": res.phi_cs_deg, "strain_at_peak": res.strain_at_peak,
                    "porosity0": res.porosity0}
+        if cal is None and nseeds > 1:
+            summary["phi_peak_deg_assemblies"] = [r.phi_peak_deg for r in runs]
         if cal is not None:
             summary["calibration"] = {"target_deg": target, "rolling": cal.rolling,
                                       "phi_peak_deg": cal.phi_peak_deg,
-                                      "converged": cal.converged, "runs": cal.history}
+                                      "converged": cal.converged, "status": cal.status,
+                                      "message": cal.message, "seeds": len(cal.phi_seeds),
+                                      "phi_peak_deg_assemblies": list(cal.phi_seeds),
+                                      "std_deg": cal.std_deg, "se_deg": cal.se_deg,
+                                      "runs": cal.history}
         (tmp / "biaxial.json").write_text(dumps(summary), encoding="utf-8")
     typer.echo(f"wrote {dest}/biaxial.png, .svg, .csv, .json")
+    if failed:
+        _not_converged(cal)
+
+
+def _not_converged(cal) -> None:
+    """A calibration that did not converge: its reason on one line, exit code 1."""
+    typer.echo(f"error: calibration not converged ({cal.status}): {cal.message}", err=True)
+    raise typer.Exit(code=1)
 
 
 @app.command("weighted-response")

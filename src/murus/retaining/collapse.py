@@ -50,7 +50,7 @@ from __future__ import annotations
 
 import math
 import time as _time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from concurrent.futures import Executor
 from dataclasses import asdict, dataclass, field
 
@@ -195,7 +195,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                  vertical_ratio: float = 0.5, assumptions=None, build: dict | None = None,
                  A_pseudo: float | None = None,
                  damping_frame: str = "base", backfill: str = "thrust",
-                 backfill_options: dict | None = None) -> CollapseResult:
+                 backfill_options: dict | None = None,
+                 progress: Callable | None = None) -> CollapseResult:
     """Run the DEM wall under S2 (or S1 with ``a_peak``) until collapse (module docstring).
 
     frequency [Hz]; vertical: "none", "in_phase", "opposition"; A_rate [m/s³] (default
@@ -213,7 +214,9 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     :class:`~murus.retaining.backfill.DiscreteBackfill` with the keywords
     ``backfill_options``, e.g. ``W``, ``boundary``, ``radius``; ``wall_time`` then includes
     the generation and settling of the backfill, ``options["backfill_options"]`` its
-    summary).
+    summary); progress: ``progress(t, t_end, info)`` called before the settling (t = 0,
+    info ``"settling"``) and after each chunk of the run (model time t [s], info ``"run"``),
+    e.g. the ``update`` of a :func:`murus.progress.progress` block.
     """
     from murus.dem.engine import stop_when
     from murus.motion.synthetic import harmonic_ramp, two_ramp
@@ -262,6 +265,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         m = dw.model
         thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=thrust_scale)
         t0 = _time.perf_counter()
+        if progress is not None:
+            progress(0.0, t_end, "settling")
         st = m.settle(external=thrust)
         if not st.converged:
             raise CollapseError(f"{wall.name}: the DEM wall does not settle under gravity and "
@@ -276,6 +281,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                         **dict(build or {}, backstop=False, add_bodies=bf.add_to))
         m = dw.model
         thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=0.0)
+        if progress is not None:
+            progress(0.0, t_end, "settling")
         st = bf.settle(dw, external=thrust)
     m.set_base_motion(gm)
     every = max(1, int(round(update_dt / m.dt)))
@@ -289,9 +296,10 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     probes = {"d_top": d_top,
               "kh": lambda model: thrust.last[1], "kv": lambda model: thrust.last[2]}
     setup_time = _time.perf_counter() - t0
+    report = None if progress is None else (lambda done, total: progress(m.time, t_end, "run"))
     res = m.run(t_end=t_end, xi=xi, freq=f, probes=probes, sample_dt=sample_dt,
                 stop=stop_when(d_top, ">", thr), external=external, external_every=ext_every,
-                damping_frame=damping_frame)
+                damping_frame=damping_frame, progress=report or False)
     wall_time = _time.perf_counter() - t0
     t = res.t
     d = res["d_top"]

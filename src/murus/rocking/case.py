@@ -323,7 +323,43 @@ def build(case: RockingCase, path: Path, text: str):
         kwargs["duration"] = motion.end_time + 5.0
     if case.solver.duration is not None and not math.isfinite(case.solver.duration):
         raise fail_at(path, text, ("solver", "duration"), "must be finite")
+    _check_sizes(case, motion, kwargs, path, text)
     return model, motion, kwargs
+
+
+#: Largest number of output samples (or Newmark steps) of a rocking run: each sample holds
+#: about 64 bytes of arrays, so 5e7 samples take 3.2 GB.
+MAX_SAMPLES = 5e7
+
+
+def _check_sizes(case: RockingCase, motion, kwargs: dict, path: Path, text: str) -> None:
+    """Refuse, naming the key, a run whose output arrays (or Newmark steps) would exceed
+    :data:`MAX_SAMPLES` (``dt = 1e-300``, ``out_dt = 1e-300``, ``duration = 1e300`` or a pulse
+    frequency of 1e300 Hz, which would otherwise fail deep inside NumPy)."""
+    from murus.rocking.engine import FREE_TAIL
+    from murus.rocking.excitation import as_excitation
+
+    exc = as_excitation(motion)
+    dur = kwargs.get("duration")
+    t_end = float(dur) if dur is not None else exc.end_time + FREE_TAIL
+    sv, m = case.solver, case.motion
+    if sv.method == "newmark":
+        step, key, what = sv.dt, ("solver", "dt"), f"dt = {sv.dt:g} s"
+    elif sv.out_dt is not None:
+        step, key, what = sv.out_dt, ("solver", "out_dt"), f"out_dt = {sv.out_dt:g} s"
+    else:
+        step = exc.default_output_step()
+        key = (("motion", "frequency") if m.kind in ("sine-pulse", "cosine-pulse")
+               else ("motion", "duration") if m.kind == "rectangular-pulse"
+               else ("motion", "dt") if m.kind == "record" and m.dt is not None
+               else ("motion", "file") if m.kind == "record" else ("solver", "out_dt"))
+        what = f"the default output step {step:.3g} s of the motion (set [solver] out_dt)"
+    n = t_end / step if step > 0 else math.inf
+    if not n <= MAX_SAMPLES:
+        if dur is not None and dur > MAX_SAMPLES * 1e-3:  # too long even at 1 ms
+            key, what = ("solver", "duration"), f"duration = {dur:g} s"
+        raise fail_at(path, text, key, f"{what}: {t_end:.3g} s of response would take "
+                      f"{n:.3g} samples (limit {MAX_SAMPLES:.0e})")
 
 
 def _winkler(case: RockingCase, body, path: Path, text: str):
