@@ -16,16 +16,17 @@ Study folder (``out``)::
 
     out/
       study.json                     the resolved study, its digest, the case files (first)
-      cases/S2_5Hz_none.json         summary of one run (t_col, A_col, A_pseudo, ...), written
-      cases/S2_5Hz_none.csv          last: its presence marks the case done; its d_top history
+      cases/S2_5Hz_none.json         summary of one run (t_col, A_col, A_pseudo, ...) and the
+      cases/S2_5Hz_none.json.sha256  SHA-256 of the other files, written last, then its own
+      cases/S2_5Hz_none.csv          checksum: a case is done when all match; its d_top history
       cases/S2_5Hz_none.npz          (t, d_top, acc, acc_v, kh, kv) and the blocks at the end
       cases/S1_5Hz_none_0.6.json     of the run (snapshot data; PNGs by write_snapshots)
       ...
       failures.json                  cases that failed after their retries
       behaviour_factor.csv, .md      the table (seed 001 Tables 7-8 layout), when the run ends
 
-Re-running the same study with the same ``out`` computes only the cases without a valid file
-(missing, damaged, or of other inputs) and gives the same table, byte for byte (the table is
+Re-running the same study with the same ``out`` computes only the cases without valid files
+(missing, truncated or corrupt, or of other inputs) and gives the same table, byte for byte (the table is
 always assembled from the stored summaries, the run times included); a folder holding another
 study is refused, as for :func:`murus.studies.sweep.run_plan`. Interrupting a run (Ctrl-C)
 loses no finished case. ``murus study status OUT`` shows the cases done, missing and failed.
@@ -491,9 +492,12 @@ def _atomic(path: Path, write) -> None:
 
 
 def _save_case(folder: Path, rec: dict, res) -> None:
-    """The history CSV and the snapshot data first, the JSON last (it marks the case done)."""
-    from murus.studies.sweep import write_json
+    """The history CSV and the snapshot data first, the JSON last (it marks the case done),
+    listing the SHA-256 of the other two, then the checksum of the JSON (``NAME.json.sha256``):
+    a truncated or corrupt file of the case is found and the case recomputed."""
+    from murus.studies.sweep import file_sha256, write_checksum, write_json
 
+    (folder / f"{rec['name']}.json.sha256").unlink(missing_ok=True)
     if res is not None:
         _atomic(folder / rec["history"], res.history_csv)
         polys = [np.asarray(p, float) for p in res.polygons]
@@ -510,17 +514,24 @@ def _save_case(folder: Path, rec: dict, res) -> None:
                          t_col=np.float64(res.t_col), t_end=np.float64(res.t_end))
 
         _atomic(folder / rec["snapshot"], npz)
-    write_json(folder / f"{rec['name']}.json", rec)
+        rec["sha256"] = {rec[k]: file_sha256(folder / rec[k]) for k in ("history", "snapshot")}
+    path = folder / f"{rec['name']}.json"
+    write_json(path, rec)
+    write_checksum(path)
 
 
 def _load_case(folder: Path, case: Case, digest: str) -> dict | None:
+    """The stored record of ``case`` if its files are intact and of these inputs, else None
+    (the case is recomputed)."""
+    from murus.studies.sweep import task_file_state
+
     p = folder / f"{case.name}.json"
-    if not p.exists():
-        return None
+    if task_file_state(p) is not None:
+        return None  # missing, truncated or corrupt
     try:
         rec = json.loads(p.read_text())
     except (OSError, ValueError):
-        return None  # a damaged file is recomputed
+        return None
     if not isinstance(rec, dict) or rec.get("digest") != digest:
         return None
     if "skipped" not in rec and not (folder / str(rec.get("history"))).exists():

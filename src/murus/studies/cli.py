@@ -201,12 +201,19 @@ def status(
 
         s = study_status(folder)
     unit = s.get("unit", "chunks")
+    one = unit.removesuffix("s")
     typer.echo(f"{s['name']} ({s['digest']}): {len(s['done'])}/{s['total']} {unit} done, "
-               f"{len(s['missing'])} missing, {len(s['failed'])} failed"
+               f"{len(s['missing'])} missing, {len(s['damaged'])} damaged, "
+               f"{len(s['failed'])} failed"
                f"{', ' + s.get('result_file', 'result.nc') + ' written' if s['result'] else ''}")
+    for i, why in sorted(s["damaged"].items()):
+        typer.echo(f"  damaged {one} {i} ({s['paths'][i]}): {why}")
     for i, f in sorted(s["failed"].items()):
-        typer.echo(f"  failed {unit.removesuffix('s')} {i}: {f.get('error')} (attempts: "
+        typer.echo(f"  failed {one} {i}: {f.get('error')} (attempts: "
                    f"{f.get('attempts')})")
     if s["missing"]:
         m = s["missing"]
         typer.echo(f"  missing: {', '.join(map(str, m[:20]))}{' ...' if len(m) > 20 else ''}")
+    if s["damaged"] or s["missing"] or s["failed"]:
+        typer.echo("  run the study again with the same --out to compute the others "
+                   "(damaged ones included)")
