@@ -158,6 +158,38 @@ def test_damaged_case_recomputed_and_other_study_refused(fake, tmp_path):
         run_behaviour_study(small(ratios=(0.6,)), "serial", out=out)
 
 
+def test_truncated_and_corrupt_case_files_reported_and_recomputed(fake, tmp_path):
+    """Item 4 of issue 15 for the behaviour-factor study: a truncated history and a flipped
+    byte in a snapshot are found by their checksums (status: damaged, naming the file); the
+    resume recomputes those cases and gives the files and table of an uninterrupted run."""
+    st = small()
+    clean = tmp_path / "clean"
+    run_behaviour_study(st, "serial", out=clean)
+    out = tmp_path / "s"
+    run_behaviour_study(st, "serial", out=out)
+    cases = out / "cases"
+    rec = json.loads((cases / "S2_5Hz_none.json").read_text())
+    assert set(rec["sha256"]) == {"S2_5Hz_none.csv", "S2_5Hz_none.npz"}
+    assert (cases / "S2_5Hz_none.json.sha256").exists()
+    h = cases / "S2_3Hz_none.csv"
+    h.write_bytes(h.read_bytes()[:-30])  # truncated history
+    z = cases / "S1_5Hz_none_0.7.npz"
+    data = bytearray(z.read_bytes())
+    data[len(data) // 2] ^= 0x01  # one byte flipped in the snapshot
+    z.write_bytes(bytes(data))
+    s = study_status(out)
+    assert sorted(s["damaged"]) == [0, 5] and s["done"] == [1, 2, 3, 4]
+    assert "S2_3Hz_none.csv: checksum mismatch" in s["damaged"][0]
+    assert "S1_5Hz_none_0.7.npz" in s["damaged"][5]
+    n = len(fake.calls)
+    run_behaviour_study(st, "serial", out=out)
+    assert sorted(c[:2] for c in fake.calls[n:]) == [("S1", 5.0), ("S2", 3.0)]
+    assert study_status(out)["complete"]
+    assert files(out) == files(clean)
+    for name in ("behaviour_factor.csv", "behaviour_factor.md"):
+        assert (out / name).read_bytes() == (clean / name).read_bytes()
+
+
 def test_no_collapse_skips_checks_and_failures_are_recorded(fake, tmp_path):
     st = small(frequencies=(5.0, 200.0))
     out = tmp_path / "s"

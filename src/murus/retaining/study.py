@@ -26,10 +26,11 @@ Study folder (``out``)::
       behaviour_factor.csv, .md      the table (seed 001 Tables 7-8 layout), when the run ends
 
 Re-running the same study with the same ``out`` computes only the cases without valid files
-(missing, truncated or corrupt, or of other inputs) and gives the same table, byte for byte (the table is
-always assembled from the stored summaries, the run times included); a folder holding another
-study is refused, as for :func:`murus.studies.sweep.run_plan`. Interrupting a run (Ctrl-C)
-loses no finished case. ``murus study status OUT`` shows the cases done, missing and failed.
+(missing, truncated or corrupt, or of other inputs) and gives the same table, byte for byte
+(the table is always assembled from the stored summaries, the run times included); a folder
+holding another study is refused, as for :func:`murus.studies.sweep.run_plan`. Interrupting a
+run (Ctrl-C) loses no finished case. ``murus study status OUT`` shows the cases done, missing,
+damaged and failed.
 
 Case file (TOML, ``examples/retaining/``)::
 

@@ -344,8 +344,9 @@ def prepare_folder(out, digest: str, meta: dict) -> None:
     (:class:`StudyError`, nothing written).
 
     ``meta`` may declare ``"task_files"`` (one path per task, relative to ``out``: a task is
-    done when its file is intact, :func:`task_file_state`), ``"unit"`` (what a task is, for messages: "chunks", "cases")
-    and ``"result_file"`` (default ``result.nc``), read by :func:`study_status`."""
+    done when its file is intact, :func:`task_file_state`), ``"unit"`` (what a task is, for
+    messages: "chunks", "cases") and ``"result_file"`` (default ``result.nc``), read by
+    :func:`study_status`."""
     out = Path(out)
     check_folder(out, digest)
     out.mkdir(parents=True, exist_ok=True)
