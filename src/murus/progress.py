@@ -24,9 +24,11 @@ What it shows (on standard error, never on standard output):
 - nothing with ``quiet=True`` (the ``--quiet`` of the commands), nor when the environment
   variable ``MURUS_PROGRESS`` is ``0``.
 
-A process can forward the updates of every block elsewhere instead of showing them
-(:func:`set_reporter`: a worker process of a study reports the progress of its DEM run to the
-process that shows the study's bar); a reporter receives the updates even of quiet blocks.
+A process can forward the updates of the blocks it opens from then on elsewhere instead of
+showing them (:func:`set_reporter`: a worker of a study reports the progress of its DEM run to
+the process that shows the study's bar, which reads it with ``poll``); a reporter receives the
+updates even of quiet blocks, so a long computation should open a block (quiet when its caller
+asked for no progress) rather than none.
 The helper never raises because of its display, and costs a few microseconds per update
 (rich refreshes at 10 Hz in its own thread; the plain mode prints from a daemon thread).
 """
@@ -47,8 +49,8 @@ _RICH = {"progress": None, "users": 0}
 
 
 def set_reporter(fn: Callable[[str, float, float | None, str], None] | None) -> None:
-    """Forward every update of every :func:`progress` block of this process to
-    ``fn(desc, done, total, info)`` instead of showing it (``None``: show again)."""
+    """Forward every update of the :func:`progress` blocks opened from now on in this process
+    to ``fn(desc, done, total, info)`` instead of showing them (``None``: show again)."""
     global _REPORTER
     _REPORTER = fn
 
@@ -72,12 +74,16 @@ class Progress:
     time); ``info`` a short text shown after the counts ("2 failed", "t = 3.1 s")."""
 
     def __init__(self, total: float | None, desc: str, *, unit: str = "", quiet: bool = False,
-                 interval: float = 10.0, stream=None, terminal: bool | None = None):
+                 interval: float = 10.0, stream=None, terminal: bool | None = None,
+                 poll: Callable[[], str] | None = None):
         self.total = total
         self.desc = str(desc)
         self.unit = unit
         self.done = 0.0
         self.info = ""
+        self.poll = poll
+        self.extra = ""
+        self._reporter = _REPORTER  # a reporter set later does not take this block
         self.interval = float(interval)
         self.stream = stream if stream is not None else sys.stderr
         self.quiet = bool(quiet) or os.environ.get("MURUS_PROGRESS", "1") == "0"
@@ -106,9 +112,9 @@ class Progress:
             self.total = total
         if info is not None:
             self.info = info
-        if _REPORTER is not None:
+        if self._reporter is not None:
             try:
-                _REPORTER(self.desc, self.done, self.total, self.info)
+                self._reporter(self.desc, self.done, self.total, self.info)
             except Exception:  # noqa: BLE001 - progress must never break the work
                 pass
             return
@@ -117,7 +123,7 @@ class Progress:
         if self._task is not None:
             try:
                 _RICH["progress"].update(self._task, completed=self.done, total=self.total,
-                                         info=self.info, counts=self._counts())
+                                         info=self._info(), counts=self._counts())
             except Exception:  # noqa: BLE001
                 pass
 
@@ -135,8 +141,8 @@ class Progress:
             parts.append(f"{self._counts()} ({100 * frac:.0f} %)")
         elif self.done:
             parts.append(self._counts())
-        if self.info:
-            parts.append(self.info)
+        if self._info():
+            parts.append(self._info())
         parts.append(f"{format_seconds(el)} elapsed")
         if self.total and 0 < self.done < self.total:
             parts.append(f"ETA {format_seconds(el * (self.total - self.done) / self.done)}")
@@ -146,10 +152,14 @@ class Progress:
     def __enter__(self):
         self._t0 = time.monotonic()
         self._open = True
-        if self.quiet or _REPORTER is not None:
+        if self.quiet or self._reporter is not None:
             return self
         if self.terminal:
             self._start_rich()
+            if self.poll is not None and self._task is not None:
+                self._thread = threading.Thread(target=self._poll_rich, daemon=True,
+                                                name="murus-progress")
+                self._thread.start()
         else:
             self._print(self.line() if self.total or self.done else f"{self.desc} ...")
             self._thread = threading.Thread(target=self._tick, daemon=True,
@@ -162,7 +172,7 @@ class Progress:
         self._stop.set()
         if self._thread is not None:
             self._thread.join(timeout=1.0)
-        if self.quiet or _REPORTER is not None:
+        if self.quiet or self._reporter is not None:
             return False
         if self._task is not None:
             self._stop_rich()
@@ -179,9 +189,28 @@ class Progress:
         except (OSError, ValueError):
             pass
 
+    def _info(self) -> str:
+        return ", ".join(x for x in (self.info, self.extra) if x)
+
+    def _refresh_extra(self) -> None:
+        if self.poll is not None:
+            try:
+                self.extra = str(self.poll() or "")
+            except Exception:  # noqa: BLE001 - progress must never break the work
+                self.extra = ""
+
     def _tick(self) -> None:
         while not self._stop.wait(self.interval):
+            self._refresh_extra()
             self._print(self.line())
+
+    def _poll_rich(self) -> None:
+        while not self._stop.wait(1.0):
+            self._refresh_extra()
+            try:
+                _RICH["progress"].update(self._task, info=self._info())
+            except Exception:  # noqa: BLE001
+                pass
 
     def _start_rich(self) -> None:
         from rich.console import Console
@@ -210,7 +239,7 @@ class Progress:
             _RICH["users"] += 1
             self._outer = _RICH["users"] == 1
             self._task = _RICH["progress"].add_task(self.desc, total=self.total,
-                                                    completed=self.done, info=self.info,
+                                                    completed=self.done, info=self._info(),
                                                     counts=self._counts())
 
     def _counts(self) -> str:
@@ -251,7 +280,7 @@ def _num(x: float) -> str:
 
 def progress(total: float | None = None, desc: str = "", *, unit: str = "",
              quiet: bool = False, interval: float = 10.0, stream=None,
-             terminal: bool | None = None) -> Progress:
+             terminal: bool | None = None, poll: Callable[[], str] | None = None) -> Progress:
     """A progress block, used as a context manager (module docstring).
 
     Parameters
@@ -271,6 +300,9 @@ def progress(total: float | None = None, desc: str = "", *, unit: str = "",
         Where to show it (default ``sys.stderr``).
     terminal : bool, optional
         Force the terminal (rich bar) or the plain line mode (default: ``stream.isatty()``).
+    poll : callable, optional
+        ``poll() -> str``: more text shown after ``info``, asked every second in a terminal
+        and at each line otherwise (the runs in progress of a study in other processes).
     """
     return Progress(total, desc, unit=unit, quiet=quiet, interval=interval, stream=stream,
-                    terminal=terminal)
+                    terminal=terminal, poll=poll)

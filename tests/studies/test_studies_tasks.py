@@ -98,15 +98,16 @@ def test_folder_with_task_files(tmp_path):
 
 
 
-def test_interrupt_keeps_the_tasks_running_then():
+def test_interrupt_keeps_finished_tasks_and_abandons_long_ones():
     import time
 
     got = {}
-    # task 1 is interrupted at once while task 0 (another worker) is still running: the run
-    # stops, but task 0 is waited for and stored (the queued task 2 is dropped, unless a slow
-    # start of the second worker let it run first)
+    # task 2 is interrupted at once while task 0 (0.2 s) and task 1 (60 s) run on the other
+    # workers: task 0 finishes within the grace time and is stored, task 1 is abandoned (its
+    # worker killed: with the old rule of waiting for it, it would have been stored), the
+    # queued task 3 is dropped
     with pytest.raises(KeyboardInterrupt):
-        run_tasks(time.sleep, [(0, 1.0), (1, 0.0), (2, 0.0)], "process", workers=2,
-                  window=2, on_result=lambda i, r: got.__setitem__(i, r),
-                  hook=Interrupt(1))
-    assert got.get(0, 1) is None and 1 not in got
+        run_tasks(time.sleep, [(0, 0.2), (1, 60.0), (2, 0.0), (3, 0.0)], "process",
+                  workers=3, window=3, on_result=lambda i, r: got.__setitem__(i, r),
+                  hook=Interrupt(2), grace=5.0)
+    assert got == {0: None}

@@ -298,14 +298,17 @@ def _chunk(m, n: int, moving: bool) -> None:
 
 
 class _SigInt:
-    """Turn Ctrl-C into a flag checked between chunks (main thread only)."""
+    """Turn Ctrl-C into a flag checked between chunks (main thread only), unless a caller has
+    its own SIGINT handler or ignores SIGINT (a study that stops as a whole, its workers):
+    then this leaves it alone and Ctrl-C does what the caller decided."""
 
     def __init__(self):
         self.hit = False
         self.old = None
 
     def __enter__(self):
-        if threading.current_thread() is threading.main_thread():
+        if (threading.current_thread() is threading.main_thread()
+                and signal.getsignal(signal.SIGINT) is signal.default_int_handler):
             self.old = signal.signal(signal.SIGINT, self._handler)
         return self
 

@@ -93,7 +93,8 @@ from murus.retaining.collapse import (
 from murus.retaining.geometry import GeometryError, RetainingWall
 
 __all__ = ["BehaviourStudy", "BehaviourStudyResult", "CaseTask", "load_behaviour_study",
-           "behaviour_study", "run_behaviour_study", "run_case", "write_snapshots",
+           "behaviour_study", "run_behaviour_study", "run_case", "running_cases",
+           "write_snapshots",
            "STUDY_FORMAT"]
 
 STUDY_FORMAT = 1
@@ -450,14 +451,86 @@ class CaseTask:
     vertical: str
     kwargs: dict
     skip: str | None = None
+    progress_file: str | None = None
 
 
 def run_case(task: CaseTask):
     """Run one case in a worker: the :class:`~murus.retaining.collapse.CollapseResult` (or
-    ``None`` for a skipped check)."""
+    ``None`` for a skipped check). With ``progress_file``, the progress of the run (the
+    :func:`murus.progress.progress` blocks it opens, e.g. its DEM run) is written there while
+    it runs (read by :func:`running_cases`), and the file removed at the end."""
     if task.skip is not None:
         return None
-    return collapse_run(task.wall, task.frequency, task.vertical, **task.kwargs)
+    if task.progress_file is None:
+        return collapse_run(task.wall, task.frequency, task.vertical, **task.kwargs)
+    from murus.progress import set_reporter
+
+    rep = _FileReporter(Path(task.progress_file))
+    rep("starting", 0.0, None, "")
+    set_reporter(rep)
+    try:
+        return collapse_run(task.wall, task.frequency, task.vertical, **task.kwargs)
+    finally:
+        set_reporter(None)
+        Path(task.progress_file).unlink(missing_ok=True)
+
+
+class _FileReporter:
+    """A :func:`murus.progress.set_reporter` callback writing the latest update to a small
+    JSON file (atomically, at most once a second)."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.t0 = self.last = 0.0
+
+    def __call__(self, desc, done, total, info) -> None:
+        import time
+
+        now = time.monotonic()
+        if self.t0 == 0.0:
+            self.t0 = now
+        elif now - self.last < 1.0 and not (total and done >= total):
+            return
+        self.last = now
+        data = json.dumps({"desc": desc, "done": done, "total": total, "info": info,
+                           "elapsed": now - self.t0})
+        try:
+            _atomic(self.path, lambda p: Path(p).write_text(data))
+        except OSError:
+            pass
+
+
+def running_cases(out) -> str:
+    """What the cases running in the study folder ``out`` are doing (from their progress
+    files): ``"S2_5Hz_none: DEM run 1.2/2 s (40 %)"``, joined by ``"; "`` ("" if none)."""
+    from murus.progress import format_seconds
+
+    parts = []
+    for f in sorted((Path(out) / "cases").glob(".*.progress")):
+        try:
+            d = json.loads(f.read_text())
+        except (OSError, ValueError):
+            continue
+        name = f.name[1:].removesuffix(".progress")
+        done, total = d.get("done") or 0, d.get("total")
+        what = d.get("desc") or "running"
+        if total:
+            what += f" {done:.3g}/{total:.3g} ({100 * min(1.0, done / total):.0f} %)"
+        if d.get("info"):
+            what += f", {d['info']}"
+        parts.append(f"{name}: {what} ({format_seconds(time_since(f))} ago)"
+                     if what == "starting" else f"{name}: {what}")
+    return "; ".join(parts)
+
+
+def time_since(path: Path) -> float:
+    """Seconds since ``path`` was last written."""
+    import time
+
+    try:
+        return max(0.0, time.time() - path.stat().st_mtime)
+    except OSError:
+        return float("nan")
 
 
 # ----------------------------------------------------------------------------- storage ---
@@ -650,8 +723,9 @@ def run_behaviour_study(study: BehaviourStudy, executor=None, *, workers: int | 
         if c.signal == "S1" and not _collapsed(parent["summary"]):
             return c.index, CaseTask(c.index, study.wall, c.frequency, c.vertical, {},
                                      "no collapse")
+        pf = None if folder is None else str(folder / f".{c.name}.progress")
         return c.index, CaseTask(c.index, study.wall, c.frequency, c.vertical,
-                                 study.case_kwargs(c, parent), None)
+                                 study.case_kwargs(c, parent), None, pf)
 
     todo = [t for t in map(task_of, cases) if t is not None]  # S2 runs first, then S1
     done = sum(r is not None for r in records)
@@ -665,9 +739,14 @@ def run_behaviour_study(study: BehaviourStudy, executor=None, *, workers: int | 
         records[i] = rec
         return [t for t in map(task_of, children.get(i, [])) if t is not None]
 
-    failures = run_tasks(run_case, todo, executor, workers=workers, scheduler=scheduler,
-                         retries=retries, on_result=on_result, progress=progress,
-                         total=len(cases), done=done, hook=hook, window=window)
+    try:
+        failures = run_tasks(run_case, todo, executor, workers=workers, scheduler=scheduler,
+                             retries=retries, on_result=on_result, progress=progress,
+                             total=len(cases), done=done, hook=hook, window=window)
+    finally:
+        if folder is not None:  # those of abandoned runs
+            for f in folder.glob(".*.progress"):
+                f.unlink(missing_ok=True)
     for i, f in failures.items():
         f["case"] = cases[i].name
     result = _assemble(study, cases, records, failures, digest, out)

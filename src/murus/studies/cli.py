@@ -30,34 +30,43 @@ def _guard():
     return guard(CaseError, ValueError, ImportError, OSError, first_line=True)
 
 
-def progress_bar(unit: str = "chunks", description: str = "study"):
-    """A rich progress bar (tasks done of total, failures, elapsed time, ETA) and its callback
-    ``callback(done, total, failed)`` (the ``progress`` of :func:`~murus.studies.sweep.
-    run_tasks`); ``unit`` names the tasks ("chunks", "cases")."""
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
+def progress_bar(unit: str = "chunks", description: str = "study", quiet: bool = False,
+                 poll=None):
+    """A progress display (:func:`murus.progress.progress`: a bar in a terminal, a line every
+    10 s on stderr otherwise) and its callback ``callback(done, total, failed)`` (the
+    ``progress`` of :func:`~murus.studies.sweep.run_tasks`); ``unit`` names the tasks
+    ("chunks", "cases"); ``poll() -> str`` adds what the tasks running are doing."""
+    from murus.progress import progress
 
-    prog = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-                    TextColumn(unit), TextColumn("{task.fields[failed]}"),
-                    TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
-                    transient=False)
-    state = {"task": None}
+    p = progress(None, description, unit=unit, quiet=quiet, poll=poll)
 
     def callback(done: int, total: int, failed: int) -> None:
-        extra = f"[red]{failed} failed" if failed else ""
-        if state["task"] is None:
-            state["task"] = prog.add_task(description, total=total, completed=done,
-                                          failed=extra)
-        else:
-            prog.update(state["task"], completed=done, failed=extra)
+        p.update(done, total=total, info=f"{failed} failed" if failed else "")
 
-    return prog, callback
+    return p, callback
+
+
+def interrupted(folder: Path, command: str) -> None:
+    """Say on stderr what an interrupted study kept and how to resume it, then exit 130 (the
+    exit code of a command stopped by SIGINT)."""
+    import sys
+
+    from murus.studies.sweep import StudyError, study_status
+
+    try:
+        s = study_status(folder)
+        kept = f"after {len(s['done'])} of {s['total']} {s['unit']} (kept in {folder})"
+    except (StudyError, OSError, ValueError, KeyError):
+        kept = "before anything was stored"
+    print(f"\ninterrupted {kept}; resume with: {command}", file=sys.stderr, flush=True)
+    raise typer.Exit(130)
+
+
+def resume_command(*words) -> str:
+    """``murus WORD ...`` quoted for a POSIX shell."""
+    import shlex
+
+    return shlex.join(["murus", *[str(w) for w in words]])
 
 
 EXECUTOR_HELP = "Executor: serial, process (a local pool of --workers) or dask (--scheduler)."
@@ -123,20 +132,21 @@ def run(
             study.parent / study.stem
     typer.echo(f"{st.name}: {plan.n_histories:,} histories ({len(plan.points)} grid nodes x "
                f"{plan.n_records} records) in {len(plan.chunks())} chunks -> {folder}")
-    with _guard():
-        from murus.studies.executors import open_executor
-
-        handle = open_executor(kind, workers, scheduler)
+    resume = resume_command("study", "run", study, "--out", folder)
     try:
         with _guard():
-            if quiet:
-                ds = run_plan(plan, handle, out=folder, retries=st.retries)
-            else:
-                prog, cb = progress_bar()
+            from murus.studies.executors import open_executor
+
+            handle = open_executor(kind, workers, scheduler)
+        try:
+            with _guard():
+                prog, cb = progress_bar("chunks", st.name, quiet=quiet)
                 with prog:
                     ds = run_plan(plan, handle, out=folder, retries=st.retries, progress=cb)
-    finally:
-        handle.close()
+        finally:
+            handle.close()
+    except KeyboardInterrupt:
+        interrupted(folder, resume)
     n_failed = int(ds.attrs.get("n_failed_chunks", 0))
     if st.figure:
         with _guard():
@@ -149,27 +159,36 @@ def run(
         raise typer.Exit(1)
 
 
-def _plot(ds, png: Path, record: str | None) -> Path:
+def _plot(ds, png: Path, record: str | None, p=None) -> Path:
+    def stage(k, text):
+        if p is not None:
+            p.update(k, info=text)
+
+    stage(1, "loading matplotlib (its first use builds a font cache: a minute or more)")
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     if "im" in ds.dims:
+        stage(2, "fitting the fragility curves and drawing")
         from murus.studies.fragility import plot_fragility
 
         ax = plot_fragility(ds)
     else:
+        stage(2, "drawing the rocking spectrum")
         from murus.studies.spectrum import plot_rocking_spectrum
 
         if record is not None and record not in [str(r) for r in ds["record"].values]:
             raise ValueError(f"record {record!r} is not in the result")
         ax = plot_rocking_spectrum(ds, record=record)
+    stage(3, f"writing {png}")
     png.parent.mkdir(parents=True, exist_ok=True)
     tmp = png.with_name(f".{png.stem}.tmp{png.suffix or '.png'}")
     ax.figure.savefig(tmp, dpi=120)
     plt.close(ax.figure)
     tmp.replace(png)
+    stage(4, f"wrote {png}")
     return png
 
 
@@ -179,15 +198,19 @@ def plot(
     out: Path | None = typer.Option(None, "--out", "-o", help="PNG file (default: next to "
                                     "the result)."),
     record: str | None = typer.Option(None, "--record", help="One record of a spectrum."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress."),
 ) -> None:
     """Plot a result: a rocking spectrum, or fragility curves when the sweep has 'im'."""
-    with _guard():
+    from murus.progress import progress
+
+    with _guard(), progress(4, "study plot", unit="steps", quiet=quiet) as p:
+        p.update(0, info=f"reading {result}")
         from murus.studies.sweep import open_result
 
         path = result / "result.nc" if result.is_dir() else result
         ds = open_result(path)
         png = out if out is not None else path.with_suffix(".png")
-        _plot(ds, png, record)
+        _plot(ds, png, record, p)
     typer.echo(f"figure: {png}")
 
 

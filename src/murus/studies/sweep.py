@@ -488,6 +488,7 @@ def run_tasks(
     done: int = 0,
     hook: Callable | None = None,
     window: int | None = None,
+    grace: float = 0.5,
 ) -> dict[int, dict]:
     """Run ``fn(payload)`` for every ``(index, payload)`` of ``tasks`` on an executor, with
     retries, a bounded window of tasks in flight and progress: the engine of :func:`run_plan`,
@@ -505,9 +506,12 @@ def run_tasks(
         As for :func:`run_plan` (``hook(index)`` runs in the worker before the task).
 
     Returns the tasks that failed after their retries, ``{index: {"error", "attempts"}}``; the
-    others go on. ``KeyboardInterrupt`` and ``SystemExit`` are not retried: they stop the run;
-    the tasks running then are waited for (when the executor is opened here) and stored with
-    those that had finished, the queued ones are dropped.
+    others go on. ``KeyboardInterrupt`` (Ctrl-C: SIGINT raises it in this process while the
+    run lasts, whatever a task installs, e.g. the DEM engine) and ``SystemExit`` are not
+    retried: they stop the run within about a second. The tasks that finish within ``grace``
+    seconds are stored with those that had finished; the others running then are abandoned
+    (the workers of a process pool are killed, a Dask cluster opened here is closed), the
+    queued ones dropped; then the exception propagates.
     """
     from murus.studies.executors import ExecutorHandle, is_broken_pool, open_executor
 
@@ -522,6 +526,7 @@ def run_tasks(
         return failures
     handle = executor if isinstance(executor, ExecutorHandle) else open_executor(
         executor, workers, scheduler)
+    old_sigint = _raise_on_sigint()
     try:
         attempts: dict[int, int] = {}
         payloads: dict[int, object] = {}
@@ -579,18 +584,58 @@ def run_tasks(
                 queue.extendleft(reversed(retry))
                 fill()
         except (KeyboardInterrupt, SystemExit):
-            # interrupted: the queued tasks are cancelled, those running finish (an executor
-            # of ours is closed first, which waits for them), the finished ones are stored
-            if handle is not executor:
-                handle.close()
-            for f in sorted(pending, key=lambda f: pending[f]):
-                if f.done() and not f.cancelled() and f.exception() is None:
-                    on_result(pending[f], f.result())
+            # interrupted: a second Ctrl-C cannot cut the storing of the finished tasks; the
+            # tasks that finish within the grace time are kept, the others abandoned
+            _ignore_sigint()
+            running = [f for f in pending if not f.done()]
+            if running and grace > 0:
+                wait(running, timeout=grace)
+            finished = {f: pending[f] for f in pending if f.done()}
+            handle.abort()
+            for f in sorted(finished, key=lambda f: finished[f]):
+                if not f.cancelled() and f.exception() is None:
+                    on_result(finished[f], f.result())
             raise
     finally:
+        _restore_sigint(old_sigint)
         if handle is not executor:
             handle.close()
     return failures
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
+def _raise_on_sigint():
+    """Make SIGINT raise KeyboardInterrupt in this process (main thread only) with a handler
+    of our own, so that a task run here (serial executor) cannot catch it (the DEM engine
+    leaves a non-default handler alone); returns the previous handler (or a marker)."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return _NOT_SET
+    return signal.signal(signal.SIGINT, _interrupt)
+
+
+def _ignore_sigint():
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _restore_sigint(old):
+    import signal
+    import threading
+
+    if old is not _NOT_SET and threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, old if old is not None else signal.default_int_handler)
+
+
+_NOT_SET = object()
 
 
 # ----------------------------------------------------------------------------- runner ----
