@@ -51,7 +51,7 @@ from murus.studies.records import RecordSet
 
 __all__ = ["Dim", "Point", "Plan", "ChunkTask", "run_chunk", "run_plan", "run_tasks",
            "study_status", "prepare_folder", "check_folder", "write_json", "write_checksum",
-           "check_file", "file_sha256", "task_file_state",
+           "check_file", "file_sha256", "task_file_state", "is_interrupt",
            "StudyError", "write_netcdf", "open_result", "SUMMARY_VARS"]
 
 FORMAT_VERSION = 1
@@ -560,6 +560,8 @@ def run_tasks(
                     except BaseException as exc:  # noqa: BLE001 - recorded, then retried
                         if isinstance(exc, KeyboardInterrupt | SystemExit):
                             raise
+                        if is_interrupt(exc):  # Ctrl-C inside a numba kernel (SystemError)
+                            raise KeyboardInterrupt from exc
                         broken = broken or is_broken_pool(exc)
                         if attempts[i] <= retries:
                             retry.append((i, payloads[i]))
@@ -601,6 +603,21 @@ def run_tasks(
         if handle is not executor:
             handle.close()
     return failures
+
+
+def is_interrupt(exc: BaseException) -> bool:
+    """Whether ``exc`` is a Ctrl-C: a ``KeyboardInterrupt``, or an exception caused by one. A
+    SIGINT that arrives while a numba kernel runs raises ``KeyboardInterrupt`` when the kernel
+    next calls into Python (e.g. numba's ``_numba_unpickle``), and numba turns it into a
+    ``SystemError`` ("returned a result with an exception set") whose cause is the
+    ``KeyboardInterrupt``: retried as an ordinary failure, the Ctrl-C was lost."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
 
 
 def _interrupt(signum, frame):
