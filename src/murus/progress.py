@@ -127,6 +127,17 @@ class Progress:
             except Exception:  # noqa: BLE001
                 pass
 
+    def stage(self, info: str, total: float | None = None) -> None:
+        """Start a new stage of the work: ``done`` back to 0, a new ``total`` (``None``:
+        unknown) and ``info`` saying what is being done."""
+        self.total = total
+        self.update(0, info=info)
+        if self._task is not None and total is None:
+            try:
+                _RICH["progress"].update(self._task, total=None)
+            except Exception:  # noqa: BLE001
+                pass
+
     @property
     def elapsed(self) -> float:
         """Seconds since the block started."""

@@ -502,7 +502,8 @@ class _FileReporter:
 
 def running_cases(out) -> str:
     """What the cases running in the study folder ``out`` are doing (from their progress
-    files): ``"S2_5Hz_none: DEM run 1.2/2 s (40 %)"``, joined by ``"; "`` ("" if none)."""
+    files): ``"S2_5Hz_none: DEM run 1.2/2 s (40 %)"`` (``"...: running for 3.1s"`` until the
+    run reports), joined by ``"; "`` ("" if none)."""
     from murus.progress import format_seconds
 
     parts = []
@@ -518,7 +519,7 @@ def running_cases(out) -> str:
             what += f" {done:.3g}/{total:.3g} ({100 * min(1.0, done / total):.0f} %)"
         if d.get("info"):
             what += f", {d['info']}"
-        parts.append(f"{name}: {what} ({format_seconds(time_since(f))} ago)"
+        parts.append(f"{name}: running for {format_seconds(time_since(f))}"
                      if what == "starting" else f"{name}: {what}")
     return "; ".join(parts)
 

@@ -160,35 +160,42 @@ def run(
 
 
 def _plot(ds, png: Path, record: str | None, p=None) -> Path:
-    def stage(k, text):
-        if p is not None:
-            p.update(k, info=text)
+    def stage(text, done=None, total=None):
+        if p is None:
+            return
+        if done is None:
+            p.stage(text)
+        else:
+            p.update(done, total=total, info=text)
 
-    stage(1, "loading matplotlib (its first use builds a font cache: a minute or more)")
+    stage("loading matplotlib (its first use builds a font cache)")
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     if "im" in ds.dims:
-        stage(2, "fitting the fragility curves and drawing")
         from murus.studies.fragility import plot_fragility
 
-        ax = plot_fragility(ds)
+        def fits(done, total):
+            stage("fitting the fragility curves (each with a bootstrap of 200 fits)", done,
+                  total)
+
+        ax = plot_fragility(ds, progress=fits)
     else:
-        stage(2, "drawing the rocking spectrum")
+        stage("drawing the rocking spectrum")
         from murus.studies.spectrum import plot_rocking_spectrum
 
         if record is not None and record not in [str(r) for r in ds["record"].values]:
             raise ValueError(f"record {record!r} is not in the result")
         ax = plot_rocking_spectrum(ds, record=record)
-    stage(3, f"writing {png}")
+    stage(f"writing {png}")
     png.parent.mkdir(parents=True, exist_ok=True)
     tmp = png.with_name(f".{png.stem}.tmp{png.suffix or '.png'}")
     ax.figure.savefig(tmp, dpi=120)
     plt.close(ax.figure)
     tmp.replace(png)
-    stage(4, f"wrote {png}")
+    stage(f"wrote {png}")
     return png
 
 
@@ -203,8 +210,8 @@ def plot(
     """Plot a result: a rocking spectrum, or fragility curves when the sweep has 'im'."""
     from murus.progress import progress
 
-    with _guard(), progress(4, "study plot", unit="steps", quiet=quiet) as p:
-        p.update(0, info=f"reading {result}")
+    with _guard(), progress(None, "study plot", quiet=quiet) as p:
+        p.stage(f"reading {result}")
         from murus.studies.sweep import open_result
 
         path = result / "result.nc" if result.is_dir() else result
