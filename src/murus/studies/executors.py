@@ -123,6 +123,7 @@ class ExecutorHandle:
         self.scheduler = scheduler
         self._client = None
         self._cluster = None
+        self._worker_pids: list[int] = []
         self.executor: Executor
         if kind == "serial":
             self.workers = 1
@@ -165,6 +166,7 @@ class ExecutorHandle:
                 env={"NUMBA_NUM_THREADS": "1", "MURUS_PARENT_PID": str(os.getpid())})
             self._client = Client(self._cluster)
             self.scheduler = "local"
+            self._worker_pids = list(self._client.run(os.getpid).values())
         else:
             try:
                 self._client = Client(scheduler, timeout=f"{self.timeout}s")
@@ -199,6 +201,12 @@ class ExecutorHandle:
                 p.join(timeout=1.0)
             self._aborted = True
         elif self.kind == "dask":
+            if self._cluster is not None:  # our workers: killed, not waited for
+                for pid in self._worker_pids:
+                    try:
+                        os.kill(pid, signal.SIGKILL)
+                    except OSError:
+                        pass
             try:
                 self.executor.shutdown(wait=False)
             except Exception:  # noqa: BLE001 - closing anyway
