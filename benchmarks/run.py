@@ -27,6 +27,7 @@ RUNS = [
     ("bench_studies.py", "RESULTS_studies.md"),
     ("bench_dem.py", "RESULTS_dem.md"),
     ("bench_retaining.py", "RESULTS_retaining.md"),
+    ("bench_interrupt.py", "RESULTS_interrupt.md"),
 ]
 
 
