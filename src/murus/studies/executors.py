@@ -79,11 +79,16 @@ def watch_parent(parent: int | None = None, interval: float = 0.5) -> None:
     threading.Thread(target=loop, daemon=True, name="murus-watch-parent").start()
 
 
+def _no_interrupt(signum, frame) -> None:
+    """SIGINT handler of the pool's workers: nothing (a Python function rather than SIG_IGN, so
+    that the DEM engine sees a handler of a caller and does not catch Ctrl-C itself)."""
+
+
 def _pool_worker_init(threads: int | None, parent: int) -> None:
     """Initializer of the pool's workers: ignore SIGINT (the main process handles Ctrl-C),
     exit with the parent, limit numba's threads."""
     try:
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGINT, _no_interrupt)
     except ValueError:  # not the main thread
         pass
     watch_parent(parent)
