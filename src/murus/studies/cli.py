@@ -120,16 +120,20 @@ def run(
     """Run a study: writes OUT/study.json, OUT/chunks/*.npz, OUT/result.nc (resumable)."""
     with _guard():
         kind, scheduler = executor_choice(executor, serial, dask, scheduler)
-    with _guard():
-        from murus.studies.study import load_study
-        from murus.studies.sweep import run_plan
+    try:
+        with _guard():
+            from murus.studies.study import load_study
+            from murus.studies.sweep import run_plan
 
-        st = load_study(study)
-        if retries is not None:
-            st.retries = retries
-        plan = st.plan()
-        folder = out if out is not None else Path(st.output) if st.output else \
-            study.parent / study.stem
+            st = load_study(study)
+            if retries is not None:
+                st.retries = retries
+            plan = st.plan()
+            folder = out if out is not None else Path(st.output) if st.output else \
+                study.parent / study.stem
+    except KeyboardInterrupt:
+        typer.echo("\ninterrupted while reading the study; nothing was written", err=True)
+        raise typer.Exit(130) from None
     typer.echo(f"{st.name}: {plan.n_histories:,} histories ({len(plan.points)} grid nodes x "
                f"{plan.n_records} records) in {len(plan.chunks())} chunks -> {folder}")
     resume = resume_command("study", "run", study, "--out", folder)
@@ -149,8 +153,15 @@ def run(
         interrupted(folder, resume)
     n_failed = int(ds.attrs.get("n_failed_chunks", 0))
     if st.figure:
-        with _guard():
-            _plot(ds, folder / st.figure, None)
+        try:
+            with _guard():
+                _plot(ds, folder / st.figure, None)
+        except KeyboardInterrupt:
+            typer.echo(f"\ninterrupted while drawing the figure; the result is complete in "
+                       f"{folder / 'result.nc'}; draw it with: "
+                       f"{resume_command('study', 'plot', folder, '--out', folder / st.figure)}",
+                       err=True)
+            raise typer.Exit(130) from None
     typer.echo(f"result: {folder / 'result.nc'}")
     if n_failed:
         typer.echo(f"warning: {n_failed} chunks failed (their cases are NaN; errors in "
@@ -192,9 +203,12 @@ def _plot(ds, png: Path, record: str | None, p=None) -> Path:
     stage(f"writing {png}")
     png.parent.mkdir(parents=True, exist_ok=True)
     tmp = png.with_name(f".{png.stem}.tmp{png.suffix or '.png'}")
-    ax.figure.savefig(tmp, dpi=120)
-    plt.close(ax.figure)
-    tmp.replace(png)
+    try:
+        ax.figure.savefig(tmp, dpi=120)
+        plt.close(ax.figure)
+        tmp.replace(png)
+    finally:
+        tmp.unlink(missing_ok=True)  # interrupted: no partial file left
     stage(f"wrote {png}")
     return png
 
@@ -210,14 +224,18 @@ def plot(
     """Plot a result: a rocking spectrum, or fragility curves when the sweep has 'im'."""
     from murus.progress import progress
 
-    with _guard(), progress(None, "study plot", quiet=quiet) as p:
-        p.stage(f"reading {result}")
-        from murus.studies.sweep import open_result
+    try:
+        with _guard(), progress(None, "study plot", quiet=quiet) as p:
+            p.stage(f"reading {result}")
+            from murus.studies.sweep import open_result
 
-        path = result / "result.nc" if result.is_dir() else result
-        ds = open_result(path)
-        png = out if out is not None else path.with_suffix(".png")
-        _plot(ds, png, record, p)
+            path = result / "result.nc" if result.is_dir() else result
+            ds = open_result(path)
+            png = out if out is not None else path.with_suffix(".png")
+            _plot(ds, png, record, p)
+    except KeyboardInterrupt:
+        typer.echo("\ninterrupted; no figure written", err=True)
+        raise typer.Exit(130) from None
     typer.echo(f"figure: {png}")
 
 
