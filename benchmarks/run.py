@@ -28,6 +28,7 @@ RUNS = [
     ("bench_dem.py", "RESULTS_dem.md"),
     ("bench_retaining.py", "RESULTS_retaining.md"),
     ("bench_threads.py", "RESULTS_threads.md"),
+    ("bench_interrupt.py", "RESULTS_interrupt.md"),
 ]
 
 

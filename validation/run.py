@@ -20,7 +20,17 @@ their tolerances, by the test suite (`make test`).
 """
 
 
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
 def main() -> None:
+    import signal
+    import time
+
+    from murus.progress import format_seconds, progress
+    from murus.studies.sweep import is_interrupt
+
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", default=str(ROOT / "VALIDATION.md"))
     args = ap.parse_args()
@@ -31,6 +41,9 @@ def main() -> None:
     except OutputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         raise SystemExit(2) from None
+    # Ctrl-C stops everything (a handler of ours: the DEM engine then does not catch it to end
+    # a run early, which would cache a truncated run)
+    signal.signal(signal.SIGINT, _interrupt)
     import eurocode
     import identify
     import motion
@@ -44,14 +57,35 @@ def main() -> None:
     import studies
     import winkler
 
-    parts = [HEADER, rocking.section(), restrained.section(), seed000_model.section(),
-             winkler.run(ROOT / "docs" / "figures" / "winkler"), motion.section(),
-             eurocode.section(), retaining_pseudostatic.section(), retaining_dynamic.section(),
-             retaining_behaviour.section(),
-             retaining_backfill.section(), studies.section(),
-             identify.section()]
+    sections = [("rocking", rocking.section), ("restrained", restrained.section),
+                ("seed000_model", seed000_model.section),
+                ("winkler", lambda: winkler.run(ROOT / "docs" / "figures" / "winkler")),
+                ("motion", motion.section), ("eurocode", eurocode.section),
+                ("retaining_pseudostatic", retaining_pseudostatic.section),
+                ("retaining_dynamic", retaining_dynamic.section),
+                ("retaining_behaviour", retaining_behaviour.section),
+                ("retaining_backfill", retaining_backfill.section),
+                ("studies", studies.section), ("identify", identify.section)]
+    parts = [HEADER]
+    t0 = time.monotonic()
+    name = sections[0][0]
+    try:
+        try:
+            for k, (name, fn) in enumerate(sections, start=1):
+                with progress(None, f"validate {k}/{len(sections)} {name}"):
+                    parts.append(fn())
+        except Exception as exc:
+            if is_interrupt(exc):  # Ctrl-C inside a numba kernel: a SystemError
+                raise KeyboardInterrupt from exc
+            raise
+    except KeyboardInterrupt:
+        print(f"\ninterrupted in section {name} after {format_seconds(time.monotonic() - t0)}"
+              f" ({args.out} not written; the finished long runs are cached under "
+              f"validation/results); resume with: make validate", file=sys.stderr, flush=True)
+        raise SystemExit(130) from None
     write_text(args.out, "\n".join(parts))
-    print(f"wrote {args.out}")
+    print(f"wrote {args.out} ({len(sections)} sections in "
+          f"{format_seconds(time.monotonic() - t0)})")
 
 
 if __name__ == "__main__":

@@ -1,5 +1,7 @@
 """Cached long runs of the validation scripts: one JSON record per run under a cache folder,
-computed only when missing (or with ``recompute``), on ``jobs`` processes of one numba thread."""
+computed only when missing or unreadable (or with ``recompute``), on ``jobs`` processes of one
+numba thread, with progress (murus.progress) and a clean stop on Ctrl-C: the runs finished are
+kept (the next ``make validate`` resumes from them), the runs in progress abandoned."""
 
 from __future__ import annotations
 
@@ -10,23 +12,37 @@ from collections.abc import Callable
 from pathlib import Path
 
 
+def _readable(path: Path) -> bool:
+    try:
+        json.loads(path.read_text())
+    except (OSError, ValueError):
+        return False
+    return True
+
+
 def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool = False,
            jobs: int = 1) -> dict[str, dict]:
     """The records ``cache/KEY.json`` of ``keys``; ``compute(key)`` (a module-level function
-    that writes that file) runs for the missing ones (all of them with ``recompute``)."""
-    todo = [k for k in keys if recompute or not (cache / f"{k}.json").exists()]
+    that writes that file) runs for the missing or unreadable ones (all of them with
+    ``recompute``). A run that raises is reported after the others finished
+    (``RuntimeError``); Ctrl-C raises ``KeyboardInterrupt`` within about a second."""
+    todo = [k for k in keys if recompute or not _readable(cache / f"{k}.json")]
     if todo:
         os.environ.setdefault("NUMBA_NUM_THREADS", "1")
-        if jobs > 1 and len(todo) > 1:
-            from concurrent.futures import ProcessPoolExecutor
+        from murus.progress import progress
+        from murus.studies.sweep import run_tasks
 
-            with ProcessPoolExecutor(jobs) as ex:
-                for k, _ in zip(todo, ex.map(compute, todo), strict=True):
-                    print(f"  computed {k}", file=sys.stderr)
-        else:
-            for k in todo:
-                compute(k)
-                print(f"  computed {k}", file=sys.stderr)
+        kind = "process" if jobs > 1 and len(todo) > 1 else "serial"
+        with progress(len(todo), f"  runs in {cache.name}", unit="runs") as p:
+            def done(i, _res):
+                print(f"  computed {todo[i]}", file=sys.stderr, flush=True)
+                p.advance()
+
+            fails = run_tasks(compute, list(enumerate(todo)), kind, workers=jobs, retries=0,
+                              on_result=done)
+        if fails:
+            raise RuntimeError("validation runs failed: " + "; ".join(
+                f"{todo[i]}: {f['error']}" for i, f in sorted(fails.items())))
     return {k: json.loads((cache / f"{k}.json").read_text()) for k in keys}
 
 

@@ -158,6 +158,38 @@ def test_damaged_case_recomputed_and_other_study_refused(fake, tmp_path):
         run_behaviour_study(small(ratios=(0.6,)), "serial", out=out)
 
 
+def test_truncated_and_corrupt_case_files_reported_and_recomputed(fake, tmp_path):
+    """Item 4 of issue 15 for the behaviour-factor study: a truncated history and a flipped
+    byte in a snapshot are found by their checksums (status: damaged, naming the file); the
+    resume recomputes those cases and gives the files and table of an uninterrupted run."""
+    st = small()
+    clean = tmp_path / "clean"
+    run_behaviour_study(st, "serial", out=clean)
+    out = tmp_path / "s"
+    run_behaviour_study(st, "serial", out=out)
+    cases = out / "cases"
+    rec = json.loads((cases / "S2_5Hz_none.json").read_text())
+    assert set(rec["sha256"]) == {"S2_5Hz_none.csv", "S2_5Hz_none.npz"}
+    assert (cases / "S2_5Hz_none.json.sha256").exists()
+    h = cases / "S2_3Hz_none.csv"
+    h.write_bytes(h.read_bytes()[:-30])  # truncated history
+    z = cases / "S1_5Hz_none_0.7.npz"
+    data = bytearray(z.read_bytes())
+    data[len(data) // 2] ^= 0x01  # one byte flipped in the snapshot
+    z.write_bytes(bytes(data))
+    s = study_status(out)
+    assert sorted(s["damaged"]) == [0, 5] and s["done"] == [1, 2, 3, 4]
+    assert "S2_3Hz_none.csv: checksum mismatch" in s["damaged"][0]
+    assert "S1_5Hz_none_0.7.npz" in s["damaged"][5]
+    n = len(fake.calls)
+    run_behaviour_study(st, "serial", out=out)
+    assert sorted(c[:2] for c in fake.calls[n:]) == [("S1", 5.0), ("S2", 3.0)]
+    assert study_status(out)["complete"]
+    assert files(out) == files(clean)
+    for name in ("behaviour_factor.csv", "behaviour_factor.md"):
+        assert (out / name).read_bytes() == (clean / name).read_bytes()
+
+
 def test_no_collapse_skips_checks_and_failures_are_recorded(fake, tmp_path):
     st = small(frequencies=(5.0, 200.0))
     out = tmp_path / "s"
@@ -312,6 +344,59 @@ def test_resume_of_a_real_run_after_deleting_a_case(serial_run, tmp_path):
                                               else "stable")
     assert (out / "behaviour_factor.md").read_bytes() == \
         (serial_run / "behaviour_factor.md").read_bytes()  # the stored run times
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
+@pytest.mark.parametrize("executor", [[], ["--workers", "2"]])
+def test_ctrl_c_exits_130_and_the_resume_completes(serial_run, tmp_path, executor):
+    """Issue 15 item 3: SIGINT to the process group of `murus retaining behaviour-factor`
+    (serial: the DEM run in the main process; a pool of 2: the two S1 runs in the workers)
+    once the S2 run is stored: exit code 130, the S2 case kept, the resume command in
+    command-line form; before, the DEM engine caught SIGINT and the study ran on to the end.
+    The resume computes the S1 checks and gives the files of an uninterrupted run."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from murus.cli import app
+
+    out = tmp_path / "out"
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path), NUMBA_NUM_THREADS="1")
+    p = subprocess.Popen([sys.executable, "-c", "from murus.cli import app; app()",
+                          "retaining", "behaviour-factor",
+                          str(EXAMPLE), "--out", str(out), *executor],
+                         env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    try:
+        end = time.monotonic() + 300
+        while not (out / "cases" / "S2_5Hz_none.json.sha256").exists():
+            assert p.poll() is None and time.monotonic() < end, p.communicate()
+            time.sleep(0.02)
+        os.killpg(p.pid, signal.SIGINT)
+        _, err = p.communicate(timeout=60)
+    finally:
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+    assert p.returncode == 130, err
+    s = study_status(out)
+    assert s["done"] == [0] and not s["damaged"] and not s["result"]
+    assert "interrupted after 1 of 3 cases" in err
+    assert f"resume with: murus retaining behaviour-factor {EXAMPLE} --out {out}" in err
+    assert "Traceback" not in err
+    res = CliRunner().invoke(app, ["retaining", "behaviour-factor", str(EXAMPLE), "--out",
+                                   str(out), "--quiet", "--no-snapshots"])
+    assert res.exit_code == 0, res.output
+    for p_ in sorted((serial_run / "cases").glob("*.json")):
+        a = json.loads(p_.read_text())
+        b = json.loads((out / "cases" / p_.name).read_text())
+        a["summary"].pop("wall_time"), b["summary"].pop("wall_time")
+        assert a == b
+        h = p_.with_suffix(".csv").name
+        assert (out / "cases" / h).read_bytes() == (serial_run / "cases" / h).read_bytes()
+    assert not list((out / "cases").glob(".*"))  # no progress or temporary file left
 
 
 def test_discrete_backfill_options_reach_collapse_run():

@@ -61,7 +61,7 @@ def test_example_runs_resumes_and_plots(tmp_path):
     assert (out / "spectrum.png").exists()
     assert json.loads((out / "study.json").read_text())["name"] == "seed002_spectrum_block2"
     r = runner.invoke(app, ["status", str(out)])
-    assert r.exit_code == 0 and "2/2 chunks done, 0 missing, 0 failed" in r.output
+    assert r.exit_code == 0 and "2/2 chunks done, 0 missing, 0 damaged, 0 failed" in r.output
     (out / "chunks" / "c00001.npz").unlink()
     r = runner.invoke(app, ["status", str(out)])
     assert "1/2 chunks done, 1 missing" in r.output

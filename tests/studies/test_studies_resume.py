@@ -98,3 +98,70 @@ def test_netcdf_round_trip(plan, clean, tmp_path):
     study = json.loads(back.attrs["study"])
     assert study["sweep"]["motion.scale"] == [0.6, 1.0]
     assert study["case"]["restraint"]["transverse_walls"]["stiffness"] == "eq11"
+
+
+def _flip(path, at=None):
+    data = bytearray(path.read_bytes())
+    i = len(data) // 2 if at is None else at
+    data[i] ^= 0x01
+    path.write_bytes(bytes(data))
+
+
+def test_damaged_chunks_reported_and_recomputed(plan, clean, tmp_path):
+    """Item 4 of issue 15: a truncated chunk and one with a flipped byte are reported as
+    damaged by the status (not done), and a resume recomputes exactly them, giving the
+    Dataset of an uninterrupted run (a truncated npz used to crash the resume)."""
+    from murus.studies.sweep import check_file
+
+    out = tmp_path / "study"
+    run_plan(plan, "serial", out=out)
+    for p in sorted((out / "chunks").glob("*.npz")):  # each chunk carries its checksum
+        assert check_file(p) is None
+        assert p.with_name(p.name + ".sha256").read_text().split()[1] == p.name
+    c1, c4 = out / "chunks" / "c00001.npz", out / "chunks" / "c00004.npz"
+    c1.write_bytes(c1.read_bytes()[: c1.stat().st_size // 2])  # truncated
+    _flip(c4)  # one byte flipped inside the archive
+    st = study_status(out)
+    assert sorted(st["damaged"]) == [1, 4] and st["done"] == [0, 2, 3, 5]
+    assert not st["complete"] and not st["missing"]
+    assert "checksum" in st["damaged"][1] and st["paths"][4] == "chunks/c00004.npz"
+    marks = tmp_path / "marks"
+    marks.mkdir()
+    ds = run_plan(plan, "serial", out=out, hook=Touch(str(marks)))
+    assert ran(marks) == [1, 4]
+    xr.testing.assert_identical(ds, clean)
+    st = study_status(out)
+    assert st["complete"] and not st["damaged"]
+
+
+def test_status_cli_names_damaged_chunks(plan, tmp_path):
+    from typer.testing import CliRunner
+
+    from murus.studies.cli import app
+
+    out = tmp_path / "study"
+    run_plan(plan, "serial", out=out)
+    c2 = out / "chunks" / "c00002.npz"
+    c2.write_bytes(c2.read_bytes()[:100])
+    r = CliRunner().invoke(app, ["status", str(out)])
+    assert r.exit_code == 0
+    assert "5/6 chunks done, 0 missing, 1 damaged" in r.output
+    assert "damaged chunk 2 (chunks/c00002.npz): checksum mismatch" in r.output
+
+
+def test_chunks_of_older_folders_without_checksum(plan, clean, tmp_path):
+    """A folder written before the checksums: a chunk that reads back counts as done, a
+    truncated one as damaged, and the resume recomputes only that one."""
+    out = tmp_path / "study"
+    run_plan(plan, "serial", out=out)
+    for p in (out / "chunks").glob("*.sha256"):
+        p.unlink()
+    c3 = out / "chunks" / "c00003.npz"
+    c3.write_bytes(c3.read_bytes()[:-40])
+    st = study_status(out)
+    assert list(st["damaged"]) == [3] and len(st["done"]) == 5
+    marks = tmp_path / "marks"
+    marks.mkdir()
+    ds = run_plan(plan, "serial", out=out, hook=Touch(str(marks)))
+    assert ran(marks) == [3]
+    xr.testing.assert_identical(ds, clean)

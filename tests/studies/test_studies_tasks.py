@@ -98,15 +98,35 @@ def test_folder_with_task_files(tmp_path):
 
 
 
-def test_interrupt_keeps_the_tasks_running_then():
+def test_interrupt_keeps_finished_tasks_and_abandons_long_ones():
     import time
 
     got = {}
-    # task 1 is interrupted at once while task 0 (another worker) is still running: the run
-    # stops, but task 0 is waited for and stored (the queued task 2 is dropped, unless a slow
-    # start of the second worker let it run first)
+    # task 2 is interrupted at once while task 0 (0.2 s) and task 1 (60 s) run on the other
+    # workers: task 0 finishes within the grace time and is stored, task 1 is abandoned (its
+    # worker killed: with the old rule of waiting for it, it would have been stored), the
+    # queued task 3 is dropped (unless task 0 finished before task 2 failed: then it ran on the
+    # worker freed by task 0, within the grace time, and is stored too)
     with pytest.raises(KeyboardInterrupt):
-        run_tasks(time.sleep, [(0, 1.0), (1, 0.0), (2, 0.0)], "process", workers=2,
-                  window=2, on_result=lambda i, r: got.__setitem__(i, r),
-                  hook=Interrupt(1))
-    assert got.get(0, 1) is None and 1 not in got
+        run_tasks(time.sleep, [(0, 0.2), (1, 60.0), (2, 0.0), (3, 0.0)], "process",
+                  workers=3, window=3, on_result=lambda i, r: got.__setitem__(i, r),
+                  hook=Interrupt(2), grace=3.0)
+    assert got.get(0, 1) is None and 1 not in got and 2 not in got
+
+
+def _numba_like(x):
+    """A Ctrl-C that arrives inside a numba kernel comes out as a SystemError caused by the
+    KeyboardInterrupt (numba's "returned a result with an exception set")."""
+    try:
+        raise KeyboardInterrupt
+    except KeyboardInterrupt as exc:
+        raise SystemError("CPUDispatcher(run_chunk) returned a result with an exception "
+                          "set") from exc
+
+
+def test_interrupt_wrapped_by_numba_stops_the_run():
+    got = {}
+    with pytest.raises(KeyboardInterrupt):  # not retried as an ordinary failure
+        run_tasks(_numba_like, [(0, 1), (1, 2)], "serial", retries=2,
+                  on_result=lambda i, r: got.__setitem__(i, r))
+    assert got == {}

@@ -493,15 +493,24 @@ def _chunk(m, n: int, moving: bool) -> None:
     m.snap_time = m.time - m.dt
 
 
+def _own_handler(h) -> bool:
+    """Whether the SIGINT handler ``h`` is a caller's (a Python function other than the
+    default one; SIG_IGN and SIG_DFL are not functions)."""
+    return callable(h) and h is not signal.default_int_handler
+
+
 class _SigInt:
-    """Turn Ctrl-C into a flag checked between chunks (main thread only)."""
+    """Turn Ctrl-C into a flag checked between chunks (main thread only), unless a caller has
+    set a SIGINT handler of its own (a study that stops as a whole, its workers): then this
+    leaves it alone and Ctrl-C does what the caller decided."""
 
     def __init__(self):
         self.hit = False
         self.old = None
 
     def __enter__(self):
-        if threading.current_thread() is threading.main_thread():
+        if (threading.current_thread() is threading.main_thread()
+                and not _own_handler(signal.getsignal(signal.SIGINT))):
             self.old = signal.signal(signal.SIGINT, self._handler)
         return self
 

@@ -450,26 +450,23 @@ def behaviour_factor_cmd(
     n = len(st.tasks())
     typer.echo(f"{st.name}: {st.wall.name}, {len(st.cases)} S2 runs and "
                f"{n - len(st.cases)} S1 checks -> {folder}")
-    from murus.retaining.study import run_behaviour_study, write_snapshots
+    from murus.retaining.study import run_behaviour_study, running_cases, write_snapshots
+    from murus.studies.cli import interrupted, resume_command
 
     run = dict(workers=n_workers, scheduler=sched, out=folder)
+    resume = resume_command("retaining", "behaviour-factor", *(
+        [case] if case is not None else [w for k in given for w in (k, legacy[k])]),
+        "--out", folder)
     try:
-        # the executor is opened (and closed) by the run: on Ctrl-C the cases running finish
-        # and are stored with the others before it stops
+        # the executor is opened (and closed) by the run: on Ctrl-C the finished cases are
+        # kept, the runs in progress abandoned
         with guard(*errors, first_line=True):
-            if quiet:
-                res = run_behaviour_study(st, kind, **run)
-            else:
-                prog, cb = progress_bar("cases", st.name)
-                with prog:
-                    res = run_behaviour_study(st, kind, progress=cb, **run)
+            prog, cb = progress_bar("cases", st.name, quiet=quiet,
+                                    poll=lambda: running_cases(folder))
+            with prog:
+                res = run_behaviour_study(st, kind, progress=cb, **run)
     except KeyboardInterrupt:
-        from murus.studies.sweep import study_status
-
-        s = study_status(folder)
-        typer.echo(f"interrupted: {len(s['done'])}/{s['total']} cases stored in {folder}; run "
-                   "the same command again to compute the others", err=True)
-        raise typer.Exit(130) from None
+        interrupted(folder, resume)
     if not no_snapshots:
         with guard(*errors, first_line=True):
             write_snapshots(folder)

@@ -16,19 +16,21 @@ Study folder (``out``)::
 
     out/
       study.json                     the resolved study, its digest, the case files (first)
-      cases/S2_5Hz_none.json         summary of one run (t_col, A_col, A_pseudo, ...), written
-      cases/S2_5Hz_none.csv          last: its presence marks the case done; its d_top history
+      cases/S2_5Hz_none.json         summary of one run (t_col, A_col, A_pseudo, ...) and the
+      cases/S2_5Hz_none.json.sha256  SHA-256 of the other files, written last, then its own
+      cases/S2_5Hz_none.csv          checksum: a case is done when all match; its d_top history
       cases/S2_5Hz_none.npz          (t, d_top, acc, acc_v, kh, kv) and the blocks at the end
       cases/S1_5Hz_none_0.6.json     of the run (snapshot data; PNGs by write_snapshots)
       ...
       failures.json                  cases that failed after their retries
       behaviour_factor.csv, .md      the table (seed 001 Tables 7-8 layout), when the run ends
 
-Re-running the same study with the same ``out`` computes only the cases without a valid file
-(missing, damaged, or of other inputs) and gives the same table, byte for byte (the table is
-always assembled from the stored summaries, the run times included); a folder holding another
-study is refused, as for :func:`murus.studies.sweep.run_plan`. Interrupting a run (Ctrl-C)
-loses no finished case. ``murus study status OUT`` shows the cases done, missing and failed.
+Re-running the same study with the same ``out`` computes only the cases without valid files
+(missing, truncated or corrupt, or of other inputs) and gives the same table, byte for byte
+(the table is always assembled from the stored summaries, the run times included); a folder
+holding another study is refused, as for :func:`murus.studies.sweep.run_plan`. Interrupting a
+run (Ctrl-C) loses no finished case. ``murus study status OUT`` shows the cases done, missing,
+damaged and failed.
 
 Case file (TOML, ``examples/retaining/``)::
 
@@ -91,7 +93,8 @@ from murus.retaining.collapse import (
 from murus.retaining.geometry import GeometryError, RetainingWall
 
 __all__ = ["BehaviourStudy", "BehaviourStudyResult", "CaseTask", "load_behaviour_study",
-           "behaviour_study", "run_behaviour_study", "run_case", "write_snapshots",
+           "behaviour_study", "run_behaviour_study", "run_case", "running_cases",
+           "write_snapshots",
            "STUDY_FORMAT"]
 
 STUDY_FORMAT = 1
@@ -448,14 +451,87 @@ class CaseTask:
     vertical: str
     kwargs: dict
     skip: str | None = None
+    progress_file: str | None = None
 
 
 def run_case(task: CaseTask):
     """Run one case in a worker: the :class:`~murus.retaining.collapse.CollapseResult` (or
-    ``None`` for a skipped check)."""
+    ``None`` for a skipped check). With ``progress_file``, the progress of the run (the
+    :func:`murus.progress.progress` blocks it opens, e.g. its DEM run) is written there while
+    it runs (read by :func:`running_cases`), and the file removed at the end."""
     if task.skip is not None:
         return None
-    return collapse_run(task.wall, task.frequency, task.vertical, **task.kwargs)
+    if task.progress_file is None:
+        return collapse_run(task.wall, task.frequency, task.vertical, **task.kwargs)
+    from murus.progress import set_reporter
+
+    rep = _FileReporter(Path(task.progress_file))
+    rep("starting", 0.0, None, "")
+    set_reporter(rep)
+    try:
+        return collapse_run(task.wall, task.frequency, task.vertical, **task.kwargs)
+    finally:
+        set_reporter(None)
+        Path(task.progress_file).unlink(missing_ok=True)
+
+
+class _FileReporter:
+    """A :func:`murus.progress.set_reporter` callback writing the latest update to a small
+    JSON file (atomically, at most once a second)."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.t0 = self.last = 0.0
+
+    def __call__(self, desc, done, total, info) -> None:
+        import time
+
+        now = time.monotonic()
+        if self.t0 == 0.0:
+            self.t0 = now
+        elif now - self.last < 1.0 and not (total and done >= total):
+            return
+        self.last = now
+        data = json.dumps({"desc": desc, "done": done, "total": total, "info": info,
+                           "elapsed": now - self.t0})
+        try:
+            _atomic(self.path, lambda p: Path(p).write_text(data))
+        except OSError:
+            pass
+
+
+def running_cases(out) -> str:
+    """What the cases running in the study folder ``out`` are doing (from their progress
+    files): ``"S2_5Hz_none: DEM run 1.2/2 s (40 %)"`` (``"...: running for 3.1s"`` until the
+    run reports), joined by ``"; "`` ("" if none)."""
+    from murus.progress import format_seconds
+
+    parts = []
+    for f in sorted((Path(out) / "cases").glob(".*.progress")):
+        try:
+            d = json.loads(f.read_text())
+        except (OSError, ValueError):
+            continue
+        name = f.name[1:].removesuffix(".progress")
+        done, total = d.get("done") or 0, d.get("total")
+        what = d.get("desc") or "running"
+        if total:
+            what += f" {done:.3g}/{total:.3g} ({100 * min(1.0, done / total):.0f} %)"
+        if d.get("info"):
+            what += f", {d['info']}"
+        parts.append(f"{name}: running for {format_seconds(time_since(f))}"
+                     if what == "starting" else f"{name}: {what}")
+    return "; ".join(parts)
+
+
+def time_since(path: Path) -> float:
+    """Seconds since ``path`` was last written."""
+    import time
+
+    try:
+        return max(0.0, time.time() - path.stat().st_mtime)
+    except OSError:
+        return float("nan")
 
 
 # ----------------------------------------------------------------------------- storage ---
@@ -491,9 +567,12 @@ def _atomic(path: Path, write) -> None:
 
 
 def _save_case(folder: Path, rec: dict, res) -> None:
-    """The history CSV and the snapshot data first, the JSON last (it marks the case done)."""
-    from murus.studies.sweep import write_json
+    """The history CSV and the snapshot data first, the JSON last (it marks the case done),
+    listing the SHA-256 of the other two, then the checksum of the JSON (``NAME.json.sha256``):
+    a truncated or corrupt file of the case is found and the case recomputed."""
+    from murus.studies.sweep import file_sha256, write_checksum, write_json
 
+    (folder / f"{rec['name']}.json.sha256").unlink(missing_ok=True)
     if res is not None:
         _atomic(folder / rec["history"], res.history_csv)
         polys = [np.asarray(p, float) for p in res.polygons]
@@ -510,17 +589,24 @@ def _save_case(folder: Path, rec: dict, res) -> None:
                          t_col=np.float64(res.t_col), t_end=np.float64(res.t_end))
 
         _atomic(folder / rec["snapshot"], npz)
-    write_json(folder / f"{rec['name']}.json", rec)
+        rec["sha256"] = {rec[k]: file_sha256(folder / rec[k]) for k in ("history", "snapshot")}
+    path = folder / f"{rec['name']}.json"
+    write_json(path, rec)
+    write_checksum(path)
 
 
 def _load_case(folder: Path, case: Case, digest: str) -> dict | None:
+    """The stored record of ``case`` if its files are intact and of these inputs, else None
+    (the case is recomputed)."""
+    from murus.studies.sweep import task_file_state
+
     p = folder / f"{case.name}.json"
-    if not p.exists():
-        return None
+    if task_file_state(p) is not None:
+        return None  # missing, truncated or corrupt
     try:
         rec = json.loads(p.read_text())
     except (OSError, ValueError):
-        return None  # a damaged file is recomputed
+        return None
     if not isinstance(rec, dict) or rec.get("digest") != digest:
         return None
     if "skipped" not in rec and not (folder / str(rec.get("history"))).exists():
@@ -638,8 +724,9 @@ def run_behaviour_study(study: BehaviourStudy, executor=None, *, workers: int | 
         if c.signal == "S1" and not _collapsed(parent["summary"]):
             return c.index, CaseTask(c.index, study.wall, c.frequency, c.vertical, {},
                                      "no collapse")
+        pf = None if folder is None else str(folder / f".{c.name}.progress")
         return c.index, CaseTask(c.index, study.wall, c.frequency, c.vertical,
-                                 study.case_kwargs(c, parent), None)
+                                 study.case_kwargs(c, parent), None, pf)
 
     todo = [t for t in map(task_of, cases) if t is not None]  # S2 runs first, then S1
     done = sum(r is not None for r in records)
@@ -653,9 +740,14 @@ def run_behaviour_study(study: BehaviourStudy, executor=None, *, workers: int | 
         records[i] = rec
         return [t for t in map(task_of, children.get(i, [])) if t is not None]
 
-    failures = run_tasks(run_case, todo, executor, workers=workers, scheduler=scheduler,
-                         retries=retries, on_result=on_result, progress=progress,
-                         total=len(cases), done=done, hook=hook, window=window)
+    try:
+        failures = run_tasks(run_case, todo, executor, workers=workers, scheduler=scheduler,
+                             retries=retries, on_result=on_result, progress=progress,
+                             total=len(cases), done=done, hook=hook, window=window)
+    finally:
+        if folder is not None:  # those of abandoned runs
+            for f in folder.glob(".*.progress"):
+                f.unlink(missing_ok=True)
     for i, f in failures.items():
         f["case"] = cases[i].name
     result = _assemble(study, cases, records, failures, digest, out)

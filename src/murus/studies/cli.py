@@ -30,34 +30,43 @@ def _guard():
     return guard(CaseError, ValueError, ImportError, OSError, first_line=True)
 
 
-def progress_bar(unit: str = "chunks", description: str = "study"):
-    """A rich progress bar (tasks done of total, failures, elapsed time, ETA) and its callback
-    ``callback(done, total, failed)`` (the ``progress`` of :func:`~murus.studies.sweep.
-    run_tasks`); ``unit`` names the tasks ("chunks", "cases")."""
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
+def progress_bar(unit: str = "chunks", description: str = "study", quiet: bool = False,
+                 poll=None):
+    """A progress display (:func:`murus.progress.progress`: a bar in a terminal, a line every
+    10 s on stderr otherwise) and its callback ``callback(done, total, failed)`` (the
+    ``progress`` of :func:`~murus.studies.sweep.run_tasks`); ``unit`` names the tasks
+    ("chunks", "cases"); ``poll() -> str`` adds what the tasks running are doing."""
+    from murus.progress import progress
 
-    prog = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-                    TextColumn(unit), TextColumn("{task.fields[failed]}"),
-                    TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
-                    transient=False)
-    state = {"task": None}
+    p = progress(None, description, unit=unit, quiet=quiet, poll=poll)
 
     def callback(done: int, total: int, failed: int) -> None:
-        extra = f"[red]{failed} failed" if failed else ""
-        if state["task"] is None:
-            state["task"] = prog.add_task(description, total=total, completed=done,
-                                          failed=extra)
-        else:
-            prog.update(state["task"], completed=done, failed=extra)
+        p.update(done, total=total, info=f"{failed} failed" if failed else "")
 
-    return prog, callback
+    return p, callback
+
+
+def interrupted(folder: Path, command: str) -> None:
+    """Say on stderr what an interrupted study kept and how to resume it, then exit 130 (the
+    exit code of a command stopped by SIGINT)."""
+    import sys
+
+    from murus.studies.sweep import StudyError, study_status
+
+    try:
+        s = study_status(folder)
+        kept = f"after {len(s['done'])} of {s['total']} {s['unit']} (kept in {folder})"
+    except (StudyError, OSError, ValueError, KeyError):
+        kept = "before anything was stored"
+    print(f"\ninterrupted {kept}; resume with: {command}", file=sys.stderr, flush=True)
+    raise typer.Exit(130)
+
+
+def resume_command(*words) -> str:
+    """``murus WORD ...`` quoted for a POSIX shell."""
+    import shlex
+
+    return shlex.join(["murus", *[str(w) for w in words]])
 
 
 EXECUTOR_HELP = "Executor: serial, process (a local pool of --workers) or dask (--scheduler)."
@@ -111,40 +120,53 @@ def run(
     """Run a study: writes OUT/study.json, OUT/chunks/*.npz, OUT/result.nc (resumable)."""
     with _guard():
         kind, scheduler = executor_choice(executor, serial, dask, scheduler)
-    with _guard():
-        from murus.outputs import check_dir, check_file
-        from murus.studies.study import load_study
-        from murus.studies.sweep import run_plan
-
-        st = load_study(study)
-        if retries is not None:
-            st.retries = retries
-        plan = st.plan()
-        folder = out if out is not None else Path(st.output) if st.output else \
-            study.parent / study.stem
-        check_dir(folder)  # not a file, under a file, the current folder, unwritable
-        if st.figure:
-            check_file(folder / st.figure, _FIGURES, label="[output] figure")
-    typer.echo(f"{st.name}: {plan.n_histories:,} histories ({len(plan.points)} grid nodes x "
-               f"{plan.n_records} records) in {len(plan.chunks())} chunks -> {folder}")
-    with _guard():
-        from murus.studies.executors import open_executor
-
-        handle = open_executor(kind, workers, scheduler)
     try:
         with _guard():
-            if quiet:
-                ds = run_plan(plan, handle, out=folder, retries=st.retries)
-            else:
-                prog, cb = progress_bar()
+            from murus.studies.study import load_study
+            from murus.studies.sweep import run_plan
+
+            st = load_study(study)
+            if retries is not None:
+                st.retries = retries
+            plan = st.plan()
+            folder = out if out is not None else Path(st.output) if st.output else \
+                study.parent / study.stem
+            from murus.outputs import check_dir, check_file
+
+            check_dir(folder)  # not a file, under a file, the current folder, unwritable
+            if st.figure:
+                check_file(folder / st.figure, _FIGURES, label="[output] figure")
+    except KeyboardInterrupt:
+        typer.echo("\ninterrupted while reading the study; nothing was written", err=True)
+        raise typer.Exit(130) from None
+    typer.echo(f"{st.name}: {plan.n_histories:,} histories ({len(plan.points)} grid nodes x "
+               f"{plan.n_records} records) in {len(plan.chunks())} chunks -> {folder}")
+    resume = resume_command("study", "run", study, "--out", folder)
+    try:
+        with _guard():
+            from murus.studies.executors import open_executor
+
+            handle = open_executor(kind, workers, scheduler)
+        try:
+            with _guard():
+                prog, cb = progress_bar("chunks", st.name, quiet=quiet)
                 with prog:
                     ds = run_plan(plan, handle, out=folder, retries=st.retries, progress=cb)
-    finally:
-        handle.close()
+        finally:
+            handle.close()
+    except KeyboardInterrupt:
+        interrupted(folder, resume)
     n_failed = int(ds.attrs.get("n_failed_chunks", 0))
     if st.figure:
-        with _guard():
-            _plot(ds, folder / st.figure, None)
+        try:
+            with _guard():
+                _plot(ds, folder / st.figure, None)
+        except KeyboardInterrupt:
+            typer.echo(f"\ninterrupted while drawing the figure; the result is complete in "
+                       f"{folder / 'result.nc'}; draw it with: "
+                       f"{resume_command('study', 'plot', folder, '--out', folder / st.figure)}",
+                       err=True)
+            raise typer.Exit(130) from None
     typer.echo(f"result: {folder / 'result.nc'}")
     if n_failed:
         typer.echo(f"warning: {n_failed} chunks failed (their cases are NaN; errors in "
@@ -156,7 +178,16 @@ def run(
 _FIGURES = (".png", ".svg", ".pdf")
 
 
-def _plot(ds, png: Path, record: str | None) -> Path:
+def _plot(ds, png: Path, record: str | None, p=None) -> Path:
+    def stage(text, done=None, total=None):
+        if p is None:
+            return
+        if done is None:
+            p.stage(text)
+        else:
+            p.update(done, total=total, info=text)
+
+    stage("loading matplotlib (its first use builds a font cache)")
     import matplotlib
 
     matplotlib.use("Agg")
@@ -165,8 +196,13 @@ def _plot(ds, png: Path, record: str | None) -> Path:
     if "im" in ds.dims:
         from murus.studies.fragility import plot_fragility
 
-        ax = plot_fragility(ds)
+        def fits(done, total):
+            stage("fitting the fragility curves (each with a bootstrap of 200 fits)", done,
+                  total)
+
+        ax = plot_fragility(ds, progress=fits)
     else:
+        stage("drawing the rocking spectrum")
         from murus.studies.spectrum import plot_rocking_spectrum
 
         if record is not None and record not in [str(r) for r in ds["record"].values]:
@@ -174,10 +210,12 @@ def _plot(ds, png: Path, record: str | None) -> Path:
         ax = plot_rocking_spectrum(ds, record=record)
     from murus.outputs import write_file
 
+    stage(f"writing {png}")
     try:
         write_file(png, lambda tmp: ax.figure.savefig(tmp, dpi=120))
     finally:
         plt.close(ax.figure)
+    stage(f"wrote {png}")
     return png
 
 
@@ -187,17 +225,25 @@ def plot(
     out: Path | None = typer.Option(None, "--out", "-o", help="PNG file (default: next to "
                                     "the result)."),
     record: str | None = typer.Option(None, "--record", help="One record of a spectrum."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress."),
 ) -> None:
     """Plot a result: a rocking spectrum, or fragility curves when the sweep has 'im'."""
-    with _guard():
-        from murus.outputs import check_file
-        from murus.studies.sweep import open_result
+    from murus.progress import progress
 
-        path = result / "result.nc" if result.is_dir() else result
-        png = out if out is not None else path.with_suffix(".png")
-        check_file(png, _FIGURES)
-        ds = open_result(path)
-        _plot(ds, png, record)
+    try:
+        with _guard(), progress(None, "study plot", quiet=quiet) as p:
+            from murus.outputs import check_file
+            from murus.studies.sweep import open_result
+
+            path = result / "result.nc" if result.is_dir() else result
+            png = out if out is not None else path.with_suffix(".png")
+            check_file(png, _FIGURES)
+            p.stage(f"reading {result}")
+            ds = open_result(path)
+            _plot(ds, png, record, p)
+    except KeyboardInterrupt:
+        typer.echo("\ninterrupted; no figure written", err=True)
+        raise typer.Exit(130) from None
     typer.echo(f"figure: {png}")
 
 
@@ -211,12 +257,19 @@ def status(
 
         s = study_status(folder)
     unit = s.get("unit", "chunks")
+    one = unit.removesuffix("s")
     typer.echo(f"{s['name']} ({s['digest']}): {len(s['done'])}/{s['total']} {unit} done, "
-               f"{len(s['missing'])} missing, {len(s['failed'])} failed"
+               f"{len(s['missing'])} missing, {len(s['damaged'])} damaged, "
+               f"{len(s['failed'])} failed"
                f"{', ' + s.get('result_file', 'result.nc') + ' written' if s['result'] else ''}")
+    for i, why in sorted(s["damaged"].items()):
+        typer.echo(f"  damaged {one} {i} ({s['paths'][i]}): {why}")
     for i, f in sorted(s["failed"].items()):
-        typer.echo(f"  failed {unit.removesuffix('s')} {i}: {f.get('error')} (attempts: "
+        typer.echo(f"  failed {one} {i}: {f.get('error')} (attempts: "
                    f"{f.get('attempts')})")
     if s["missing"]:
         m = s["missing"]
         typer.echo(f"  missing: {', '.join(map(str, m[:20]))}{' ...' if len(m) > 20 else ''}")
+    if s["damaged"] or s["missing"] or s["failed"]:
+        typer.echo("  run the study again with the same --out to compute the others "
+                   "(damaged ones included)")

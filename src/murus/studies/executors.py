@@ -15,16 +15,25 @@ A sweep hands independent chunks of cases to a :class:`concurrent.futures.Execut
 
 :func:`open_executor` returns an :class:`ExecutorHandle` (a context manager) whose ``executor``
 is a plain ``concurrent.futures.Executor``; ``restart()`` replaces a process pool broken by the
-death of a worker (Dask reschedules such tasks on its own).
+death of a worker (Dask reschedules such tasks on its own); ``abort()`` stops at once the
+tasks running (Ctrl-C: their workers are killed, nothing waits for them).
+
+Workers never outlive this process: the pool's workers and those of a local Dask cluster watch
+their parent (:func:`watch_parent`, a daemon thread polling ``os.getppid()`` every 0.5 s) and
+exit when it is gone, even killed by SIGKILL, within a second. Pool workers ignore SIGINT: a
+Ctrl-C at the terminal reaches the whole process group, and the main process decides (it
+aborts the tasks running and keeps the finished ones).
 """
 
 from __future__ import annotations
 
 import os
+import signal
+import threading
 from concurrent.futures import Executor, Future
 
 __all__ = ["SerialExecutor", "ExecutorHandle", "open_executor", "limit_threads",
-           "EXECUTOR_KINDS", "ExecutorError"]
+           "watch_parent", "EXECUTOR_KINDS", "ExecutorError"]
 
 EXECUTOR_KINDS = ("serial", "process", "dask")
 
@@ -43,6 +52,56 @@ def limit_threads(n: int | None = 1) -> None:
     import numba
 
     numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))
+
+
+_WATCHING: set[int] = set()
+
+
+def watch_parent(parent: int | None = None, interval: float = 0.5) -> None:
+    """Exit this process (``os._exit(1)``) as soon as its parent ``parent`` (default: the
+    current parent) is gone, e.g. killed by SIGKILL: a daemon thread compares ``os.getppid()``
+    with ``parent`` every ``interval`` seconds (a process whose parent dies is re-parented, so
+    this works on every POSIX system without ``prctl``). Started once per process; a no-op
+    when this process is not a child of ``parent``."""
+    parent = os.getppid() if parent is None else int(parent)
+    if parent in _WATCHING or os.getppid() != parent:
+        return
+    _WATCHING.add(parent)
+
+    def loop():
+        import time
+
+        while True:
+            time.sleep(interval)
+            if os.getppid() != parent:
+                os._exit(1)
+
+    threading.Thread(target=loop, daemon=True, name="murus-watch-parent").start()
+
+
+def _no_interrupt(signum, frame) -> None:
+    """SIGINT handler of the pool's workers: nothing (a Python function rather than SIG_IGN, so
+    that the DEM engine sees a handler of a caller and does not catch Ctrl-C itself)."""
+
+
+def _pool_worker_init(threads: int | None, parent: int) -> None:
+    """Initializer of the pool's workers: ignore SIGINT (the main process handles Ctrl-C),
+    exit with the parent, limit numba's threads."""
+    try:
+        signal.signal(signal.SIGINT, _no_interrupt)
+    except ValueError:  # not the main thread
+        pass
+    watch_parent(parent)
+    limit_threads(threads)
+
+
+def dask_setup(worker=None) -> None:
+    """Preload of the workers of a local Dask cluster (``preload=["murus.studies.
+    executors"]``): they exit when the process that started the cluster is gone (its pid in
+    ``MURUS_PARENT_PID``)."""
+    pid = os.environ.get("MURUS_PARENT_PID")
+    if pid:
+        watch_parent(int(pid))
 
 
 class SerialExecutor(Executor):
@@ -69,6 +128,7 @@ class ExecutorHandle:
         self.scheduler = scheduler
         self._client = None
         self._cluster = None
+        self._worker_pids: list[int] = []
         self.executor: Executor
         if kind == "serial":
             self.workers = 1
@@ -92,7 +152,7 @@ class ExecutorHandle:
         from concurrent.futures import ProcessPoolExecutor
 
         return ProcessPoolExecutor(self.workers, mp_context=multiprocessing.get_context("spawn"),
-                                   initializer=limit_threads, initargs=(1,))
+                                   initializer=_pool_worker_init, initargs=(1, os.getpid()))
 
     # ------------------------------------------------------------------ dask
     def _open_dask(self, workers, scheduler):
@@ -107,9 +167,11 @@ class ExecutorHandle:
                 raise ExecutorError(f"workers must be >= 1, got {workers!r}")
             self._cluster = LocalCluster(
                 n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
-                dashboard_address=None, env={"NUMBA_NUM_THREADS": "1"})
+                dashboard_address=None, preload=["murus.studies.executors"],
+                env={"NUMBA_NUM_THREADS": "1", "MURUS_PARENT_PID": str(os.getpid())})
             self._client = Client(self._cluster)
             self.scheduler = "local"
+            self._worker_pids = list(self._client.run(os.getpid).values())
         else:
             try:
                 self._client = Client(scheduler, timeout=f"{self.timeout}s")
@@ -128,6 +190,34 @@ class ExecutorHandle:
             self.executor.shutdown(wait=False, cancel_futures=True)
             self.executor = self._pool()
 
+    def abort(self) -> None:
+        """Stop now: cancel the queued tasks and kill the workers of a process pool (the tasks
+        running are lost); close a Dask client and the local cluster started here (its workers
+        are killed with it). The serial executor has nothing running."""
+        if self.kind == "process":
+            procs = list(getattr(self.executor, "_processes", {}).values())
+            for p in procs:
+                try:
+                    p.kill()
+                except (OSError, AttributeError, ValueError):
+                    pass
+            self.executor.shutdown(wait=False, cancel_futures=True)
+            for p in procs:
+                p.join(timeout=1.0)
+            self._aborted = True
+        elif self.kind == "dask":
+            if self._cluster is not None:  # our workers: killed, not waited for
+                for pid in self._worker_pids:
+                    try:
+                        os.kill(pid, signal.SIGKILL)
+                    except OSError:
+                        pass
+            try:
+                self.executor.shutdown(wait=False)
+            except Exception:  # noqa: BLE001 - closing anyway
+                pass
+        self.close()
+
     def describe(self) -> dict:
         d = {"kind": self.kind, "workers": self.workers}
         if self.kind == "dask":
@@ -136,7 +226,7 @@ class ExecutorHandle:
 
     def close(self) -> None:
         try:
-            if self.kind == "process":
+            if self.kind == "process" and not getattr(self, "_aborted", False):
                 self.executor.shutdown(wait=True, cancel_futures=True)
         finally:
             if self._client is not None:

@@ -12,7 +12,7 @@ import signal
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["KillOnce", "FailTimes", "Touch", "Interrupt"]
+__all__ = ["KillOnce", "FailTimes", "Touch", "Interrupt", "Sleep"]
 
 
 @dataclass(frozen=True)
@@ -75,3 +75,15 @@ class Interrupt:
     def __call__(self, index: int) -> None:
         if index == self.chunk:
             raise KeyboardInterrupt
+
+
+@dataclass(frozen=True)
+class Sleep:
+    """Sleep ``seconds`` before every task or chunk (a slow study, for interruption tests)."""
+
+    seconds: float = 0.5
+
+    def __call__(self, index: int) -> None:
+        import time
+
+        time.sleep(self.seconds)

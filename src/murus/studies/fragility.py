@@ -232,13 +232,14 @@ def exceedance(ds, limit_states=None):
 
 def fit_fragility(ds, *, x: str = "im", method: str = "msa", ci: str = "bootstrap",
                   n_boot: int = 200, level: float = 0.90, seed: int = 0, limit_states=None,
-                  n_curve: int = 200):
+                  n_curve: int = 200, progress=None):
     """Fit lognormal fragilities on a sweep Dataset with an intensity dimension ``x`` (levels
     in IM units) and ``record``, for every combination of the other dimensions (e.g.
     ``config``) and every limit state. Returns a copy of ``ds`` with ``fragility_median``,
     ``fragility_beta`` and their ``_lo``/``_hi`` bounds (two-sided ``level``),
     ``fragility_status``, ``p_exceed`` (observed fractions), ``fragility_curve`` with
-    ``_lo``/``_hi`` on ``im_curve``, and ``n_valid``."""
+    ``_lo``/``_hi`` on ``im_curve``, and ``n_valid``. ``progress(done, total)``, if given, is
+    called after each fit (a fit with its bootstrap can take seconds)."""
     import xarray as xr
     from scipy.special import ndtr, ndtri
 
@@ -266,7 +267,10 @@ def fit_fragility(ds, *, x: str = "im", method: str = "msa", ci: str = "bootstra
     chi = np.full(shp + (n_curve,), np.nan)
     k = float(ndtri(0.5 + level / 2.0))
     rng = np.random.default_rng(seed)
-    for idx in np.ndindex(shp):
+    n_fits = int(np.prod(shp))
+    for k_fit, idx in enumerate(np.ndindex(shp)):
+        if progress is not None:
+            progress(k_fit, n_fits)
         e = Ev[idx]  # levels x records (NaN = failed)
         fit = _fit(e, levels, method)
         status[idx] = fit.status
@@ -297,6 +301,8 @@ def fit_fragility(ds, *, x: str = "im", method: str = "msa", ci: str = "bootstra
                 mlo[idx], mhi[idx] = np.percentile(ms, q)
                 blo[idx], bhi[idx] = np.percentile(bs, q)
                 clo[idx], chi[idx] = np.percentile(np.array(cs), q, axis=0)
+    if progress is not None:
+        progress(n_fits, n_fits)
     odims = other + ["limit_state"]
     im_attrs = dict(ds[x].attrs)
     out = ds.copy()
@@ -420,13 +426,14 @@ def fragility(models, records="farfield", im="PGA", levels=None, *, method: str 
     return ds
 
 
-def plot_fragility(ds, ax=None, *, limit_state=None, config=None):
+def plot_fragility(ds, ax=None, *, limit_state=None, config=None, progress=None):
     """Fragility curves with their confidence bands and the observed fractions (markers), one
-    colour per configuration, one line style per limit state. Returns the Axes."""
+    colour per configuration, one line style per limit state (fitted first by
+    :func:`fit_fragility`, with its ``progress``, unless ``ds`` has them). Returns the Axes."""
     import matplotlib.pyplot as plt
 
     if "fragility_curve" not in ds:
-        ds = fit_fragility(ds)
+        ds = fit_fragility(ds, progress=progress)
     if ax is None:
         _, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
     x = ds.attrs.get("fragility_x", "im")

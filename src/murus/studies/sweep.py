@@ -16,12 +16,14 @@ Study folder (``out``)::
     out/
       study.json        the resolved study: spec, digest, chunk layout (written first)
       chunks/c00000.npz one file per finished chunk: raw summaries (n_nodes, n_records, 16),
-      ...               written atomically (temporary file, then os.replace) as chunks finish
+      chunks/c00000.npz.sha256   written atomically (temporary file, then os.replace) as
+      ...               chunks finish, then its SHA-256 (``sha256sum -c`` reads it)
       failures.json     chunks that failed after their retries: error and attempts
       result.nc         the Dataset (NetCDF4 via h5netcdf), written when the run ends
 
-Re-running the same study with the same ``out`` computes only the chunks that have no file
-(missing or failed); a folder that holds another study (different digest) is refused.
+Re-running the same study with the same ``out`` computes only the chunks that have no intact
+file (missing, failed, or truncated or corrupt: their bytes do not match their checksum); a
+folder that holds another study (different digest) is refused.
 
 The engine underneath is generic: :func:`run_tasks` runs any picklable function over
 ``(index, payload)`` tasks with the same retries, window, progress and interruption rules, and
@@ -48,7 +50,8 @@ import numpy as np
 from murus.studies.records import RecordSet
 
 __all__ = ["Dim", "Point", "Plan", "ChunkTask", "run_chunk", "run_plan", "run_tasks",
-           "study_status", "prepare_folder", "check_folder", "write_json",
+           "study_status", "prepare_folder", "check_folder", "write_json", "write_checksum",
+           "check_file", "file_sha256", "task_file_state", "is_interrupt",
            "StudyError", "write_netcdf", "open_result", "SUMMARY_VARS"]
 
 FORMAT_VERSION = 1
@@ -253,22 +256,85 @@ def _chunk_path(out: Path, index: int) -> Path:
     return out / "chunks" / f"c{index:05d}.npz"
 
 
+def file_sha256(path) -> str:
+    """The SHA-256 of a file's bytes (hex)."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _sidecar(path: Path) -> Path:
+    return path.with_name(path.name + ".sha256")
+
+
+def write_checksum(path, sha: str | None = None) -> None:
+    """Write ``PATH.sha256`` (``sha256sum`` format: hex digest, two spaces, file name) next to
+    ``path``, atomically, after ``path`` itself was written (``sha``: its digest if known)."""
+    path = Path(path)
+    sha = file_sha256(path) if sha is None else sha
+    text = f"{sha}  {path.name}\n".encode()
+    _atomic_write_bytes(_sidecar(path), lambda f: f.write(text))
+
+
+def check_file(path) -> str | None:
+    """Whether a stored piece is intact: ``None`` if its bytes match its ``.sha256`` sidecar,
+    else a reason: ``"missing"``, ``"no checksum"`` (written before checksums were, or its
+    write was cut before the checksum: the caller checks its content instead) or
+    ``"checksum mismatch (truncated or corrupt)"``."""
+    path = Path(path)
+    if not path.exists():
+        return "missing"
+    side = _sidecar(path)
+    if not side.exists():
+        return "no checksum"
+    try:
+        want = side.read_text(encoding="ascii", errors="replace").split()[0]
+        got = file_sha256(path)
+    except (OSError, IndexError):
+        return "checksum mismatch (truncated or corrupt)"
+    return None if got == want else "checksum mismatch (truncated or corrupt)"
+
+
 def _save_chunk(out: Path, index: int, digest: str, raw: np.ndarray) -> None:
-    _atomic_write_bytes(_chunk_path(out, index),
-                        lambda f: np.savez(f, raw=raw, digest=np.array(digest)))
+    import io
+
+    buf = io.BytesIO()
+    np.savez(buf, raw=raw, digest=np.array(digest))
+    data = buf.getvalue()
+    path = _chunk_path(out, index)
+    _sidecar(path).unlink(missing_ok=True)  # a stale checksum never vouches for new bytes
+    _atomic_write_bytes(path, lambda f: f.write(data))
+    write_checksum(path, hashlib.sha256(data).hexdigest())
+
+
+def _read_chunk(p: Path) -> tuple[str, np.ndarray] | None:
+    try:
+        with np.load(p, allow_pickle=False) as z:
+            return str(z["digest"]), z["raw"].copy()
+    except Exception:  # noqa: BLE001 - truncated zip, bad header, missing key: damaged
+        return None
 
 
 def _load_chunk(out: Path, index: int, digest: str, shape: tuple) -> np.ndarray | None:
     p = _chunk_path(out, index)
-    if not p.exists():
+    state = check_file(p)
+    if state not in (None, "no checksum"):
+        return None  # missing or damaged: recomputed
+    got = _read_chunk(p)
+    if got is None or got[0] != digest or got[1].shape != shape:
         return None
-    try:
-        with np.load(p, allow_pickle=False) as z:
-            if str(z["digest"]) != digest or z["raw"].shape != shape:
-                return None
-            return z["raw"].copy()
-    except (OSError, ValueError, KeyError):
-        return None  # a damaged file is recomputed
+    return got[1]
+
+
+def _chunk_state(out: Path, index: int) -> str | None:
+    """None if chunk ``index`` is stored intact, else "missing" or why it is damaged."""
+    p = _chunk_path(out, index)
+    state = check_file(p)
+    if state == "no checksum":  # older folders: a chunk that reads back is done
+        return None if _read_chunk(p) is not None else "unreadable (truncated or corrupt)"
+    return state
 
 
 def prepare_folder(out, digest: str, meta: dict) -> None:
@@ -278,8 +344,9 @@ def prepare_folder(out, digest: str, meta: dict) -> None:
     (:class:`StudyError`, nothing written).
 
     ``meta`` may declare ``"task_files"`` (one path per task, relative to ``out``: a task is
-    done when its file exists), ``"unit"`` (what a task is, for messages: "chunks", "cases")
-    and ``"result_file"`` (default ``result.nc``), read by :func:`study_status`."""
+    done when its file is intact, :func:`task_file_state`), ``"unit"`` (what a task is, for
+    messages: "chunks", "cases") and ``"result_file"`` (default ``result.nc``), read by
+    :func:`study_status`."""
     out = Path(out)
     check_folder(out, digest)
     out.mkdir(parents=True, exist_ok=True)
@@ -323,9 +390,12 @@ def _prepare_folder(out: Path, plan: Plan, digest: str) -> None:
 
 
 def study_status(out) -> dict:
-    """Tasks (chunks, or the ``task_files`` of ``study.json``) done, missing and failed in a
-    study folder: ``{"name", "digest", "unit", "total", "done", "missing", "failed": {index:
-    error}, "complete", "result_file", "result"}``."""
+    """Tasks (chunks, or the ``task_files`` of ``study.json``) done, missing, damaged and
+    failed in a study folder: ``{"name", "digest", "unit", "total", "done", "missing",
+    "damaged": {index: reason}, "failed": {index: error}, "paths": {index: file relative to
+    the folder}, "complete", "result_file", "result"}``. A task is done when its file is
+    intact (its checksum matches, :func:`check_file`); a truncated or corrupt one is
+    "damaged" (a resume recomputes it)."""
     out = Path(out)
     sj = out / "study.json"
     if not sj.exists():
@@ -335,23 +405,62 @@ def study_status(out) -> dict:
     except (OSError, ValueError):
         raise StudyError(f"{sj}: unreadable study file") from None
     files = meta.get("task_files")
+    states: dict[int, str | None] = {}
     if files is not None:
         total = len(files)
-        done = [i for i, f in enumerate(files) if (out / f).exists()]
+        for i, f in enumerate(files):
+            states[i] = task_file_state(out / f)
     else:
         total = len(meta["chunks"])
-        done = [i for i in range(total) if _chunk_path(out, i).exists()]
+        for i in range(total):
+            states[i] = _chunk_state(out, i)
+    done = [i for i in range(total) if states[i] is None]
+    damaged = {i: states[i] for i in range(total) if states[i] not in (None, "missing")}
     fj = out / "failures.json"
     failed = {}
     if fj.exists():
-        failed = {int(k): v for k, v in json.loads(fj.read_text()).items()
-                  if int(k) not in set(done)}
-    missing = [i for i in range(total) if i not in set(done) and i not in failed]
+        try:
+            failed = {int(k): v for k, v in json.loads(fj.read_text()).items()
+                      if states.get(int(k)) is not None}
+        except (OSError, ValueError, AttributeError):
+            failed = {}
+    missing = [i for i in range(total) if states[i] == "missing" and i not in failed]
+    damaged = {i: r for i, r in damaged.items() if i not in failed}
+    if files is not None:
+        paths = {i: str(f) for i, f in enumerate(files)}
+    else:
+        paths = {i: str(_chunk_path(Path(""), i)) for i in range(total)}
     return {"name": meta.get("name"), "digest": meta.get("digest"),
             "unit": meta.get("unit", "chunks"), "total": total,
-            "done": done, "missing": missing, "failed": failed, "complete": len(done) == total,
+            "done": done, "missing": missing, "damaged": damaged, "failed": failed,
+            "paths": paths, "complete": len(done) == total,
             "result_file": meta.get("result_file", "result.nc"),
             "result": (out / meta.get("result_file", "result.nc")).exists()}
+
+
+def task_file_state(path) -> str | None:
+    """None if the task file ``path`` (the ``task_files`` of a study) is stored intact, else
+    ``"missing"`` or why it is damaged. A JSON task file may list further files of the task
+    with their SHA-256 under ``"sha256"`` (``{file name in the same folder: hex}``): they are
+    checked too. A file without a checksum (older folders) is done when it reads back."""
+    path = Path(path)
+    state = check_file(path)
+    if state not in (None, "no checksum"):
+        return state
+    if path.suffix != ".json":
+        return None
+    try:
+        rec = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return "unreadable (truncated or corrupt)"
+    sums = rec.get("sha256") if isinstance(rec, dict) else None
+    for name, want in (sums or {}).items():
+        p = path.parent / name
+        if not p.exists():
+            return f"{name} missing"
+        if file_sha256(p) != want:
+            return f"{name}: checksum mismatch (truncated or corrupt)"
+    return None
 
 
 # ----------------------------------------------------------------------------- tasks -----
@@ -379,6 +488,7 @@ def run_tasks(
     done: int = 0,
     hook: Callable | None = None,
     window: int | None = None,
+    grace: float = 0.5,
 ) -> dict[int, dict]:
     """Run ``fn(payload)`` for every ``(index, payload)`` of ``tasks`` on an executor, with
     retries, a bounded window of tasks in flight and progress: the engine of :func:`run_plan`,
@@ -396,9 +506,12 @@ def run_tasks(
         As for :func:`run_plan` (``hook(index)`` runs in the worker before the task).
 
     Returns the tasks that failed after their retries, ``{index: {"error", "attempts"}}``; the
-    others go on. ``KeyboardInterrupt`` and ``SystemExit`` are not retried: they stop the run;
-    the tasks running then are waited for (when the executor is opened here) and stored with
-    those that had finished, the queued ones are dropped.
+    others go on. ``KeyboardInterrupt`` (Ctrl-C: SIGINT raises it in this process while the
+    run lasts, whatever a task installs, e.g. the DEM engine) and ``SystemExit`` are not
+    retried: they stop the run within about a second. The tasks that finish within ``grace``
+    seconds are stored with those that had finished; the others running then are abandoned
+    (the workers of a process pool are killed, a Dask cluster opened here is closed), the
+    queued ones dropped; then the exception propagates.
     """
     from murus.studies.executors import ExecutorHandle, is_broken_pool, open_executor
 
@@ -413,6 +526,7 @@ def run_tasks(
         return failures
     handle = executor if isinstance(executor, ExecutorHandle) else open_executor(
         executor, workers, scheduler)
+    old_sigint = _raise_on_sigint()
     try:
         attempts: dict[int, int] = {}
         payloads: dict[int, object] = {}
@@ -446,6 +560,8 @@ def run_tasks(
                     except BaseException as exc:  # noqa: BLE001 - recorded, then retried
                         if isinstance(exc, KeyboardInterrupt | SystemExit):
                             raise
+                        if is_interrupt(exc):  # Ctrl-C inside a numba kernel (SystemError)
+                            raise KeyboardInterrupt from exc
                         broken = broken or is_broken_pool(exc)
                         if attempts[i] <= retries:
                             retry.append((i, payloads[i]))
@@ -470,18 +586,73 @@ def run_tasks(
                 queue.extendleft(reversed(retry))
                 fill()
         except (KeyboardInterrupt, SystemExit):
-            # interrupted: the queued tasks are cancelled, those running finish (an executor
-            # of ours is closed first, which waits for them), the finished ones are stored
-            if handle is not executor:
-                handle.close()
-            for f in sorted(pending, key=lambda f: pending[f]):
-                if f.done() and not f.cancelled() and f.exception() is None:
-                    on_result(pending[f], f.result())
+            # interrupted: a second Ctrl-C cannot cut the storing of the finished tasks; the
+            # tasks that finish within the grace time are kept, the others abandoned
+            _ignore_sigint()
+            running = [f for f in pending if not f.done()]
+            if running and grace > 0:
+                wait(running, timeout=grace)
+            finished = {f: pending[f] for f in pending if f.done()}
+            handle.abort()
+            for f in sorted(finished, key=lambda f: finished[f]):
+                if not f.cancelled() and f.exception() is None:
+                    on_result(finished[f], f.result())
             raise
     finally:
+        _restore_sigint(old_sigint)
         if handle is not executor:
             handle.close()
     return failures
+
+
+def is_interrupt(exc: BaseException) -> bool:
+    """Whether ``exc`` is a Ctrl-C: a ``KeyboardInterrupt``, or an exception caused by one. A
+    SIGINT that arrives while a numba kernel runs raises ``KeyboardInterrupt`` when the kernel
+    next calls into Python (e.g. numba's ``_numba_unpickle``), and numba turns it into a
+    ``SystemError`` ("returned a result with an exception set") whose cause is the
+    ``KeyboardInterrupt``: retried as an ordinary failure, the Ctrl-C was lost."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
+def _raise_on_sigint():
+    """Make SIGINT raise KeyboardInterrupt in this process (main thread only) with a handler
+    of our own, so that a task run here (serial executor) cannot catch it (the DEM engine
+    leaves a non-default handler alone); returns the previous handler (or a marker)."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return _NOT_SET
+    return signal.signal(signal.SIGINT, _interrupt)
+
+
+def _ignore_sigint():
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _restore_sigint(old):
+    import signal
+    import threading
+
+    if old is not _NOT_SET and threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, old if old is not None else signal.default_int_handler)
+
+
+_NOT_SET = object()
 
 
 # ----------------------------------------------------------------------------- runner ----
