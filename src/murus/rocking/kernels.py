@@ -11,8 +11,13 @@ pivot is never ``sign(theta)``, which is undefined at ``theta = 0``.
   of that moment; the instant is located inside the step by root finding;
 - rocking -> impact: ``theta`` crosses zero; the instant is located inside the step, the angular
   velocity is multiplied by the coefficient of restitution and the pivot switches to ``-s``;
-- impact -> rest: when the velocity after the impact is below ``rest_tol * p * alpha`` and the
-  ground cannot lift the body: this ends the Zeno cascade of ever smaller impacts;
+- impact -> rest: at the accumulation point of the cascade of ever smaller impacts (a Zeno
+  point), never before. Once the velocity after an impact is below ``rest_tol * p * alpha`` (or,
+  against rigid transverse walls, the bounce it starts is below ``rest_tol * alpha``), the rest of
+  the cascade is summed instead of integrated (:func:`cascade_end`): the bounce times form a
+  geometric series whose limit is the instant the body comes to rest; the body is put at rest
+  there, and only if the ground cannot lift it over the cascade and as long again after it (lift
+  margins at every input breakpoint of that window); otherwise the integration goes on;
 - rocking -> overturned: ``|theta|`` reaches ``pi/2``.
 
 Equation of motion (seed 000 eq. 5, seed 002 eq. 1), a sum of moment terms about the active
@@ -698,8 +703,99 @@ def record_peak(S, pk, t, th):
 
 
 @njit(cache=True)
+def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
+    """Accumulation time [s] of the cascade of impacts that starts at ``t`` with the angular
+    velocity ``om`` [rad/s] about pivot ``s`` just after an impact, or ``-1.0`` when the cascade
+    cannot be summed (the ground lifts the body during it or just after it, or ``e = 1``).
+
+    At small amplitude a bounce about pivot ``s`` is a flight under the constant restoring
+    acceleration ``d = -s theta''(theta = 0)`` (gravity, ground, restraints at ``theta = 0``):
+    it lasts ``2 w / d`` and returns with the launch speed ``w``, which the next impact multiplies
+    by ``e`` (by ``e^2`` against rigid transverse walls: an impact into the walls and one out of
+    them). With constant ``e`` and ``d`` the bounce times form the geometric series
+    ``T_n = T_0 e^n`` and the cascade ends at ``t + T_0 / (1 - e)`` (free rocking: ``d = p^2
+    alpha``, ``t_inf = t + 2 w / (p^2 alpha (1 - e))``; Housner 1963, where the half-period of
+    the linearised equation, ``tanh(p T / 2) = w / (p alpha)``, tends to ``2 w / (p^2 alpha)``
+    at small ``w``). Here ``d`` and ``e`` are evaluated bounce by bounce (``d`` at mid-bounce,
+    so a slowly varying ground acceleration is followed) until a bounce is shorter than 1e-9 of
+    the sum (at most 400 bounces), and the tail ``2 w / (d_min (1 - e))`` is added.
+
+    The sum is accepted only when the lift margins about both pivots stay negative at ``t``, at
+    every breakpoint of the input in ``[t, t + 2 (t_inf - t)]`` and at its end: then the body
+    truly comes to rest (the factor 2 covers the error of the sum), and it stays at rest from
+    ``t_inf`` until the ground lifts it, a case for the rest phase."""
+    w = abs(om)
+    if w == 0.0:
+        return t
+    tc = t
+    d_min = math.inf
+    e = 1.0
+    tn = 0.0
+    for _ in range(400):
+        a = accel(0.0, 0.0, s, tc, tc, X, ag, av, P)
+        d = -s * a
+        if not (d > 0.0):
+            return -1.0
+        tn = 2.0 * w / d
+        a = accel(0.0, 0.0, s, tc + 0.5 * tn, tc + 0.5 * tn, X, ag, av, P)
+        d = -s * a
+        if not (d > 0.0):
+            return -1.0
+        tn = 2.0 * w / d
+        d_min = min(d_min, d)
+        tc += tn
+        gh, gv = ground(tc, tc, X, ag, av)
+        bl = lever(gh, gv, P)
+        e = restitution(P, mem, 0.0, tc, bl)
+        if P[P_STOP] != 0.0 and s > 0.0:
+            e = e * restitution(P, mem, 0.0, tc, bl)
+        else:
+            s = -s
+        w *= e
+        if not (e < 1.0):
+            return -1.0
+        if tn <= 1e-9 * (tc - t):
+            break  # the tail below is exact to ~1e-9 of the sum
+    t_inf = tc + 2.0 * w / (d_min * (1.0 - e))
+    # the ground must not lift the body over the cascade and as long again after it
+    t_win = t + 2.0 * (t_inf - t)
+    tb = t
+    for _ in range(100_000):
+        if lift_margin(tb, tb, 1.0, X, ag, av, P) > 0.0:
+            return -1.0
+        if lift_margin(tb, tb, -1.0, X, ag, av, P) > 0.0:
+            return -1.0
+        if tb >= t_win:
+            break
+        tb = min(segment_end(tb, X, n_rec, t_win), t_win)
+    return t_inf
+
+
+@njit(cache=True)
 def do_impact(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap):
-    """Apply an impact at ``t``: restitution, pivot switch, log; returns ``(omega, pivot)``."""
+    """Apply an impact at ``t``: restitution, pivot switch, log; returns ``(omega, pivot)``.
+    A velocity after the impact below ``rest_tol * p * alpha`` puts the body at rest right away
+    (the rule of the fixed-step Newmark method; the event-driven method sums the cascade
+    instead: :func:`do_impact_cascade`)."""
+    om_a, s_next, t_rest = impact_core(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap,
+                                       nu_cap, False, 0)
+    return om_a, s_next
+
+
+@njit(cache=True)
+def do_impact_cascade(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap, n_rec):
+    """Apply an impact at ``t`` (event-driven method); returns ``(omega, pivot, t_rest)``: when
+    the cascade that follows is summed (:func:`cascade_end`), pivot 0 and the accumulation time
+    ``t_rest`` at which the body comes to rest; else ``t_rest = t``."""
+    return impact_core(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap, True,
+                       n_rec)
+
+
+@njit(cache=True)
+def impact_core(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap, cascade,
+                n_rec):
+    """Impact at ``t``: restitution, pivot switch, log, and the end of a cascade (see
+    :func:`do_impact` and :func:`do_impact_cascade`)."""
     gh, gv = ground(t, tm, X, ag, av)
     bl = lever(gh, gv, P)
     e = restitution(P, mem, om_b, t, bl)
@@ -728,14 +824,20 @@ def do_impact(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap):
         # rest_tol * alpha (the bounces form a geometric series of vanishing excursions)
         a0 = accel(0.0, om_a, s, t, tm, X, ag, av, P)
         rest = s * a0 < 0.0 and om_a * om_a < 2.0 * P[P_REST_TOL] * P[P_ALPHA] * abs(a0)
+    t_rest = t
+    if rest and cascade:
+        # sum the rest of the cascade; at rest only at its accumulation point, and only if the
+        # ground cannot lift the body over it (else integrate on)
+        t_rest = cascade_end(t, om_a, s_next, X, ag, av, P, mem, n_rec)
+        rest = t_rest >= t
     if rest:
-        # negligible velocity: back to rest unless the ground lifts the body right now
+        # the cascade ends: back to rest (the rest phase lifts the body when the ground can)
         S[S_E_DISSIPATED] += 0.5 * i_o * om_a * om_a
         k = int(S[S_N_UPLIFTS]) - 1
         if 0 <= k < nu_cap:
-            up[k, 1] = t
-        return 0.0, 0.0
-    return om_a, s_next
+            up[k, 1] = t_rest
+        return 0.0, 0.0, t_rest
+    return om_a, s_next, t
 
 
 @njit(cache=True)
@@ -975,9 +1077,14 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
             j = overturned_at(t, th, s, S, up, nu_cap, j, th_out, om_out, pv_out)
             break
         if event == 1:
-            om, s = do_impact(t, tm, om, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap)
+            om, s, t_rest = do_impact_cascade(t, tm, om, s, X, ag, av, P, mem, S, imp, up,
+                                              ni_cap, nu_cap, n_rec)
             th = 0.0
             h = h_next
+            if s == 0.0:
+                # at rest from the accumulation point of the cascade
+                t = min(t_rest, t_end)
+                have_m = False
     finish(S, t, th, om, s, steps, j, th_out, om_out, pv_out)
     return S
 
