@@ -12,9 +12,8 @@ pivot is never ``sign(theta)``, which is undefined at ``theta = 0``.
 - rocking -> impact: ``theta`` crosses zero; the instant is located inside the step, the angular
   velocity is multiplied by the coefficient of restitution and the pivot switches to ``-s``;
 - impact -> rest: at the accumulation point of the cascade of ever smaller impacts (a Zeno
-  point), never before. Once the velocity after an impact is below ``rest_tol * p * alpha`` (or,
-  against rigid transverse walls, the bounce it starts is below ``rest_tol * alpha``), the rest of
-  the cascade is summed instead of integrated (:func:`cascade_end`): the bounce times form a
+  point), never before. Once the velocity after an impact is below ``rest_tol * p * alpha`` (free
+  rocking and bounces against rigid transverse walls alike), the rest of the cascade is summed instead of integrated (:func:`cascade_end`): the bounce times form a
   geometric series whose limit is the instant the body comes to rest; the body is put at rest
   there, and only if the ground cannot lift it over the cascade and as long again after it (lift
   margins at every input breakpoint of that window); otherwise the integration goes on;
@@ -818,8 +817,8 @@ def impact_core(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap, c
     mem[MEM_HALF_MAX] = 0.0
     p = math.sqrt(P[P_M] * P[P_G] * P[P_R] / P[P_I])
     rest = abs(om_a) < P[P_REST_TOL] * p * P[P_ALPHA]
-    if not rest and s_next == s:
-        # a bounce on rigid walls: end the cascade once the excursion it starts,
+    if not rest and s_next == s and not cascade:
+        # (Newmark) a bounce on rigid walls: end the cascade once the excursion it starts,
         # om^2 / (2 |theta''|) under the restoring acceleration at theta = 0, is below
         # rest_tol * alpha (the bounces form a geometric series of vanishing excursions)
         a0 = accel(0.0, om_a, s, t, tm, X, ag, av, P)
