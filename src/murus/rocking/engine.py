@@ -208,6 +208,17 @@ def _initial(theta0, omega0, theta0_over_alpha, body):
     return theta0, omega0
 
 
+def _message(status: int, t_final: float, t_end: float, mdl) -> str:
+    """Status message of a run: ``"ok"``, or why and when the integration stopped early."""
+    msg = _STATUS.get(status, "unknown")
+    if status == 0:
+        return msg
+    msg += f" at t = {t_final:.6g} s of {t_end:.6g} s (results up to there only)"
+    if status == 1 and getattr(mdl, "rest_tol", None) == 0.0:
+        msg += "; rest_tol = 0 never ends a cascade of impacts (a Zeno point): use the default"
+    return msg
+
+
 def simulate(
     model,
     motion=None,
@@ -331,7 +342,7 @@ def simulate(
         t_exceed_alpha=_opt(S[K.S_T_EXCEED_ALPHA]),
         energy_dissipated=float(S[K.S_E_DISSIPATED]),
         status=status,
-        message=_STATUS.get(status, "unknown"),
+        message=_message(status, float(S[K.S_T_FINAL]), t_end, mdl),
         n_steps=int(S[K.S_N_STEPS]),
         meta=meta,
         lever=mdl.pivot.lever(mdl.body, gh, gv, mdl.gravity) if mdl.pivot.code else None,
