@@ -8,8 +8,8 @@ the same kernel at ``rtol = 1e-12`` and ``rest_tol = 1e-9`` (the cascade integra
 impact down to ``1e-9 p alpha``, where its remaining duration is below 1e-8 s). A case counts as
 not chaotic when the reference moves by less than 0.1 % on theta_max both when the record is
 scaled by 1 + 1e-6 and when the tolerance is loosened to 1e-11. On every fourth record of the
-free-standing cases the reference is checked against the independent scipy peer (``benchmarks/peer_solve_ivp.py``, RK45
-at rtol 1e-10, rest at 1e-9).
+free-standing cases the reference is checked against the independent scipy peer
+(``benchmarks/peer_solve_ivp.py``, RK45 at rtol 1e-10, rest at 1e-9).
 
 Cases: seed 002 block1 and block2 (lambda = 10 and 8.33 ... see :func:`seed002_block`) under the
 FEMA P695 far-field (first 20 s, one component of each pair) and near-field pulse records,

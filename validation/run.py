@@ -27,6 +27,7 @@ def main() -> None:
     import eurocode
     import identify
     import motion
+    import rest_rule
     import restrained
     import retaining_backfill
     import retaining_behaviour
@@ -37,7 +38,8 @@ def main() -> None:
     import studies
     import winkler
 
-    parts = [HEADER, rocking.section(), restrained.section(), seed000_model.section(),
+    parts = [HEADER, rocking.section(), restrained.section(), rest_rule.section(),
+             seed000_model.section(),
              winkler.run(ROOT / "docs" / "figures" / "winkler"), motion.section(),
              eurocode.section(), retaining_pseudostatic.section(), retaining_dynamic.section(),
              retaining_behaviour.section(),

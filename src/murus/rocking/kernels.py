@@ -13,10 +13,11 @@ pivot is never ``sign(theta)``, which is undefined at ``theta = 0``.
   velocity is multiplied by the coefficient of restitution and the pivot switches to ``-s``;
 - impact -> rest: at the accumulation point of the cascade of ever smaller impacts (a Zeno
   point), never before. Once the velocity after an impact is below ``rest_tol * p * alpha`` (free
-  rocking and bounces against rigid transverse walls alike), the rest of the cascade is summed instead of integrated (:func:`cascade_end`): the bounce times form a
-  geometric series whose limit is the instant the body comes to rest; the body is put at rest
-  there, and only if the ground cannot lift it over the cascade and as long again after it (lift
-  margins at every input breakpoint of that window); otherwise the integration goes on;
+  rocking and bounces against rigid transverse walls alike), the rest of the cascade is summed
+  instead of integrated (:func:`cascade_end`): the bounce times form a geometric series whose
+  limit is the instant the body comes to rest; the body is put at rest there, and only if the
+  ground cannot lift it over the cascade and as long again after it (lift margins at every input
+  breakpoint of that window); otherwise the integration goes on;
 - rocking -> overturned: ``|theta|`` reaches ``pi/2``.
 
 Equation of motion (seed 000 eq. 5, seed 002 eq. 1), a sum of moment terms about the active
