@@ -111,8 +111,8 @@ def _significant(res):
 def test_default_agrees_with_the_accurate_solver_on_real_records():
     """FEMA P695 far-field records at 1.5 g tan(alpha): where the reference (rtol 1e-12,
     rest_tol 1e-9) is not chaotic (it moves by < 0.1 % under the record x (1 + 1e-6) and
-    rtol 1e-11), the default agrees within 0.1 % on theta_max and on the count of significant
-    impacts (|theta'| >= 1e-2 p alpha before the impact)."""
+    rtol 1e-11), the default agrees within 0.1 % on theta_max, and on the count of significant
+    impacts (|theta'| >= 1e-2 p alpha before the impact) where that count is stable too."""
     from murus.motion import suite
 
     block = seed002_block("block1")
@@ -137,7 +137,9 @@ def test_default_agrees_with_the_accurate_solver_on_real_records():
                 continue
             stable += 1
             assert d.theta_max == pytest.approx(th, rel=1e-3), (r.name, name)
-            assert _significant(d) == _significant(ref), (r.name, name)
+            n = _significant(ref)
+            if n == _significant(pert) == _significant(loose):  # the count itself is stable
+                assert _significant(d) == n, (r.name, name)
     assert stable >= 8
 
 
@@ -179,3 +181,11 @@ rest_tol = 0.0
                                  str(tmp_path / "out2"), "--no-figure"])
     assert r.exit_code == 0, r.output
     assert json.loads((tmp_path / "out2" / "summary.json").read_text())["status"] == "ok"
+
+
+def test_summary_states_the_method_and_what_to_trust_it_for():
+    nm = simulate(BLOCK, theta0_over_alpha=0.5, method="newmark", dt=1e-3, duration=1.0)
+    ev = simulate(BLOCK, theta0_over_alpha=0.5, duration=1.0)
+    assert nm.summary()["method"] == "newmark" and ev.summary()["method"] == "event"
+    assert "method = 'event'" in nm.summary()["method_note"]
+    assert "verdicts" in ev.summary()["method_note"]
