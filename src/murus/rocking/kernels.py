@@ -132,6 +132,7 @@ MEM_T_FREE = 2  # end of the input: free vibration after it [s]
 MEM_SIZE = 4
 
 HALF_PI = 0.5 * math.pi
+CASCADE_BOUNCES = 16  # bounces of a cascade summed one by one before the closed-form tail
 
 
 # ======================================================================== excitation ======
@@ -716,9 +717,12 @@ def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
     ``T_n = T_0 e^n`` and the cascade ends at ``t + T_0 / (1 - e)`` (free rocking: ``d = p^2
     alpha``, ``t_inf = t + 2 w / (p^2 alpha (1 - e))``; Housner 1963, where the half-period of
     the linearised equation, ``tanh(p T / 2) = w / (p alpha)``, tends to ``2 w / (p^2 alpha)``
-    at small ``w``). Here ``d`` and ``e`` are evaluated bounce by bounce (``d`` at mid-bounce,
-    so a slowly varying ground acceleration is followed) until a bounce is shorter than 1e-9 of
-    the sum (at most 400 bounces), and the tail ``2 w / (d_min (1 - e))`` is added.
+    at small ``w``). Here ``d`` and ``e`` are evaluated bounce by bounce for the first
+    ``CASCADE_BOUNCES`` bounces (``d`` at mid-bounce, so a slowly varying ground acceleration is
+    followed), and the tail is summed in closed form with the last values: bounces about
+    alternating pivots ``s, -s, ...`` with restoring accelerations ``d_1, d_2`` sum to
+    ``(2 w / (1 - e^2)) (1/d_1 + e/d_2)``; against rigid walls, where the pivot stays and the
+    ratio is ``e^2``, to ``2 w / (d (1 - e^2))``.
 
     The sum is accepted only when the lift margins about both pivots stay negative at ``t``, at
     every breakpoint of the input in ``[t, t + 2 (t_inf - t)]`` and at its end: then the body
@@ -728,10 +732,10 @@ def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
     if w == 0.0:
         return t
     tc = t
-    d_min = math.inf
     e = 1.0
-    tn = 0.0
-    for _ in range(400):
+    dp = 0.0  # restoring acceleration of the last bounce about pivot +1 ...
+    dm = 0.0  # ... and about pivot -1 [rad/s2]
+    for _ in range(CASCADE_BOUNCES):
         a = accel(0.0, 0.0, s, tc, tc, X, ag, av, P)
         d = -s * a
         if not (d > 0.0):
@@ -742,21 +746,30 @@ def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
         if not (d > 0.0):
             return -1.0
         tn = 2.0 * w / d
-        d_min = min(d_min, d)
+        if s > 0.0:
+            dp = d
+        else:
+            dm = d
         tc += tn
         gh, gv = ground(tc, tc, X, ag, av)
         bl = lever(gh, gv, P)
         e = restitution(P, mem, 0.0, tc, bl)
         if P[P_STOP] != 0.0 and s > 0.0:
-            e = e * restitution(P, mem, 0.0, tc, bl)
+            e = e * restitution(P, mem, 0.0, tc, bl)  # into the walls and out of them
         else:
             s = -s
-        w *= e
         if not (e < 1.0):
             return -1.0
-        if tn <= 1e-9 * (tc - t):
-            break  # the tail below is exact to ~1e-9 of the sum
-    t_inf = tc + 2.0 * w / (d_min * (1.0 - e))
+        w *= e
+    # the tail in closed form with the last restoring accelerations
+    if P[P_STOP] != 0.0 and s > 0.0:
+        t_inf = tc + 2.0 * w / (dp * (1.0 - e))
+    else:
+        d1 = dp if s > 0.0 else dm
+        d2 = dm if s > 0.0 else dp
+        if d1 == 0.0 or d2 == 0.0:  # pragma: no cover (CASCADE_BOUNCES >= 2)
+            d1 = d2 = max(d1, d2)
+        t_inf = tc + 2.0 * w / (1.0 - e * e) * (1.0 / d1 + e / d2)
     # the ground must not lift the body over the cascade and as long again after it
     t_win = t + 2.0 * (t_inf - t)
     tb = t
