@@ -189,3 +189,22 @@ def test_summary_states_the_method_and_what_to_trust_it_for():
     assert nm.summary()["method"] == "newmark" and ev.summary()["method"] == "event"
     assert "method = 'event'" in nm.summary()["method_note"]
     assert "verdicts" in ev.summary()["method_note"]
+
+
+def test_rest_at_the_accumulation_point_against_rigid_transverse_walls():
+    """One-sided motion: every bounce about pivot +1 ends with an impact into the walls and one
+    out of them, so the launch speed falls by ``e^2`` per bounce and the rest time is
+    ``sum_n (2/p) atanh(e^(2n) w0 / (p alpha))`` (linearised, no ground motion)."""
+    walls = {"transverse_walls": SpringBed(math.inf, BLOCK.height), "motion_sides": "one"}
+    mdl = RockingModel(BLOCK, Constant(E), linearised=True, **walls)
+    p, a = mdl.p, BLOCK.alpha
+    w0 = 0.3 * p * a
+    exact = sum(2.0 / p * math.atanh(E ** (2 * n) * w0 / (p * a)) for n in range(3000))
+    res = simulate(mdl, None, omega0=w0, duration=10.0)
+    assert res.success
+    assert res.n_impacts == math.ceil(math.log(1e-3 / 0.3) / math.log(E * E))
+    assert res.uplift_intervals[0, 1] == pytest.approx(exact, abs=1e-7)
+    assert exact - res.impacts[-1, 0] > 1e-3
+    tight = RockingModel(BLOCK, Constant(E), linearised=True, rest_tol=1e-12, **walls)
+    ref = simulate(tight, None, omega0=w0, duration=10.0, rtol=1e-12)
+    assert ref.uplift_intervals[0, 1] == pytest.approx(exact, abs=1e-10)
