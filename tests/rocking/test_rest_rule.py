@@ -208,3 +208,28 @@ def test_rest_at_the_accumulation_point_against_rigid_transverse_walls():
     tight = RockingModel(BLOCK, Constant(E), linearised=True, rest_tol=1e-12, **walls)
     ref = simulate(tight, None, omega0=w0, duration=10.0, rtol=1e-12)
     assert ref.uplift_intervals[0, 1] == pytest.approx(exact, abs=1e-10)
+
+
+def test_rest_tol_on_a_winkler_base_is_refused(tmp_path):
+    case = """
+[body]
+width = 0.72
+height = 1.80
+thickness = 0.138
+top_mass = 5000.0
+[base]
+model = "winkler"
+stiffness = 1.0e9
+[motion]
+type = "free"
+theta0_over_alpha = 0.5
+[solver]
+duration = 2.0
+rest_tol = 1e-3
+"""
+    (tmp_path / "case.toml").write_text(case)
+    r = CliRunner().invoke(app, ["run", str(tmp_path / "case.toml"), "--out",
+                                 str(tmp_path / "out"), "--no-figure"])
+    assert r.exit_code == 2
+    assert "line 16: [solver.rest_tol] a Winkler base has no rest rule" in r.output
+    assert not (tmp_path / "out").exists()
