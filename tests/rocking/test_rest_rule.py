@@ -231,5 +231,5 @@ rest_tol = 1e-3
     r = CliRunner().invoke(app, ["run", str(tmp_path / "case.toml"), "--out",
                                  str(tmp_path / "out"), "--no-figure"])
     assert r.exit_code == 2
-    assert "line 16: [solver.rest_tol] a Winkler base has no rest rule" in r.output
+    assert "line 15: [solver.rest_tol] a Winkler base has no rest rule" in r.output
     assert not (tmp_path / "out").exists()
