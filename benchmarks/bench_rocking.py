@@ -1,6 +1,7 @@
 """Benchmark of the rocking engine against the solve_ivp peer (issue 2, item 9).
 
-Side by side in one run, same input, same equation, same rest rule:
+Side by side in one run, same input, same equation (the peer puts the wall at rest at once
+below 1e-3 p alpha, murus at the accumulation point of the cascade since issue 15):
   - per history: murus ``simulate`` (event-driven, rtol 1e-9) against the peer
     (``benchmarks/peer_solve_ivp.py``, RK45 at rtol 1e-8 with ``max_step = dt``), on pulses and on
     the FEMA P695 far-field records (first 20 s, scaled to 1.5 and 3 times the uplift

@@ -23,6 +23,7 @@ Timings are from a 2-core machine (the project's standard machine); numba kernel
 RUNS = [
     ("bench_rocking.py", "RESULTS_rocking.md"),
     ("bench_restrained.py", "RESULTS_restrained.md"),
+    ("bench_rest_rule.py", "RESULTS_rest_rule.md"),
     ("bench_spectra.py", "RESULTS_motion.md"),
     ("bench_studies.py", "RESULTS_studies.md"),
     ("bench_dem.py", "RESULTS_dem.md"),

@@ -47,6 +47,7 @@ def main() -> None:
     import eurocode
     import identify
     import motion
+    import rest_rule
     import restrained
     import retaining_backfill
     import retaining_behaviour
@@ -58,6 +59,7 @@ def main() -> None:
     import winkler
 
     sections = [("rocking", rocking.section), ("restrained", restrained.section),
+                ("rest_rule", rest_rule.section),
                 ("seed000_model", seed000_model.section),
                 ("winkler", lambda: winkler.run(ROOT / "docs" / "figures" / "winkler")),
                 ("motion", motion.section), ("eurocode", eurocode.section),

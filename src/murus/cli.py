@@ -129,12 +129,12 @@ def run(
         result = run_case(model, motion, kwargs)
     except (CaseError, ValueError) as exc:
         fail(str(exc).splitlines()[0])
-    if not result.success:
-        fail(f"{case}: {result.message}")
     try:
         write_outputs(result, out, figure=not no_figure)
     except OutputError as exc:
         _out_error(exc)
+    if not result.success:  # the outputs say so too (summary.json: status)
+        cliutil.failed(f"{case}: {result.message}; partial results in {out}")
     s = result.summary()
     events = (f"impacts = {s['impacts']}" if "impacts" in s
               else f"zero crossings = {s['crossings']}")
@@ -177,7 +177,11 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
     except OutputError as exc:
         _out_error(exc)
     typer.echo(f"{summary_line(case.name, res)} -> {out}")
-    if not res.ok and res.result.status != "interrupted":
+    if res.result.status == "interrupted":
+        cliutil.failed(f"{case.name}: {res.result.message}; the results up to then are in {out} "
+                       "(summary.json status 'interrupted'); a DEM run restarts from the "
+                       "beginning: run the same command again", code=130)
+    if not res.ok:
         # the job did not succeed: its outputs say so (summary.json "ok": false), exit 1
         typer.echo(f"error: {case.name}: {res.result.status}: {res.result.message}", err=True)
         raise typer.Exit(code=1)

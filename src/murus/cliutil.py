@@ -32,6 +32,13 @@ def fail(message) -> None:
     raise typer.Exit(code=2)
 
 
+def failed(message, code: int = 1) -> None:
+    """A job that ran but did not succeed: print ``error: message`` (one line) on stderr and
+    exit with ``code`` (1; 130 for an interrupt). Bad input uses :func:`fail` (exit 2)."""
+    typer.echo(f"error: {plain(message)}", err=True)
+    raise typer.Exit(code=code)
+
+
 def _note(message, category, filename, lineno, file=None, line=None) -> None:
     """``warnings.showwarning`` of the command line: ``note: <message>`` on one line of stderr,
     without the source file, line and code that Python prints."""

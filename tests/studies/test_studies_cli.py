@@ -107,6 +107,8 @@ def bad(study_dir, old, new, *args):
     ("density = 2140.7", "density = 2140.7\ncolour = 1",
      "s.toml line 9: [case.body.colour] unknown key"),
     ('stiffness = "eq11"', 'stiffness = "soft"', "[case.restraint.transverse_walls.stiffness]"),
+    ("[sweep]", "[case.solver]\nrest_tol = 0.0\n\n[sweep]",
+     "[case.solver.rest_tol] rest_tol = 0 never ends a cascade of impacts"),
 ])
 def test_bad_input_one_line_exit_2(study_dir, old, new, expect):
     r = bad(study_dir, old, new)

@@ -710,7 +710,7 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                     break
                 if sig.hit:
                     status = "interrupted"
-                    message = f"interrupted at t={m.time:.6g} s (save() to resume)"
+                    message = f"interrupted at t = {m.time:.6g} s"
                     break
     finally:
         m._threads = None

@@ -38,6 +38,7 @@ Example (every key documented in the README)::
     [solver]
     method = "event"     # or "newmark" with dt
     duration = 20.0      # s (default: end of the motion plus 5 s of free motion)
+    rest_tol = 1e-3      # cascades of impacts summed below rest_tol * p * alpha (0: never)
 """
 
 from __future__ import annotations
@@ -212,6 +213,7 @@ class SolverCfg(Strict):
     dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     duration: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     rtol: float = Field(default=1e-9, gt=0, lt=1e-2)
+    rest_tol: float = Field(default=1e-3, ge=0, lt=1, allow_inf_nan=False)
     out_dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     linearised: bool = False
 
@@ -375,6 +377,9 @@ def _winkler(case: RockingCase, body, path: Path, text: str):
     if case.solver.method != "event" or case.solver.linearised:
         raise fail_at(path, text, ("solver",), "a Winkler base runs with method = 'event' and "
                       "the full equations only")
+    if "rest_tol" in case.solver.model_fields_set:
+        raise fail_at(path, text, ("solver", "rest_tol"), "a Winkler base has no rest rule: "
+                      "the layer keeps the wall in continuous contact")
     try:
         return WinklerModel(body, case.base.build())
     except WinklerError as exc:
@@ -444,7 +449,7 @@ def build_model(case: RockingCase, body, path: Path, text: str):
         where = ("restraint",)
         return RockingModel(body, law, linearised=case.solver.linearised, tie=tie,
                             transverse_walls=walls, damper=damper, motion_sides=r.motion_sides,
-                            pivot=pivot)
+                            pivot=pivot, rest_tol=case.solver.rest_tol)
     except (ModelError, RestitutionError, RestraintError) as exc:
         msg = str(exc)
         if "above the wall" in msg or "outside the wall" in msg:

@@ -11,8 +11,13 @@ pivot is never ``sign(theta)``, which is undefined at ``theta = 0``.
   of that moment; the instant is located inside the step by root finding;
 - rocking -> impact: ``theta`` crosses zero; the instant is located inside the step, the angular
   velocity is multiplied by the coefficient of restitution and the pivot switches to ``-s``;
-- impact -> rest: when the velocity after the impact is below ``rest_tol * p * alpha`` and the
-  ground cannot lift the body: this ends the Zeno cascade of ever smaller impacts;
+- impact -> rest: at the accumulation point of the cascade of ever smaller impacts (a Zeno
+  point), never before. Once the velocity after an impact is below ``rest_tol * p * alpha`` (free
+  rocking and bounces against rigid transverse walls alike), the rest of the cascade is summed
+  instead of integrated (:func:`cascade_end`): the bounce times form a geometric series whose
+  limit is the instant the body comes to rest; the body is put at rest there, and only if the
+  ground cannot lift it over the cascade and as long again after it (lift margins at every input
+  breakpoint of that window); otherwise the integration goes on;
 - rocking -> overturned: ``|theta|`` reaches ``pi/2``.
 
 Equation of motion (seed 000 eq. 5, seed 002 eq. 1), a sum of moment terms about the active
@@ -127,6 +132,7 @@ MEM_T_FREE = 2  # end of the input: free vibration after it [s]
 MEM_SIZE = 4
 
 HALF_PI = 0.5 * math.pi
+CASCADE_BOUNCES = 16  # bounces of a cascade summed one by one before the closed-form tail
 
 
 # ======================================================================== excitation ======
@@ -698,8 +704,111 @@ def record_peak(S, pk, t, th):
 
 
 @njit(cache=True)
+def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
+    """Accumulation time [s] of the cascade of impacts that starts at ``t`` with the angular
+    velocity ``om`` [rad/s] about pivot ``s`` just after an impact, or ``-1.0`` when the cascade
+    cannot be summed (the ground lifts the body during it or just after it, or ``e = 1``).
+
+    At small amplitude a bounce about pivot ``s`` is a flight under the constant restoring
+    acceleration ``d = -s theta''(theta = 0)`` (gravity, ground, restraints at ``theta = 0``):
+    it lasts ``2 w / d`` and returns with the launch speed ``w``, which the next impact multiplies
+    by ``e`` (by ``e^2`` against rigid transverse walls: an impact into the walls and one out of
+    them). With constant ``e`` and ``d`` the bounce times form the geometric series
+    ``T_n = T_0 e^n`` and the cascade ends at ``t + T_0 / (1 - e)`` (free rocking: ``d = p^2
+    alpha``, ``t_inf = t + 2 w / (p^2 alpha (1 - e))``; Housner 1963, where the half-period of
+    the linearised equation, ``tanh(p T / 2) = w / (p alpha)``, tends to ``2 w / (p^2 alpha)``
+    at small ``w``). Here ``d`` and ``e`` are evaluated bounce by bounce for the first
+    ``CASCADE_BOUNCES`` bounces (``d`` at mid-bounce, so a slowly varying ground acceleration is
+    followed), and the tail is summed in closed form with the last values: bounces about
+    alternating pivots ``s, -s, ...`` with restoring accelerations ``d_1, d_2`` sum to
+    ``(2 w / (1 - e^2)) (1/d_1 + e/d_2)``; against rigid walls, where the pivot stays and the
+    ratio is ``e^2``, to ``2 w / (d (1 - e^2))``.
+
+    The sum is accepted only when the lift margins about both pivots stay negative at ``t``, at
+    every breakpoint of the input in ``[t, t + 2 (t_inf - t)]`` and at its end: then the body
+    truly comes to rest (the factor 2 covers the error of the sum), and it stays at rest from
+    ``t_inf`` until the ground lifts it, a case for the rest phase."""
+    w = abs(om)
+    if w == 0.0:
+        return t
+    tc = t
+    e = 1.0
+    dp = 0.0  # restoring acceleration of the last bounce about pivot +1 ...
+    dm = 0.0  # ... and about pivot -1 [rad/s2]
+    for _ in range(CASCADE_BOUNCES):
+        a = accel(0.0, 0.0, s, tc, tc, X, ag, av, P)
+        d = -s * a
+        if not (d > 0.0):
+            return -1.0
+        tn = 2.0 * w / d
+        a = accel(0.0, 0.0, s, tc + 0.5 * tn, tc + 0.5 * tn, X, ag, av, P)
+        d = -s * a
+        if not (d > 0.0):
+            return -1.0
+        tn = 2.0 * w / d
+        if s > 0.0:
+            dp = d
+        else:
+            dm = d
+        tc += tn
+        gh, gv = ground(tc, tc, X, ag, av)
+        bl = lever(gh, gv, P)
+        e = restitution(P, mem, 0.0, tc, bl)
+        if P[P_STOP] != 0.0 and s > 0.0:
+            e = e * restitution(P, mem, 0.0, tc, bl)  # into the walls and out of them
+        else:
+            s = -s
+        if not (e < 1.0):
+            return -1.0
+        w *= e
+    # the tail in closed form with the last restoring accelerations
+    if P[P_STOP] != 0.0 and s > 0.0:
+        t_inf = tc + 2.0 * w / (dp * (1.0 - e))
+    else:
+        d1 = dp if s > 0.0 else dm
+        d2 = dm if s > 0.0 else dp
+        if d1 == 0.0 or d2 == 0.0:  # pragma: no cover (CASCADE_BOUNCES >= 2)
+            d1 = d2 = max(d1, d2)
+        t_inf = tc + 2.0 * w / (1.0 - e * e) * (1.0 / d1 + e / d2)
+    # the ground must not lift the body over the cascade and as long again after it
+    t_win = t + 2.0 * (t_inf - t)
+    tb = t
+    for _ in range(100_000):
+        if lift_margin(tb, tb, 1.0, X, ag, av, P) > 0.0:
+            return -1.0
+        if lift_margin(tb, tb, -1.0, X, ag, av, P) > 0.0:
+            return -1.0
+        if tb >= t_win:
+            break
+        tb = min(segment_end(tb, X, n_rec, t_win), t_win)
+    return t_inf
+
+
+@njit(cache=True)
 def do_impact(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap):
-    """Apply an impact at ``t``: restitution, pivot switch, log; returns ``(omega, pivot)``."""
+    """Apply an impact at ``t``: restitution, pivot switch, log; returns ``(omega, pivot)``.
+    A velocity after the impact below ``rest_tol * p * alpha`` puts the body at rest right away
+    (the rule of the fixed-step Newmark method; the event-driven method sums the cascade
+    instead: :func:`do_impact_cascade`)."""
+    om_a, s_next, t_rest = impact_core(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap,
+                                       nu_cap, False, 0)
+    return om_a, s_next
+
+
+@njit(cache=True)
+def do_impact_cascade(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap, n_rec):
+    """Apply an impact at ``t`` (event-driven method); returns ``(omega, pivot, t_rest)``: when
+    the cascade that follows is summed (:func:`cascade_end`), pivot 0 and the accumulation time
+    ``t_rest`` at which the body comes to rest; else ``t_rest = t``."""
+    return impact_core(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap, True,
+                       n_rec)
+
+
+@njit(cache=True)
+def impact_core(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap, cascade,
+                n_rec):
+    """Impact at ``t``: restitution, pivot switch, log, and the end of a cascade (see
+    :func:`do_impact` and :func:`do_impact_cascade`)."""
     gh, gv = ground(t, tm, X, ag, av)
     bl = lever(gh, gv, P)
     e = restitution(P, mem, om_b, t, bl)
@@ -722,20 +831,26 @@ def do_impact(t, tm, om_b, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap):
     mem[MEM_HALF_MAX] = 0.0
     p = math.sqrt(P[P_M] * P[P_G] * P[P_R] / P[P_I])
     rest = abs(om_a) < P[P_REST_TOL] * p * P[P_ALPHA]
-    if not rest and s_next == s:
-        # a bounce on rigid walls: end the cascade once the excursion it starts,
+    if not rest and s_next == s and not cascade:
+        # (Newmark) a bounce on rigid walls: end the cascade once the excursion it starts,
         # om^2 / (2 |theta''|) under the restoring acceleration at theta = 0, is below
         # rest_tol * alpha (the bounces form a geometric series of vanishing excursions)
         a0 = accel(0.0, om_a, s, t, tm, X, ag, av, P)
         rest = s * a0 < 0.0 and om_a * om_a < 2.0 * P[P_REST_TOL] * P[P_ALPHA] * abs(a0)
+    t_rest = t
+    if rest and cascade:
+        # sum the rest of the cascade; at rest only at its accumulation point, and only if the
+        # ground cannot lift the body over it (else integrate on)
+        t_rest = cascade_end(t, om_a, s_next, X, ag, av, P, mem, n_rec)
+        rest = t_rest >= t
     if rest:
-        # negligible velocity: back to rest unless the ground lifts the body right now
+        # the cascade ends: back to rest (the rest phase lifts the body when the ground can)
         S[S_E_DISSIPATED] += 0.5 * i_o * om_a * om_a
         k = int(S[S_N_UPLIFTS]) - 1
         if 0 <= k < nu_cap:
-            up[k, 1] = t
-        return 0.0, 0.0
-    return om_a, s_next
+            up[k, 1] = t_rest
+        return 0.0, 0.0, t_rest
+    return om_a, s_next, t
 
 
 @njit(cache=True)
@@ -975,9 +1090,14 @@ def event_core(P, X, ag, av, t_end, th0, om0, rtol, out_dt, th_out, om_out, pv_o
             j = overturned_at(t, th, s, S, up, nu_cap, j, th_out, om_out, pv_out)
             break
         if event == 1:
-            om, s = do_impact(t, tm, om, s, X, ag, av, P, mem, S, imp, up, ni_cap, nu_cap)
+            om, s, t_rest = do_impact_cascade(t, tm, om, s, X, ag, av, P, mem, S, imp, up,
+                                              ni_cap, nu_cap, n_rec)
             th = 0.0
             h = h_next
+            if s == 0.0:
+                # at rest from the accumulation point of the cascade
+                t = min(t_rest, t_end)
+                have_m = False
     finish(S, t, th, om, s, steps, j, th_out, om_out, pv_out)
     return S
 

@@ -430,6 +430,10 @@ class Study:
         if cfg.solver.method != "event":
             raise self._fail(("solver", "method"), "studies run the event-driven kernel "
                              "(simulate_batch): method must be 'event'")
+        if cfg.solver.rest_tol == 0.0:
+            raise self._fail(("solver", "rest_tol"), "rest_tol = 0 never ends a cascade of "
+                             "impacts and every history would stop early: give a positive value "
+                             "(default 1e-3)")
         path, text = (self.case_path, self.case_text) if self.case_path else (self.path,
                                                                                self.text)
         try:
