@@ -272,6 +272,11 @@ def collapse(
                                           progress=bar.update, **kw)
     except (*_collapse_errors(), BackfillError) as exc:
         error = exc
+    except KeyboardInterrupt:
+        from murus.cliutil import failed
+
+        failed("interrupted: nothing was written (a collapse run restarts from the beginning: "
+               "run the same command again)", code=130)
     if error is not None:
         _fail(error)
     summary = res.summary()

@@ -316,6 +316,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         else:
             tp = ap / A
             A_col = A * t_col if t_col <= tp else max(ap * (1 - (t_col - tp) / (2 * tp)), 0.0)
+    elif res.status == "interrupted":  # Ctrl-C caught by the DEM engine: pass it on
+        raise KeyboardInterrupt(f"{wall.name}: {res.message}")
     elif res.status not in ("completed",):
         raise CollapseError(f"{wall.name}: DEM run ended with status {res.status}: "
                             f"{res.message}")
