@@ -223,7 +223,7 @@ def test_failure_while_moving_into_out_puts_everything_back(tmp_path, monkeypatc
         return real(src, dst, *a, **k)
 
     monkeypatch.setattr(outputs.os, "replace", flaky)
-    with pytest.raises(OSError, match="disk full"):
+    with pytest.raises(OutputError, match="disk full"):
         write_dir(out, _write({"a.csv": "new a", "b/c.csv": "new c", "d/e.csv": "new e"}))
     monkeypatch.setattr(outputs.os, "replace", real)
     assert len(calls) > 6  # the failed move, then the moves back
@@ -274,6 +274,51 @@ def test_motion_ramp_refuses_an_extension_it_cannot_write(tmp_path):
     r = runner.invoke(app, [*args, "--out", str(tmp_path / "r.csv")])
     assert r.exit_code == 0, r.output
     assert os.listdir(tmp_path) == ["r.csv"]  # no temporary file left
+
+
+def test_single_file_outputs_replace_only_murus_files(tmp_path):
+    """A user's file is never overwritten by a single-file output; murus's own file is (its
+    signature, or the folder's list of files murus wrote); an output naming one of its
+    inputs is refused."""
+    args = ["motion", "ramp", "--amplitude-rate", "1", "--frequency", "2", "--duration", "1"]
+    mine = tmp_path / "mine.csv"
+    mine.write_text("my precious data\n")
+    before = snapshot(tmp_path)
+    err = one_line_error(runner.invoke(app, [*args, "--out", str(mine)]))
+    assert "was not written by murus" in err
+    assert snapshot(tmp_path) == before
+    ramp = tmp_path / "r.csv"
+    assert runner.invoke(app, [*args, "--out", str(ramp)]).exit_code == 0
+    assert runner.invoke(app, [*args, "--duration", "2", "--out", str(ramp)]).exit_code == 0
+    # a CSV without a signature: recorded in the folder's list, so a re-run may replace it
+    h = tmp_path / "s1.csv"
+    t = np.linspace(0.0, 2.0, 41)
+    np.savetxt(h, np.column_stack([t, 0.01 * t]), delimiter=",", header="t_s,d_top_m",
+               comments="")
+    wr = ["retaining", "weighted-response", str(h), str(h), "--weights", "1,1"]
+    err = one_line_error(runner.invoke(app, [*wr, "--out", str(h)]))
+    assert "is one of the input histories" in err
+    out = tmp_path / "w.csv"
+    assert runner.invoke(app, [*wr, "--out", str(out)]).exit_code == 0
+    assert outputs.owned_file(out)
+    assert runner.invoke(app, [*wr, "--out", str(out)]).exit_code == 0
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="needs Linux /proc")
+def test_write_errors_are_one_line(tmp_path):
+    """A location where nothing can be written (a pseudo file system) gives one line, exit 2."""
+    proj = project(tmp_path)
+    err = one_line_error(runner.invoke(app, ["run", str(proj / "wall.toml"), "--out",
+                                             "/proc/murus-out", "--no-figure"]))
+    assert "/proc/murus-out" in err
+
+
+def test_oversized_input_is_one_line_without_output(tmp_path):
+    """An input asking for more memory than the machine has: one line, exit 2, no output."""
+    err = one_line_error(runner.invoke(app, ["lab", "synthesize", str(tmp_path / "syn"),
+                                             "--wn-duration", "1e12"]))
+    assert "more memory than this machine has" in err
+    assert not (tmp_path / "syn").exists()
 
 
 def test_version():

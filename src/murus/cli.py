@@ -39,6 +39,12 @@ class _Group(TyperGroup):
         except KeyboardInterrupt:
             typer.echo("interrupted", err=True)
             raise typer.Exit(code=130) from None
+        except MemoryError as exc:  # an input asking for more memory than the machine has
+            size = str(exc).split(":")[-1].strip() if str(exc) else ""
+            cliutil.fail(f"the input asks for more memory than this machine has"
+                         f"{' (' + size + ')' if size else ''}: check the sizes, the number "
+                         "of steps, samples or grid points, and the durations; nothing was "
+                         "written")
 
 
 app = typer.Typer(

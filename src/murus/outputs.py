@@ -43,6 +43,55 @@ MANIFEST = ".murus-manifest.json"
 
 _FORMAT = "murus-manifest/1"
 
+FILES = ".murus-files.json"
+"""Name of the list of single output files murus wrote in a folder (:func:`write_file` with
+``record=True``)."""
+
+#: First bytes of the text files murus writes (motion records, VALIDATION.md): such a file is
+#: murus's own and may be replaced.
+_SIGNATURES = (b"# murus",)
+
+
+def _recorded(folder: Path) -> set[str]:
+    try:
+        data = json.loads((folder / FILES).read_text(encoding="utf-8"))
+        return {str(x) for x in data.get("files", [])}
+    except (OSError, ValueError, AttributeError):
+        return set()
+
+
+def owned_file(p) -> bool:
+    """True when the existing file ``p`` was written by murus: listed in its folder's
+    :data:`FILES` or manifest, starting with a murus signature (``# murus``), or lying in a
+    study folder of murus (``study.json`` beside it)."""
+    p = Path(p)
+    folder = p.parent if str(p.parent) else Path(".")
+    if p.name in _recorded(folder) or p.name in read_manifest(folder):
+        return True
+    try:
+        with open(p, "rb") as f:
+            head = f.read(64)
+    except OSError:
+        return False
+    return head.startswith(_SIGNATURES) or (folder / "study.json").is_file()
+
+
+def _record(out: Path) -> None:
+    """Add ``out`` to the :data:`FILES` list of its folder (atomically)."""
+    folder = out.parent if str(out.parent) else Path(".")
+    names = sorted(_recorded(folder) | {out.name})
+    text = json.dumps({"format": "murus-files/1", "files": names}, indent=2) + "\n"
+    fd, name = tempfile.mkstemp(prefix=f".{FILES}.", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        os.chmod(name, file_mode())
+        os.replace(name, folder / FILES)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(name)
+        raise
+
 
 class OutputError(ValueError):
     """A bad output path: the message is one line naming the offending path."""
@@ -176,8 +225,9 @@ def check_dir(out, names: Iterable[str] | None = None, label: str = "--out") -> 
 def check_file(out, suffixes: Iterable[str], label: str = "--out") -> Path:
     """Check an output file before any computation; the file system is not touched.
 
-    An existing file at ``out`` will be replaced (the user named it); an existing folder is
-    refused, as is an extension the command cannot write.
+    An existing file at ``out`` is replaced only when murus wrote it (:func:`owned_file`);
+    any other existing file, an existing folder and an extension the command cannot write are
+    refused.
 
     Parameters
     ----------
@@ -206,6 +256,9 @@ def check_file(out, suffixes: Iterable[str], label: str = "--out") -> Path:
         what = f"extension {p.suffix}" if p.suffix else "no extension"
         raise OutputError(f"{label} {out}: {what}; this command writes "
                           f"{' or '.join(allowed)}")
+    if p.is_file() and not owned_file(p):
+        raise OutputError(f"{label} {out}: exists and was not written by murus; remove it or "
+                          "name another file")
     if p.exists() and not os.access(p.parent if str(p.parent) else Path("."), os.W_OK):
         raise OutputError(f"{label} {out}: folder {p.parent} is not writable")
     _writable_ancestor(p, label)
@@ -318,7 +371,7 @@ def _hold_sigint() -> Iterator[None]:
 
 
 # ------------------------------------------------------------------------------ writers
-def write_file(out, write: Callable[[Path], object]) -> Path:
+def write_file(out, write: Callable[[Path], object], record: bool = False) -> Path:
     """Write one output file atomically.
 
     ``write(tmp)`` writes a temporary file in the same folder as ``out`` (its name ends with
@@ -332,6 +385,9 @@ def write_file(out, write: Callable[[Path], object]) -> Path:
         Destination file.
     write : callable
         ``write(path)`` writes the content to ``path``.
+    record : bool
+        Add ``out`` to the :data:`FILES` list of its folder, so that a later run may replace
+        it (:func:`check_file`); for outputs that carry no murus signature.
 
     Returns
     -------
@@ -340,11 +396,17 @@ def write_file(out, write: Callable[[Path], object]) -> Path:
     """
     out = Path(out)
     times = _times([_nearest_existing(out)])
-    created = _make_parents(out)
+    try:
+        created = _make_parents(out)
+    except OSError as exc:
+        raise OutputError(f"{out}: cannot create its folder ({exc.strerror or exc})") from None
     tmp = None
     try:
-        fd, name = tempfile.mkstemp(prefix=f".{out.name}.", suffix=out.suffix or ".tmp",
-                                    dir=out.parent if str(out.parent) else ".")
+        try:
+            fd, name = tempfile.mkstemp(prefix=f".{out.name}.", suffix=out.suffix or ".tmp",
+                                        dir=out.parent if str(out.parent) else ".")
+        except OSError as exc:
+            raise OutputError(f"{out}: cannot write there ({exc.strerror or exc})") from None
         os.close(fd)
         tmp = Path(name)
         write(tmp)
@@ -352,6 +414,8 @@ def write_file(out, write: Callable[[Path], object]) -> Path:
         with _hold_sigint():
             os.replace(tmp, out)
             tmp = None
+            if record:
+                _record(out)
     except BaseException:
         if tmp is not None:
             with contextlib.suppress(OSError):
@@ -402,25 +466,32 @@ def staged_dir(out, command: str = "murus", names: Iterable[str] | None = None):
     out = check_dir(out, names)
     exists = out.is_dir()
     times = _times([out if exists else _nearest_existing(out)])
-    created = [] if exists else _make_parents(out)
+    created = []
     try:
+        created = [] if exists else _make_parents(out)
         tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.murus-",
                                     dir=out if exists else out.parent))
-    except BaseException:
+    except BaseException as exc:
         _remove_created(created)
         _restore_times(times)
+        if isinstance(exc, OSError):
+            raise OutputError(f"{out}: cannot write there ({exc.strerror or exc})") from None
         raise
     try:
         yield tmp
         files = _files(tmp)
-        if exists:
-            _publish_into(tmp, out, files, command)
-        else:
-            _chmod_tree(tmp)
-            (tmp / MANIFEST).write_text(_manifest_text(command, files), encoding="utf-8")
-            os.chmod(tmp / MANIFEST, file_mode())
-            with _hold_sigint():
-                os.rename(tmp, out)
+        try:
+            if exists:
+                _publish_into(tmp, out, files, command)
+            else:
+                _chmod_tree(tmp)
+                (tmp / MANIFEST).write_text(_manifest_text(command, files), encoding="utf-8")
+                os.chmod(tmp / MANIFEST, file_mode())
+                with _hold_sigint():
+                    os.rename(tmp, out)
+        except OSError as exc:
+            raise OutputError(f"{out}: cannot write the outputs ({exc.strerror or exc})") \
+                from None
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         _remove_created(created)

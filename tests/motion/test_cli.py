@@ -16,7 +16,8 @@ runner = CliRunner()
 
 def test_info_peaks_after_stated_baseline(tmp_path):
     """A record that is only an acceleration offset c0 + c1 t: the raw PGD is the double
-    integral (c0 T²/2 + c1 T³/6); the quadratic velocity baseline removes it exactly."""
+    integral (c0 T²/2 + c1 T³/6); the end correction removes it exactly. A record that already
+    ends at rest (an artificial EN 1998-1 record) keeps its raw PGV and PGD."""
     dt, n = 0.01, 1001
     t = dt * np.arange(n)
     a = 0.02 + 0.003 * t
@@ -30,7 +31,16 @@ def test_info_peaks_after_stated_baseline(tmp_path):
     assert d["pgd_raw"] == pytest.approx(0.02 * T**2 / 2 + 0.003 * T**3 / 6, rel=1e-9)
     assert d["pgv"] < 1e-10 and d["pgd"] < 1e-10
     r = runner.invoke(app, ["motion", "info", str(f)])
-    assert "after baseline correction" in r.stdout and "baseline: quadratic" in r.stdout
+    assert "after baseline correction" in r.stdout and "baseline: end correction" in r.stdout
+    from murus.motion.artificial import generate_ec8
+
+    rec = generate_ec8(2.5, "B", 1, n=1, seed=3)[0]
+    g = tmp_path / "ec8.csv"
+    g.write_text("# units: m/s2\n" + "\n".join(
+        f"{x:.6f},{float(y)!r}" for x, y in zip(rec.time, rec.acc, strict=True)))
+    d = json.loads(runner.invoke(app, ["motion", "info", str(g), "--json"]).stdout)
+    assert d["pgd"] == pytest.approx(d["pgd_raw"], rel=1e-6)
+    assert d["pgv"] == pytest.approx(d["pgv_raw"], rel=1e-6)
 
 
 def test_ramp_info_spectrum(tmp_path):
@@ -49,7 +59,7 @@ def test_ramp_info_spectrum(tmp_path):
     assert d["pgv_raw"] == pytest.approx(np.max(np.abs(ramp_velocity(0.5, 3, gm.time))),
                                          rel=rel)
     assert {"pga", "arias", "d5_95", "pgv", "pgd", "pgd_raw"} <= set(d)
-    assert "quadratic" in d["baseline"]
+    assert "end correction" in d["baseline"]
     r = runner.invoke(app, ["motion", "spectrum", str(out), "--out", str(tmp_path / "sp")])
     assert r.exit_code == 0, r.output
     lines = (tmp_path / "sp" / "spectrum.csv").read_text().splitlines()

@@ -69,8 +69,9 @@ def info(
 ) -> None:
     """Format, dt, npts, PGA, PGV, PGD, Arias intensity, D5-75, D5-95 and CAV of a record.
 
-    PGV and PGD are given after a stated baseline correction (a quadratic fitted to the
-    velocity; murus.motion.measures.BASELINE), with the uncorrected values beside them."""
+    PGV and PGD are given after a stated baseline correction (a linear acceleration making the
+    final velocity and displacement zero; murus.motion.measures.BASELINE), with the
+    uncorrected values beside them."""
     with _guard():
         from murus.motion.measures import corrected_peaks, summary
 

@@ -130,7 +130,7 @@ def _read_text(path: Path) -> str:
     except FileNotFoundError:
         raise MotionFormatError(f"{path.name}: no such file") from None
     except IsADirectoryError:
-        raise MotionFormatError(f"{path.name}: is a directory, not a record file") from None
+        raise MotionFormatError(f"{path.name or path}: is a folder, not a record file") from None
     except OSError as exc:
         raise MotionFormatError(f"{path.name}: cannot read ({exc.strerror})") from None
     if raw.startswith((b"\xff\xfe", b"\xfe\xff")) or b"\x00" in raw:

@@ -26,8 +26,9 @@ __all__ = [
 ]
 
 #: The baseline correction used for the PGV and PGD that ``murus motion info`` reports.
-BASELINE = ("quadratic velocity baseline: a quadratic fitted by least squares to the velocity "
-            "integrated from rest; its derivative (a linear acceleration) is subtracted")
+BASELINE = ("end correction: a linear acceleration c0 + c1 t subtracted so that the final "
+            "velocity and displacement are zero (a record that already ends at rest is "
+            "unchanged)")
 
 
 def pga(motion: GroundMotion) -> float:
@@ -130,8 +131,11 @@ def corrected_peaks(motion: GroundMotion) -> dict:
 
     Integrating a record from rest turns a small acceleration offset into a velocity that drifts
     linearly and a displacement that drifts quadratically: the raw PGD of an uncorrected record
-    is often meaningless. The correction is
-    :func:`murus.motion.processing.baseline_correct` ``(order=2, fit="velocity")``.
+    is often meaningless. The correction is :func:`murus.motion.processing.end_correction`: the
+    ground is assumed at rest at the end of the record (no permanent displacement), and a
+    record that already ends at rest (a processed record, the artificial EN 1998-1 records) is
+    left unchanged, so its PGV and PGD are the raw ones. Records with a permanent (fling)
+    displacement need a processing of their own (:mod:`murus.motion.processing`).
 
     Returns
     -------
@@ -139,9 +143,9 @@ def corrected_peaks(motion: GroundMotion) -> dict:
         ``pgv``, ``pgd`` after the correction, ``pgv_raw``, ``pgd_raw`` before it, and
         ``baseline`` (the text of :data:`BASELINE`).
     """
-    from murus.motion.processing import baseline_correct
+    from murus.motion.processing import end_correction
 
-    c = baseline_correct(motion, order=2, fit="velocity")
+    c = end_correction(motion)
     return {"pgv": pgv(c), "pgd": pgd(c), "pgv_raw": pgv(motion), "pgd_raw": pgd(motion),
             "baseline": BASELINE}
 

@@ -637,6 +637,8 @@ def weighted_response_cmd(
     from murus.retaining.sections import SectionsError, weighted_response
 
     if out is not None:
+        if any(Path(out).resolve() == Path(f).resolve() for f in histories):
+            _fail(f"--out {out}: is one of the input histories; name another file")
         with guard(OutputError):
             check_file(out, (".csv",))
     try:
@@ -672,5 +674,6 @@ def weighted_response_cmd(
         header = "t_s,d_top_m," + ",".join(f"t_section{k + 1}_s" for k in range(len(hs)))
         with guard(OutputError):
             write_file(out, lambda p: np.savetxt(p, cols, delimiter=",", fmt="%.9g",
-                                                 header=header, comments=""))
+                                                 header=header, comments=""),
+                       record=True)
         typer.echo(f"wrote {out}")

@@ -212,7 +212,7 @@ def _plot(ds, png: Path, record: str | None, p=None) -> Path:
 
     stage(f"writing {png}")
     try:
-        write_file(png, lambda tmp: ax.figure.savefig(tmp, dpi=120))
+        write_file(png, lambda tmp: ax.figure.savefig(tmp, dpi=120), record=True)
     finally:
         plt.close(ax.figure)
     stage(f"wrote {png}")
