@@ -130,3 +130,15 @@ def test_error_lines_have_no_numpy_reprs():
 
     msg = f"time {np.float64(5.0)!r} s after {np.int64(3)!r}, flag {np.bool_(True)!r}\n next"
     assert plain(msg) == "time 5.0 s after 3, flag True next"
+
+
+def test_cli_messages_name_options_not_python_parameters():
+    from typer.testing import CliRunner
+
+    from murus.cli import app
+
+    r = CliRunner().invoke(app, ["retaining", "pseudo-static", "--preset", "DSRW1",
+                                 "--kv-ratio", "nan"])
+    assert r.exit_code == 2 and "--kv-ratio nan: not a finite number" in r.output
+    r = CliRunner().invoke(app, ["design", "damper", "--block", "block1", "--delta-t", "-10"])
+    assert r.exit_code == 2 and "--delta-t" in r.output and "delta_t" not in r.output

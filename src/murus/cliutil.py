@@ -26,9 +26,34 @@ def plain(message) -> str:
     return re.sub(r"\bnp\.(True|False)_", r"\1", text)
 
 
+def option_words(message: str, ctx=None) -> str:
+    """``message`` with the Python names of the current command's parameters written as its
+    command-line options: ``delta_t must be > 0`` becomes ``--delta-t must be > 0``. A name is
+    replaced where it has an underscore, or where it is followed by ``must``, ``=`` or ``:``
+    (so that ordinary words are left alone)."""
+    try:  # typer >= 0.20 carries its own copy of click
+        from typer._click.globals import get_current_context
+    except ImportError:  # pragma: no cover - older typer
+        from click import get_current_context
+
+    ctx = ctx or get_current_context(silent=True)
+    if ctx is None:
+        return message
+    for p in ctx.command.params:
+        longs = [o for o in getattr(p, "opts", []) if o.startswith("--")]
+        if not longs or not p.name or len(p.name) < 2:
+            continue
+        name = re.escape(p.name)
+        pat = (rf"(?<![\w-])({name})(?![\w-])" if "_" in p.name
+               else rf"(?<![\w-])({name})(?=\s+must\b|\s*=|:)")
+        message = re.sub(pat, longs[0], message)
+    return message
+
+
 def fail(message) -> None:
-    """Print ``error: message`` (one line, :func:`plain`) on stderr and exit with code 2."""
-    typer.echo(f"error: {plain(message)}", err=True)
+    """Print ``error: message`` (one line, :func:`plain`, parameters named by their options:
+    :func:`option_words`) on stderr and exit with code 2."""
+    typer.echo(f"error: {option_words(plain(message))}", err=True)
     raise typer.Exit(code=2)
 
 

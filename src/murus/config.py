@@ -40,8 +40,11 @@ def check_physical(key: str, value, label: str | None = None) -> None:
     its physical limit; ``label`` names the value in the message (default ``key``; the CLI
     passes its option, e.g. ``--width``). Other keys and non-numbers pass."""
     lim = PHYSICAL_LIMITS.get(key)
-    if (lim is None or not isinstance(value, int | float) or isinstance(value, bool)
-            or not math.isfinite(value) or abs(value) <= lim[0]):
+    if lim is None or not isinstance(value, int | float) or isinstance(value, bool):
+        return
+    if not math.isfinite(value):
+        raise ValueError(f"{label + ' ' if label else ''}{value}: not a finite number")
+    if abs(value) <= lim[0]:
         return
     unit = "" if lim[1] == "-" else f" {lim[1]}"
     what = f"{label} " if label else ""
