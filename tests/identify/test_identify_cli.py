@@ -93,7 +93,7 @@ def test_errors_exit_2_and_write_nothing(seq, tmp_path):
     assert "--levels" in msg and not out.exists()
     msg = _one_line_error(runner.invoke(app, ["sequence", str(seq), "--out", str(out),
                                               "--cantilever-below", "0.9"]))
-    assert "rocking_above" in msg and not out.exists()
+    assert "--rocking-above" in msg and not out.exists()
 
 
 def test_help_keeps_bracketed_units():

@@ -64,9 +64,9 @@ def test_geometry_command():
 @pytest.mark.parametrize("args, word", [
     (["pseudo-static", "--preset", "DSRW9"], "unknown preset 'DSRW9'"),
     (["pseudo-static", "--preset", "DSRW1", "--delta", "50"], "exceeds the backfill friction"),
-    (["pseudo-static", "--preset", "DSRW1", "--dynamic-point", "2"], "dynamic_point"),
+    (["pseudo-static", "--preset", "DSRW1", "--dynamic-point", "2"], "--dynamic-point"),
     (["pseudo-static", "--preset", "DSRW1", "--thrust", "x"], "thrust must be"),
-    (["pseudo-static", "--preset", "DSRW1", "--kv-ratio", "-1"], "kv_ratio"),
+    (["pseudo-static", "--preset", "DSRW1", "--kv-ratio", "-1"], "--kv-ratio"),
     (["pseudo-static", "--preset", "DSRW1", "--base", "flat"], "base must be"),
     (["pseudo-static", "--preset", "DSRW1", "--interface-delta", "--delta", "10"], "not several"),
     (["pseudo-static", "--preset", "mockup-x"], "unknown mock-up"),
@@ -96,7 +96,7 @@ def test_imports_stay_light():
     (["--width", "5"], "need --backfill discrete"),
     (["--backfill", "discrete", "--boundary", "free-field"], "boundary must be one of"),
     (["--backfill", "soil"], "backfill must be 'thrust' or 'discrete'"),
-    (["--damping-frame", "relative"], "damping_frame must be 'base' or 'absolute'"),
+    (["--damping-frame", "relative"], "--damping-frame must be 'base' or 'absolute'"),
 ])
 def test_collapse_backfill_options_bad_input(tmp_path, args, word):
     out = tmp_path / "out"

@@ -333,7 +333,7 @@ def test_cli_resonance():
         (["tie", "--block", "block1", "--tie-height", "4"], "above the wall (h = 3.0 m)"),
         (["resonance", "--block", "block1", "--K", "-1"], "K must be a non-negative"),
         (["tie", "--block", "block9"], "unknown seed 002 block 'block9'"),
-        (["damper", "--block", "block1", "--delta-t", "0"], "delta_t must be"),
+        (["damper", "--block", "block1", "--delta-t", "0"], "--delta-t must be"),
         (["tie", "--width", "0.3"], "--width and --height"),
         (["tie", "--width", "-0.3", "--height", "3"], "width must be a positive"),
         (["tie", "--block", "block1", "--width", "0.3"], "not both"),

@@ -707,7 +707,9 @@ def record_peak(S, pk, t, th):
 def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
     """Accumulation time [s] of the cascade of impacts that starts at ``t`` with the angular
     velocity ``om`` [rad/s] about pivot ``s`` just after an impact, or ``-1.0`` when the cascade
-    cannot be summed (the ground lifts the body during it or just after it, or ``e = 1``).
+    cannot be summed (the ground lifts the body during it or just after it). With ``e = 1``
+    (only a damper dissipates) the cascade has no accumulation point and the body is put at
+    rest at ``t`` (the rule of ``rest_tol``), with the same check of the ground.
 
     At small amplitude a bounce about pivot ``s`` is a flight under the constant restoring
     acceleration ``d = -s theta''(theta = 0)`` (gravity, ground, restraints at ``theta = 0``):
@@ -735,6 +737,7 @@ def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
     e = 1.0
     dp = 0.0  # restoring acceleration of the last bounce about pivot +1 ...
     dm = 0.0  # ... and about pivot -1 [rad/s2]
+    elastic = False
     for _ in range(CASCADE_BOUNCES):
         a = accel(0.0, 0.0, s, tc, tc, X, ag, av, P)
         d = -s * a
@@ -759,10 +762,20 @@ def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
         else:
             s = -s
         if not (e < 1.0):
-            return -1.0
+            # e = 1: the impacts dissipate nothing. With a damper alone the bounces shrink by
+            # a factor that tends to 1 (the flight, hence the damper's work, shrinks with
+            # them), so the bounce times form a divergent series and the cascade has no
+            # accumulation point: an unbounded number of ever smaller bounces. The body is put
+            # at rest now (below rest_tol p alpha), if the ground does not lift it over twice
+            # the first bounce.
+            elastic = True
+            break
         w *= e
+    if elastic:
+        t_inf = t
+        t_win = t + 2.0 * (tc - t)
     # the tail in closed form with the last restoring accelerations
-    if P[P_STOP] != 0.0 and s > 0.0:
+    elif P[P_STOP] != 0.0 and s > 0.0:
         t_inf = tc + 2.0 * w / (dp * (1.0 - e))
     else:
         d1 = dp if s > 0.0 else dm
@@ -771,7 +784,8 @@ def cascade_end(t, om, s, X, ag, av, P, mem, n_rec):
             d1 = d2 = max(d1, d2)
         t_inf = tc + 2.0 * w / (1.0 - e * e) * (1.0 / d1 + e / d2)
     # the ground must not lift the body over the cascade and as long again after it
-    t_win = t + 2.0 * (t_inf - t)
+    if not elastic:
+        t_win = t + 2.0 * (t_inf - t)
     tb = t
     for _ in range(100_000):
         if lift_margin(tb, tb, 1.0, X, ag, av, P) > 0.0:
