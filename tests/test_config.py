@@ -142,3 +142,17 @@ def test_cli_messages_name_options_not_python_parameters():
     assert r.exit_code == 2 and "--kv-ratio nan: not a finite number" in r.output
     r = CliRunner().invoke(app, ["design", "damper", "--block", "block1", "--delta-t", "-10"])
     assert r.exit_code == 2 and "--delta-t" in r.output and "delta_t" not in r.output
+
+
+def test_option_words_leave_case_file_keys_alone():
+    """Case-file messages name keys (``[wall.stone_height]``), not options."""
+    from types import SimpleNamespace
+
+    from murus.cliutil import option_words
+
+    opt = SimpleNamespace(name="stone_height", opts=["--stone-height"])
+    ctx = SimpleNamespace(command=SimpleNamespace(params=[opt]))
+    msg = "bad.toml line 1: [wall.stone_height] give stone_height"
+    assert option_words(msg, ctx) == msg
+    assert option_words("stone_height must be > 0", ctx) == "--stone-height must be > 0"
+    assert option_words("see [wall.stone_height]", ctx) == "see [wall.stone_height]"

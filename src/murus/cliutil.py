@@ -26,6 +26,9 @@ def plain(message) -> str:
     return re.sub(r"\bnp\.(True|False)_", r"\1", text)
 
 
+_CASE_KEY = re.compile(r"\.toml(?: line \d+)?: \[")
+
+
 def option_words(message: str, ctx=None) -> str:
     """``message`` with the Python names of the current command's parameters written as its
     command-line options: ``delta_t must be > 0`` becomes ``--delta-t must be > 0``. A name is
@@ -37,15 +40,15 @@ def option_words(message: str, ctx=None) -> str:
         from click import get_current_context
 
     ctx = ctx or get_current_context(silent=True)
-    if ctx is None:
+    if ctx is None or _CASE_KEY.search(message):  # a case file's keys keep their names
         return message
     for p in ctx.command.params:
         longs = [o for o in getattr(p, "opts", []) if o.startswith("--")]
         if not longs or not p.name or len(p.name) < 2:
             continue
         name = re.escape(p.name)
-        pat = (rf"(?<![\w-])({name})(?![\w-])" if "_" in p.name
-               else rf"(?<![\w-])({name})(?=\s+must\b|\s*=|:)")
+        pat = (rf"(?<![\w.\[-])({name})(?![\w\]-])" if "_" in p.name
+               else rf"(?<![\w.\[-])({name})(?=\s+must\b|\s*=|:)")
         message = re.sub(pat, longs[0], message)
     return message
 
