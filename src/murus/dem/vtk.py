@@ -37,6 +37,8 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from murus.outputs import write_text
+
 __all__ = ["PvdWriter", "read_base64_array", "write_contacts_vtp", "write_series", "write_vtp"]
 
 _HEADER = '<?xml version="1.0"?>\n'
@@ -200,14 +202,6 @@ def _polydata(points, verts, polys, point_data, cell_data, binary) -> str:
     return "".join(parts)
 
 
-def _atomic_write_text(path: Path, text: str) -> Path:
-    """Write ``text`` atomically with :func:`murus.outputs.write_text` (temporary sibling,
-    then rename; umask permissions)."""
-    from murus.outputs import write_text
-
-    return write_text(path, text)
-
-
 # ----------------------------------------------------------------------------- writers
 
 
@@ -276,7 +270,7 @@ def write_vtp(
     connectivity = np.arange(len(points), dtype=np.int64)
     offsets = np.cumsum(sizes)
     text = _polydata(points, None, (connectivity, offsets), {}, data, binary)
-    return _atomic_write_text(path, text)
+    return write_text(path, text)
 
 
 def write_contacts_vtp(
@@ -314,7 +308,7 @@ def write_contacts_vtp(
     points = np.column_stack([a[:, 0], a[:, 1], np.full(n, z)])
     idx = np.arange(n, dtype=np.int64)
     text = _polydata(points, (idx, idx + 1), None, data, {}, binary)
-    return _atomic_write_text(path, text)
+    return write_text(path, text)
 
 
 # ----------------------------------------------------------------------------- collections
@@ -373,7 +367,7 @@ class PvdWriter:
 
     def write(self) -> Path:
         """Write the collection as it stands (atomically); returns its path."""
-        return _atomic_write_text(self.path, self.text())
+        return write_text(self.path, self.text())
 
     def close(self) -> Path:
         """Write the collection and refuse further frames; returns its path."""

@@ -16,6 +16,7 @@ from pathlib import Path
 import typer
 
 from murus.cliutil import guard
+from murus.outputs import check_dir
 
 app = typer.Typer(
     rich_markup_mode=None,
@@ -43,12 +44,6 @@ def _staged_dir(out: Path, names=None):
     from murus.outputs import command_line, staged_dir
 
     return staged_dir(out, command_line(), names)
-
-
-def _check_dir(out: Path, names) -> None:
-    from murus.outputs import check_dir
-
-    check_dir(out, names)
 
 
 def _load(file: Path, units: str | None, dt: float | None):
@@ -109,7 +104,7 @@ def spectrum(
             raise ValueError(f"--damping {damping} must be in [0, 1)")
         if n_periods < 2:
             raise ValueError("--n-periods must be >= 2")
-        _check_dir(out, ["spectrum.csv", "spectrum.png"])
+        check_dir(out, ["spectrum.csv", "spectrum.png"])
         from murus.motion.spectra import default_periods, response_spectrum
 
         gm = _load(file, units, dt)
@@ -170,7 +165,7 @@ def generate_ec8_cmd(
         rng = (0.2 * t1, 2.0 * t1) if t1 else (t_lo, t_hi)
         if not 0 < rng[0] < rng[1]:
             raise ValueError("period range must satisfy 0 < T_lo < T_hi")
-        _check_dir(out, _EC8_NAMES)
+        check_dir(out, _EC8_NAMES)
         agm = ag * G
         recs = generate_ec8(agm, ground, spectrum_type, n=n, seed=seed, dt=dt,
                             stationary=stationary)

@@ -634,12 +634,6 @@ def read(path, units: str | None = None, dt: float | None = None, scale: float =
 # ----------------------------------------------------------------------------------- writers
 
 
-def _atomic_write(path: Path, text: str) -> None:
-    from murus.outputs import write_text
-
-    write_text(path, text)
-
-
 def _clean(s) -> str:
     return str(s).replace("\n", " ").replace("\r", " ")
 
@@ -707,5 +701,7 @@ def write(motion: GroundMotion, path, format: str | None = None, units: str = "m
         text = format_csv(motion, units)
     else:
         raise ValueError(f"cannot write format {fmt!r} (use 'csv' or 'at2')")
-    _atomic_write(path, text)
+    from murus.outputs import write_text
+
+    write_text(path, text)
     return path
