@@ -165,7 +165,7 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
         _out_error(exc)
     except CaseError as exc:
         fail(str(exc).splitlines()[0])
-    from murus.cliprogress import LazyProgress
+    from murus.progress import LazyProgress
 
     error = None
     with LazyProgress(f"{case.name}", unit="steps", quiet=not progress) as bar:

@@ -41,7 +41,7 @@ import threading
 import time
 from collections.abc import Callable
 
-__all__ = ["progress", "Progress", "set_reporter", "format_seconds"]
+__all__ = ["progress", "Progress", "LazyProgress", "set_reporter", "format_seconds"]
 
 _REPORTER: Callable[[str, float, float | None, str], None] | None = None
 _LOCK = threading.RLock()
@@ -317,3 +317,43 @@ def progress(total: float | None = None, desc: str = "", *, unit: str = "",
     """
     return Progress(total, desc, unit=unit, quiet=quiet, interval=interval, stream=stream,
                     terminal=terminal, poll=poll)
+
+
+class LazyProgress:
+    """Context manager with the ``update`` and ``advance`` of :class:`murus.progress.Progress`;
+    the display (a bar in a terminal, a line every 10 s on stderr otherwise, nothing with
+    ``quiet``) opens at the first call. Arguments: those of :func:`progress`.
+
+    Commands check their input inside the library call that then does the work: a block opened
+    before the call would print its first line, and its "(failed)" line, around the one-line
+    error of a bad input; this one opens at the first update, so a bad input gives the error
+    line alone.
+    """
+
+    def __init__(self, desc: str, total: float | None = None, **kw):
+        self.desc = desc
+        self.total = total
+        self.kw = kw
+        self.bar = None
+
+    def _open(self):
+        if self.bar is None:
+            self.bar = progress(self.total, self.desc, **self.kw)
+            self.bar.__enter__()
+        return self.bar
+
+    def update(self, done: float, total: float | None = None, info: str | None = None) -> None:
+        """Set the work done (and its total, a short text); opens the display."""
+        self._open().update(done, total, info)
+
+    def advance(self, n: float = 1, info: str | None = None) -> None:
+        """Add ``n`` to the work done; opens the display."""
+        self._open().advance(n, info)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        if self.bar is not None:
+            self.bar.__exit__(exc_type, exc, tb)
+        return False

@@ -444,7 +444,7 @@ def calibrate(
             kw = {} if pivot == "corner" else {"pivot": Pivot("compressive-length")}
             mdl = RockingModel(body, AmplitudeDependent(k0=1.0, k1=0.0), **kw)
             ms.append(measurement_from_test(t, channel, model=mdl))
-        from murus.cliprogress import LazyProgress
+        from murus.progress import LazyProgress
 
         with LazyProgress("lab calibrate", unit="evaluations") as bar:
             res = fit(ms[0].model, ms, init, bounds=bnd or None, objective=objective,

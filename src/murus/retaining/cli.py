@@ -244,7 +244,7 @@ def collapse(
     to the base)."""
     from pathlib import Path
 
-    from murus.cliprogress import LazyProgress
+    from murus.progress import LazyProgress
     from murus.retaining.backfill import BackfillError
     from murus.retaining.collapse import collapse_run, peak_ratio_check
 
@@ -510,9 +510,9 @@ def calibrate_backfill(
     from dataclasses import replace
     from pathlib import Path
 
-    from murus.cliprogress import LazyProgress
     from murus.dem.biaxial import biaxial_test, calibrate_rolling
     from murus.dem.materials import Joint, JointError
+    from murus.progress import LazyProgress
 
     error = None
     try:
