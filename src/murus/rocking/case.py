@@ -212,7 +212,7 @@ class SolverCfg(Strict):
     method: Literal["event", "newmark"] = "event"
     dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     duration: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    rtol: float = Field(default=1e-9, gt=0, lt=1e-2)
+    rtol: float | None = Field(default=None, gt=0, lt=1e-2)  # None: the engine's default
     rest_tol: float = Field(default=1e-3, ge=0, lt=1, allow_inf_nan=False)
     out_dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     linearised: bool = False
@@ -312,11 +312,12 @@ def build(case: RockingCase, path: Path, text: str):
     kwargs = {
         "method": case.solver.method,
         "duration": case.solver.duration,
-        "rtol": case.solver.rtol,
         "dt": case.solver.dt,
         "out_dt": case.solver.out_dt,
         "omega0": m.omega0,
     }
+    if case.solver.rtol is not None:
+        kwargs["rtol"] = case.solver.rtol
     if m.theta0_over_alpha is not None:
         kwargs["theta0_over_alpha"] = m.theta0_over_alpha
     if kwargs["duration"] is None and kind == "free":
@@ -403,7 +404,7 @@ def run_case(model, motion, kwargs):
         kw = {k: v for k, v in kwargs.items() if k in ("duration", "out_dt", "omega0",
                                                         "theta0_over_alpha")}
         if kwargs.get("rtol") is not None:
-            kw["rtol"] = max(kwargs["rtol"], 1e-10)
+            kw["rtol"] = max(kwargs["rtol"], 1e-10)  # the Winkler layer's floor
         return simulate_winkler(model.body, model.base, motion, **kw)
     from murus.rocking.engine import simulate
 

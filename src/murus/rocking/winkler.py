@@ -110,6 +110,7 @@ import numpy as np
 from murus import G
 from murus.rocking import winkler_kernels as WK
 from murus.rocking.body import RigidBlock
+from murus.rocking.defaults import WINKLER_RTOL
 from murus.rocking.excitation import as_excitation
 
 __all__ = [
@@ -509,7 +510,7 @@ def simulate_winkler(
     omega0: float = 0.0,
     theta0_over_alpha: float | None = None,
     gravity: float = G,
-    rtol: float = 1e-8,
+    rtol: float = WINKLER_RTOL,
     out_dt: float | None = None,
     max_steps: int = 50_000_000,
     max_events: int = 1_000_000,

@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from murus.rocking.defaults import RTOL
 from murus.studies.records import RecordSet
 
 __all__ = ["rocking_spectrum", "spectrum_case", "plot_rocking_spectrum", "plot_overturning_map",
@@ -33,7 +34,7 @@ SEED002_RATIOS = np.linspace(0.0, 1.0, 50)
 
 def spectrum_case(body, *, walls="eq11", restitution="housner", tie_height=None,
                   tension_only: bool = True, c_over_cd=None, delta_t=None, damper_height=None,
-                  duration=None, rtol: float = 1e-9) -> dict:
+                  duration=None, rtol: float = RTOL) -> dict:
     """The rocking case (tables as a dict) of seed 002 §4.1 for ``body`` (a RigidBlock).
 
     walls:

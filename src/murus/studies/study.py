@@ -66,6 +66,7 @@ import numpy as np
 from pydantic import Field, ValidationError, model_validator
 
 from murus.config import CaseError, Strict, fail_at, load_toml, validate
+from murus.rocking.defaults import RTOL
 from murus.studies.records import IntensityMeasure, RecordError, RecordSet
 from murus.studies.sweep import Dim, Plan, Point, grid_points
 
@@ -256,7 +257,7 @@ class Study:
                 exc = self._pulse(cfg, body, node)
             points.append(Point(model, scale, exc))
         return Plan(self.name, dims, points, records=records, spec=self.describe(),
-                    duration=duration, rtol=rtol if rtol is not None else 1e-9,
+                    duration=duration, rtol=rtol if rtol is not None else RTOL,
                     chunk_size=self.chunk_size)
 
     def _check_names(self) -> None:

@@ -47,6 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
+from murus.rocking.defaults import RTOL
 from murus.studies.records import RecordSet
 
 __all__ = ["Dim", "Point", "Plan", "ChunkTask", "run_chunk", "run_plan", "run_tasks",
@@ -113,7 +114,7 @@ class Plan:
     records: RecordSet | None = None
     spec: dict = field(default_factory=dict)
     duration: float | None = None
-    rtol: float = 1e-9
+    rtol: float = RTOL
     chunk_size: int = 256
 
     def __post_init__(self) -> None:
