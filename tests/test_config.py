@@ -62,6 +62,15 @@ def test_far_outside_physical_sense_refused_with_limit(tmp_path, key, value):
     assert f"at most {limit:g}" in msg
 
 
+def test_vanishing_length_refused_with_its_minimum(tmp_path):
+    """A 6 nm wall is no wall: the smallest non-zero length is named (issue 15, item 8)."""
+    from murus.config import PHYSICAL_MINIMA
+
+    msg = _error(_case(tmp_path, width="6e-9"))
+    assert "[body.width]" in msg and f"at least {PHYSICAL_MINIMA['width']:g} m" in msg
+    load_case(_case(tmp_path, width=repr(PHYSICAL_MINIMA["width"])))  # the minimum itself
+
+
 def test_limits_leave_room_for_real_walls(tmp_path):
     """The largest masonry walls and the mock-ups of seed 001 (44 mm stones) stay inside."""
     assert PHYSICAL_LIMITS["height"][0] >= 100.0 and PHYSICAL_LIMITS["width"][0] >= 100.0

@@ -121,13 +121,13 @@ def test_a_users_summary_json_in_out_is_refused_before_computing(tmp_path, monke
     assert snapshot(tmp_path) == before
 
 
-@pytest.mark.parametrize("kind", ["file", "under_file", "dot", "cwd", "unwritable"])
+@pytest.mark.parametrize("kind", ["file", "under_file", "dot", "cwd", "unwritable", "root"])
 def test_bad_out_paths_exit_2_and_change_nothing(tmp_path, monkeypatch, kind):
     proj = project(tmp_path)
     (tmp_path / "afile").write_text("x")
     monkeypatch.chdir(tmp_path)
     out = {"file": "afile", "under_file": "afile/sub/out", "dot": ".",
-           "cwd": f"../{tmp_path.name}", "unwritable": "locked/out"}[kind]
+           "cwd": f"../{tmp_path.name}", "unwritable": "locked/out", "root": "/"}[kind]
     if kind == "unwritable":
         (tmp_path / "locked").mkdir()
         real = os.access
@@ -139,6 +139,7 @@ def test_bad_out_paths_exit_2_and_change_nothing(tmp_path, monkeypatch, kind):
     before = snapshot(tmp_path)
     err = one_line_error(runner.invoke(app, ["run", str(proj / "wall.toml"), "--out", out]))
     assert out.split("/")[0] in err or kind in ("cwd",)
+    assert kind != "root" or "root of the file system" in err
     assert snapshot(tmp_path) == before
 
 

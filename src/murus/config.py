@@ -21,6 +21,8 @@ class CaseError(ValueError):
 #: Physical sense of case-file keys, declared once for every case schema (by key name):
 #: ``name: (largest magnitude, unit, what)``. A value beyond it is refused with the limit named;
 #: the limits are far beyond any masonry wall or shaking table, so good input is never refused.
+#: :data:`PHYSICAL_MINIMA` gives the smallest non-zero magnitude of some of them (zero and the
+#: sign are each schema's own checks).
 PHYSICAL_LIMITS: dict[str, tuple[float, str, str]] = {
     **{k: (1.0e3, "m", "a length") for k in (
         "width", "height", "thickness", "block_width", "block_height", "layer_thickness",
@@ -34,6 +36,14 @@ PHYSICAL_LIMITS: dict[str, tuple[float, str, str]] = {
     "kv_ratio": (1.0, "-", "the ratio kv / kh (EN 1998-5 (7.2): 0.5 or 0.33)"),
 }
 
+#: Smallest non-zero magnitude of a length (0.1 mm: below a mortar joint, a rubber layer or a
+#: grain of a disc packing) and of a density (1 kg/m3: air is 1.2).
+PHYSICAL_MINIMA: dict[str, float] = {
+    **{k: 1.0e-4 for k in ("width", "height", "thickness", "block_width", "block_height",
+                           "layer_thickness", "effective_height", "radius", "length")},
+    "density": 1.0,
+}
+
 
 def check_physical(key: str, value, label: str | None = None) -> None:
     """Raise ValueError when ``value`` of the key ``key`` of :data:`PHYSICAL_LIMITS` is beyond
@@ -44,10 +54,14 @@ def check_physical(key: str, value, label: str | None = None) -> None:
         return
     if not math.isfinite(value):
         raise ValueError(f"{label + ' ' if label else ''}{value}: not a finite number")
-    if abs(value) <= lim[0]:
-        return
     unit = "" if lim[1] == "-" else f" {lim[1]}"
     what = f"{label} " if label else ""
+    low = PHYSICAL_MINIMA.get(key, 0.0)
+    if 0.0 < abs(value) < low:
+        raise ValueError(f"{what}{value:g}{unit} is outside the physical range of {lim[2]}: a "
+                         f"non-zero magnitude is at least {low:g}{unit}")
+    if abs(value) <= lim[0]:
+        return
     raise ValueError(f"{what}{value:g}{unit} is outside the physical range of {lim[2]}: its "
                      f"magnitude is at most {lim[0]:g}{unit}")
 

@@ -199,7 +199,8 @@ def check_dir(out, names: Iterable[str] | None = None, label: str = "--out") -> 
     Raises
     ------
     OutputError
-        ``out`` is empty, ``.`` or the current folder, an existing file, lies under a file,
+        ``out`` is empty, ``.`` or the current folder, the root of the file system, an
+        existing file, lies under a file,
         its nearest existing ancestor is not a writable folder, or a known output name
         collides with a file murus did not write.
     """
@@ -208,6 +209,9 @@ def check_dir(out, names: Iterable[str] | None = None, label: str = "--out") -> 
         raise OutputError(f"{label}: empty path")
     if _is_cwd(p):
         raise OutputError(f"{label} {out}: is the current folder; name a sub-folder "
+                          "(e.g. --out out)")
+    if p.resolve().parent == p.resolve():
+        raise OutputError(f"{label} {out}: is the root of the file system; name a sub-folder "
                           "(e.g. --out out)")
     if p.exists() or p.is_symlink():
         if not p.is_dir():

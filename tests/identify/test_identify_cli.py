@@ -99,3 +99,11 @@ def test_errors_exit_2_and_write_nothing(seq, tmp_path):
 def test_help_keeps_bracketed_units():
     r = runner.invoke(app, ["sequence", "--help"])
     assert r.exit_code == 0 and "[m]" in r.output and "[rad]" in r.output
+
+
+def test_modes_zero_refused(seq, tmp_path):
+    """``--modes 0`` would give an empty table: refused before reading (issue 15, item 8)."""
+    for cmd in (["frf", str(seq / "01_WN01.csv")], ["sequence", str(seq)]):
+        r = runner.invoke(app, [*cmd, "--modes", "0", "--out", str(tmp_path / "o")])
+        assert r.exit_code == 2 and "--modes" in r.output
+        assert not (tmp_path / "o").exists()

@@ -184,3 +184,28 @@ def test_block_sweep_and_bad_variant(study_dir):
     assert ds["alpha"].values[1, 0] == seed002_block("block4").alpha
     r = bad(study_dir, "K_over_Kd = [0.0, 0.5, 1.0]", 'variant = ["x"]')
     assert r.exit_code == 2 and "[sweep.variant] no [variants.x] table" in r.output
+
+
+def test_histories_that_stopped_early_fail_the_run(study_dir, monkeypatch):
+    """A study whose solver stopped early in some history is not a success: exit 1, the count
+    and the variable to look at on stderr, the result still written (issue 15, item 2)."""
+    import murus.studies.sweep as sweep
+
+    real = sweep.run_plan
+
+    def one_underflow(*a, **k):
+        ds = real(*a, **k)
+        ds["status"][{"K_over_Kd": 1, "record": 0}] = 1.0
+        return ds
+
+    monkeypatch.setattr(sweep, "run_plan", one_underflow)
+    out = study_dir / "out"
+    r = runner.invoke(app, ["run", str(study_dir / "s.toml"), "--out", str(out), "--serial",
+                            "-q"])
+    assert r.exit_code == 1, r.output
+    assert "1 of 6 histories stopped before the end" in r.output
+    assert (out / "result.nc").exists()
+    monkeypatch.setattr(sweep, "run_plan", real)
+    r = runner.invoke(app, ["run", str(study_dir / "s.toml"), "--out", str(out), "--serial",
+                            "-q"])
+    assert r.exit_code == 0, r.output

@@ -107,7 +107,7 @@ def frf(
                                      "format)."),
     out: Path | None = typer.Option(None, "--out", help="Folder for frf.png/.svg, modes.md, "
                                     "modes.json (default: print only)."),
-    n_modes: int | None = typer.Option(None, "--modes", help="Keep at most this many modes "
+    n_modes: int | None = typer.Option(None, "--modes", min=1, help="Keep at most this many modes "
                                        "(lowest first)."),
     nperseg: int | None = _NPERSEG,
     f_min: float = _FMIN,
@@ -145,7 +145,7 @@ def sequence(
     sequence_dir: Path = typer.Argument(..., help="Sequence folder (sequence.toml or NN_*.csv "
                                         "files)."),
     out: Path = typer.Option(..., "--out", help="Output folder."),
-    n_modes: int = typer.Option(1, "--modes", help="Modes followed along the sequence."),
+    n_modes: int = typer.Option(1, "--modes", min=1, help="Modes followed along the sequence."),
     closure: float = typer.Option(0.0, "--closure", help="Closure of the base joint read as "
                                   "still in contact [m] (murus.identify.compressive)."),
     cantilever_below: float = typer.Option(0.3, "--cantilever-below", help="Classification: "

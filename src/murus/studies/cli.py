@@ -168,6 +168,13 @@ def run(
                        err=True)
             raise typer.Exit(130) from None
     typer.echo(f"result: {folder / 'result.nc'}")
+    n_early, n_all = stopped_early(ds)
+    if n_early:
+        typer.echo(f"error: {n_early} of {n_all} histories stopped before the end of the "
+                   f"analysis (variable 'status' of {folder / 'result.nc'}: 1 step size "
+                   "underflow, 2 step budget exhausted); their results are truncated", err=True)
+    if n_early and not n_failed:
+        raise typer.Exit(1)
     if n_failed:
         typer.echo(f"warning: {n_failed} chunks failed (their cases are NaN; errors in "
                    f"{folder / 'failures.json'}); run the same command again to retry them",
@@ -176,6 +183,17 @@ def run(
 
 
 _FIGURES = (".png", ".svg", ".pdf")
+
+
+def stopped_early(ds) -> tuple[int, int]:
+    """(histories whose solver stopped before the end, all histories) of a study result: the
+    cases with a ``status`` other than 0 (NaN, a case of a failed chunk, is counted apart)."""
+    import numpy as np
+
+    if "status" not in ds:
+        return 0, 0
+    st = np.asarray(ds["status"].values, dtype=float)
+    return int(np.sum(np.isfinite(st) & (st != 0.0))), int(st.size)
 
 
 def _plot(ds, png: Path, record: str | None, p=None) -> Path:
