@@ -5,7 +5,8 @@ process is killed (SIGKILL).
 
     python benchmarks/bench_interrupt.py [--out benchmarks/RESULTS_interrupt.md] [--repeat 3]
 
-The study is 12 chunks of the small seed 002 sweep of the tests, made slow by a hook that sleeps
+The study is 12 chunks of the small EURODYN (2020) sweep of the tests, made slow by a hook that
+sleeps
 0.4 s (1 s for the SIGKILL runs) at the start of each chunk, so that the run is going on when the
 signal comes; the signal is sent as soon as the first chunk is stored.
 """

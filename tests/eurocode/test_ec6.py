@@ -1,4 +1,4 @@
-"""EN 1996-1-1 compressed length against seed 000 Table 2 and closed forms."""
+"""EN 1996-1-1 compressed length against Mordant et al. (SERIES), Table 2 and closed forms."""
 
 import csv
 

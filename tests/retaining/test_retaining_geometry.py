@@ -1,4 +1,5 @@
-"""Dry-stone retaining wall sections: seed 001 Table 5 presets, polygon, joints, bad input."""
+"""Dry-stone retaining wall sections: Savalle et al. (2022), Table 5 presets, polygon, joints, bad
+input."""
 
 import csv
 import math

@@ -1,4 +1,4 @@
-"""Weighted global response of several cross-sections (seed 001 §3.2, Table 2)."""
+"""Weighted global response of several cross-sections (Savalle et al. (2022), §3.2, Table 2)."""
 
 import csv
 from pathlib import Path

@@ -4,7 +4,7 @@ files), a plan of a few dozen histories."""
 import numpy as np
 
 from murus.motion import GroundMotion
-from murus.rocking import seed002_block
+from murus.rocking import restrained_wall_block
 from murus.studies.spectrum import spectrum_case
 from murus.studies.study import make_study
 
@@ -25,8 +25,8 @@ def synthetic_records(n: int = 4, seconds: float = 6.0, seed: int = 11):
 
 
 def small_study(records, n_k: int = 6, chunk_size: int = 8):
-    """block1 of seed 002, K/K_d in [0, 1] (eq. 11 walls), x 2 scale factors x the records."""
-    case = spectrum_case(seed002_block("block1"))
+    """block1 of EURODYN (2020), K/K_d in [0, 1] (eq. 11 walls), x 2 scale factors x the records."""
+    case = spectrum_case(restrained_wall_block("block1"))
     return make_study(case, {"K_over_Kd": np.linspace(0.0, 1.0, n_k),
                              "motion.scale": [0.6, 1.0]}, records, name="small",
                       chunk_size=chunk_size)

@@ -175,12 +175,12 @@ def test_block_sweep_and_bad_variant(study_dir):
                             "--serial", "-q"])
     assert r.exit_code == 0, r.output
     ds = open_result(study_dir / "o" / "result.nc")
-    from murus.rocking import seed002_block
+    from murus.rocking import restrained_wall_block
     from murus.rocking.design import tie_design
 
     K = ds["tie_stiffness"].values[:, 0]
-    assert K[0] == 0.5 * tie_design(seed002_block("block1")).K_d
-    assert K[1] == 0.5 * tie_design(seed002_block("block4")).K_d
-    assert ds["alpha"].values[1, 0] == seed002_block("block4").alpha
+    assert K[0] == 0.5 * tie_design(restrained_wall_block("block1")).K_d
+    assert K[1] == 0.5 * tie_design(restrained_wall_block("block4")).K_d
+    assert ds["alpha"].values[1, 0] == restrained_wall_block("block4").alpha
     r = bad(study_dir, "K_over_Kd = [0.0, 0.5, 1.0]", 'variant = ["x"]')
     assert r.exit_code == 2 and "[sweep.variant] no [variants.x] table" in r.output

@@ -1,10 +1,10 @@
 """Classification of seismic tests as cantilever, hybrid or rocking responses (issue 8, item 4;
-seed 000 §2.3, Figures 6, 7, 19 and 20).
+Mordant et al. (SERIES), §2.3, Figures 6, 7, 19 and 20).
 
-Seed 000 §2.3 sorts its tests by comparing the rotations measured at the bottom and at the top
-of the wall: a "significant difference" (low levels, S01-S03: the wall bends as a cantilever),
-"quasi-equal rotations" (high levels, S07-S09: the wall rocks as a rigid body on its base
-joint), and a hybrid in between (S04-S06). The seed gives no number; the criterion here is
+Mordant et al. (SERIES), §2.3 sorts its tests by comparing the rotations measured at the bottom and
+at the top of the wall: a "significant difference" (low levels, S01-S03: the wall bends as a
+cantilever), "quasi-equal rotations" (high levels, S07-S09: the wall rocks as a rigid body on its
+base joint), and a hybrid in between (S04-S06). The seed gives no number; the criterion here is
 
     ratio = max |rot_bottom| / max |rot_top|
 
@@ -22,7 +22,7 @@ The defaults are a reading of the seed's words, not values from it; they are par
 :class:`Criterion`. Both peaks are taken after a centred moving average of ``smooth`` samples
 (default 1: none) so that isolated noise spikes can be filtered out.
 
-The lifted-length history ``L - Lc(t)`` (seed 000 Figures 19-20) comes from the base
+The lifted-length history ``L - Lc(t)`` (Mordant et al. (SERIES), Figures 19-20) comes from the base
 transducers by :mod:`murus.identify.compressive`.
 
 Units: rad, s, m.
@@ -125,7 +125,8 @@ def classify_sequence(sequence, criterion: Criterion | None = None) -> list[Clas
 
 
 def lifted_length(test, closure: float = 0.0):
-    """``(t [s], L - Lc(t) [m])`` of a test with base transducers (seed 000 Figures 19-20)."""
+    """``(t [s], L - Lc(t) [m])`` of a test with base transducers (Mordant et al. (SERIES), Figures
+    19-20)."""
     from murus.identify.compressive import test_contact
 
     tc = test_contact(test, closure)
@@ -133,7 +134,7 @@ def lifted_length(test, closure: float = 0.0):
 
 
 def plot_rotations(test, ax=None, classification: Classification | None = None):
-    """Bottom and top rotations against time (seed 000 Figures 6 and 7), in mrad."""
+    """Bottom and top rotations against time (Mordant et al. (SERIES), Figures 6 and 7), in mrad."""
     import matplotlib.pyplot as plt
 
     if ax is None:
@@ -152,8 +153,8 @@ def plot_rotations(test, ax=None, classification: Classification | None = None):
 
 
 def plot_lifted_length(test, ax=None, closure: float = 0.0, model=None):
-    """Lifted length ``L - Lc`` [mm] against time (seed 000 Figures 19-20); ``model`` an
-    optional ``(t, lifted [m])`` to compare with."""
+    """Lifted length ``L - Lc`` [mm] against time (Mordant et al. (SERIES), Figures 19-20);
+    ``model`` an optional ``(t, lifted [m])`` to compare with."""
     import matplotlib.pyplot as plt
 
     if ax is None:

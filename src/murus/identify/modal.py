@@ -1,5 +1,5 @@
-"""Modal identification from white-noise shaking-table tests (issue 8, item 2; seed 000 §2.1,
-Figures 3 and 4).
+"""Modal identification from white-noise shaking-table tests (issue 8, item 2;
+Mordant et al. (SERIES), §2.1, Figures 3 and 4).
 
 Frequency response function
     H1 estimator ``H(f) = G_xy(f) / G_xx(f)`` with ``x`` the table acceleration and ``y`` the
@@ -35,7 +35,8 @@ Peak picking
     estimate slightly biased (its peak is at ``f_n (sqrt(1 + 8 zeta^2) - 1)^(1/2) / (2 zeta)``,
     0.25 % below ``f_n`` for 5 %); the fitted values are the reported ones.
 
-Reliability (seed 000 §2.1 reports damping ratios "as high as 100 %", "questionable")
+Reliability (Mordant et al. (SERIES), §2.1 reports damping ratios "as high as 100 %",
+"questionable")
     Each mode carries the list ``warnings``; it is ``reliable`` when the list is empty:
     coherence at the peak below ``min_coherence_reliable`` (0.8); a half-power point not found
     before the neighbouring minimum; damping above ``max_damping`` (20 %); the half-power and the
@@ -364,10 +365,10 @@ def identify(data, fs: float | None = None, *, nperseg: int | None = None,
 
 @dataclass
 class Evolution:
-    """Frequencies and damping ratios of the white-noise tests of a sequence (seed 000
-    Figures 3 and 4). ``number``: position of the test in the sequence; ``after_pga_g``: the
-    nominal PGA [g] of the last seismic test before it (0 before the first); arrays
-    ``frequency``, ``damping``, ``damping_half_power`` [Hz, -] and ``reliable`` have shape
+    """Frequencies and damping ratios of the white-noise tests of a sequence
+    (Mordant et al. (SERIES) Figures 3 and 4). ``number``: position of the test in the sequence;
+    ``after_pga_g``: the nominal PGA [g] of the last seismic test before it (0 before the first);
+    arrays ``frequency``, ``damping``, ``damping_half_power`` [Hz, -] and ``reliable`` have shape
     (n_tests, n_modes), NaN/False where a mode was not found."""
 
     name: str
@@ -486,7 +487,7 @@ def _x(evo: Evolution, x: str):
 
 
 def plot_frequency_evolution(evo: Evolution, ax=None, x: str = "test", label: str | None = None):
-    """Natural frequencies along the sequence (seed 000 Figure 3)."""
+    """Natural frequencies along the sequence (Mordant et al. (SERIES), Figure 3)."""
     import matplotlib.pyplot as plt
 
     if ax is None:
@@ -502,8 +503,8 @@ def plot_frequency_evolution(evo: Evolution, ax=None, x: str = "test", label: st
 
 
 def plot_damping_evolution(evo: Evolution, ax=None, x: str = "test", label: str | None = None):
-    """Damping ratios along the sequence (seed 000 Figure 4); unreliable estimates drawn as
-    open markers."""
+    """Damping ratios along the sequence (Mordant et al. (SERIES), Figure 4); unreliable estimates
+    drawn as open markers."""
     import matplotlib.pyplot as plt
 
     if ax is None:

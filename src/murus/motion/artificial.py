@@ -1,6 +1,6 @@
 """Artificial accelerograms compatible with an elastic response spectrum (EN 1998-1 §3.2.3.1.2).
 
-Generation (:func:`spectrum_compatible`), as for the shaking-table input of seed 000:
+Generation (:func:`spectrum_compatible`), as for the shaking-table input of Mordant et al. (SERIES):
 
 1. a stationary Gaussian white noise (reproducible with ``seed``) is multiplied by an envelope:
    trapezoidal (linear rise ``rise``, stationary part ``stationary`` >= 10 s, linear decay

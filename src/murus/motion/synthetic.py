@@ -1,6 +1,6 @@
 """Synthetic ground motions: harmonic ramps, pulses, band-limited white noise.
 
-Harmonic ramps (seed 001, eq. 5 and Fig. 12):
+Harmonic ramps (Savalle et al. (2022), eq. 5 and Fig. 12):
 
 - S(t) = A t sin(2 pi f t), A the amplitude rate [m/s³] (:func:`harmonic_ramp`);
 - S1(t): the ramp up to the peak acceleration A_peak at t_p = A_peak / A, then an envelope that
@@ -9,9 +9,9 @@ Harmonic ramps (seed 001, eq. 5 and Fig. 12):
 - S2(t): the ramp truncated when its envelope A t reaches a given acceleration
   (:func:`truncated_ramp`).
 
-Each accepts a vertical component of the same shape and ``vertical_ratio`` (default 0.5, seed 001
-after EN 1998-1) times the amplitude, ``vertical="in_phase"`` (positive peaks together) or
-``"opposition"`` (sign reversed). Vertical acceleration is positive upwards.
+Each accepts a vertical component of the same shape and ``vertical_ratio`` (default 0.5,
+Savalle et al. (2022) after EN 1998-1) times the amplitude, ``vertical="in_phase"`` (positive peaks
+together) or ``"opposition"`` (sign reversed). Vertical acceleration is positive upwards.
 
 Closed forms of the ramp (from rest at t = 0, omega = 2 pi f):
 v(t) = A [sin(omega t) / omega² - t cos(omega t) / omega],
@@ -69,7 +69,7 @@ def ramp_displacement(A: float, f: float, t) -> np.ndarray:
 
 def harmonic_ramp(A: float, f: float, duration: float, dt: float = 0.005,
                   vertical: str | None = None, vertical_ratio: float = 0.5) -> GroundMotion:
-    """S(t) = A t sin(2 pi f t) (seed 001, eq. 5) for 0 <= t <= duration.
+    """S(t) = A t sin(2 pi f t) (Savalle et al. (2022), eq. 5) for 0 <= t <= duration.
 
     A: amplitude rate [m/s³]; f: frequency [Hz]; duration, dt [s].
     """
@@ -82,8 +82,9 @@ def harmonic_ramp(A: float, f: float, duration: float, dt: float = 0.005,
 
 def two_ramp(A: float, f: float, a_peak: float, dt: float = 0.005,
              vertical: str | None = None, vertical_ratio: float = 0.5) -> GroundMotion:
-    """Signal S1 of seed 001 (Fig. 12a): envelope A t up to a_peak [m/s²] at t_p = a_peak / A,
-    then linear decrease to zero over 2 t_p; carrier sin(2 pi f t). Duration 3 t_p [s]."""
+    """Signal S1 of Savalle et al. (2022) (Fig. 12a): envelope A t up to a_peak [m/s²] at t_p =
+    a_peak / A, then linear decrease to zero over 2 t_p; carrier sin(2 pi f t). Duration 3 t_p
+    [s]."""
     if A <= 0 or a_peak <= 0:
         raise ValueError("A and a_peak must be positive")
     tp = a_peak / A
@@ -98,8 +99,8 @@ def two_ramp(A: float, f: float, a_peak: float, dt: float = 0.005,
 
 def truncated_ramp(A: float, f: float, a_max: float, dt: float = 0.005,
                    vertical: str | None = None, vertical_ratio: float = 0.5) -> GroundMotion:
-    """Signal S2 of seed 001 (Fig. 12b): S(t) = A t sin(2 pi f t) until the envelope A t
-    reaches a_max [m/s²], i.e. for 0 <= t <= a_max / A."""
+    """Signal S2 of Savalle et al. (2022) (Fig. 12b): S(t) = A t sin(2 pi f t) until the envelope A
+    t reaches a_max [m/s²], i.e. for 0 <= t <= a_max / A."""
     if A <= 0 or a_max <= 0:
         raise ValueError("A and a_max must be positive")
     gm = harmonic_ramp(A, f, a_max / A, dt, vertical, vertical_ratio)
@@ -168,7 +169,7 @@ def ricker(peak: float, frequency: float, dt: float = 0.001, duration: float | N
 def white_noise(duration: float, dt: float = 0.005, rms: float = 1.0,
                 band: tuple[float, float] | None = (0.5, 25.0), seed: int | None = 0
                 ) -> GroundMotion:
-    """Band-limited Gaussian white noise (identification tests, seed 000).
+    """Band-limited Gaussian white noise (identification tests, Mordant et al. (SERIES)).
 
     Gaussian samples are filtered in the frequency domain: Fourier coefficients outside
     ``band`` = (f_lo, f_hi) [Hz] are set to zero (an ideal band-pass), then the record is scaled

@@ -1,6 +1,7 @@
-"""Pseudo-static limit equilibrium of a dry-stone retaining wall, joint by joint (seed 001 §4.4).
+"""Pseudo-static limit equilibrium of a dry-stone retaining wall, joint by joint
+(Savalle et al. (2022), §4.4).
 
-Seed 001 (Savalle et al. 2022) §4.4 computes the pseudo-static resistance ``A_pseudo`` of each
+Savalle et al. (2022) §4.4 computes the pseudo-static resistance ``A_pseudo`` of each
 wall "using an analytical approach based on the limit-equilibrium of a Coulomb's wedge of soil
 [18, 27]" with the properties of Tables 5 and 6 and perfect stones ("no internal rotation of
 the stones"); Table 8 gives 1.58 m/s² for DSRW1 under horizontal action and 1.50 m/s² with a
@@ -39,9 +40,9 @@ print give behaviour factors consistent with the mean and minimum it states. The
 reading of Table 6 (``delta = phi = 37.7 deg``) with the EN mid-height increment is 13 % high.
 VALIDATION.md has the sensitivity to each choice.
 
-Tilting table (seed 001 refs [18, 33]): tilting the wall and its backfill by ``t`` turns
-gravity into ``g (sin t, -cos t)`` in the wall's frame, i.e. ``kh = sin t``, ``kv = 1 - cos t``
-(:func:`tilt_coefficients`, :func:`critical_tilt`).
+Tilting table (Savalle et al. (2022), refs [18, 33]): tilting the wall and its backfill by ``t``
+turns gravity into ``g (sin t, -cos t)`` in the wall's frame, i.e. ``kh = sin t``, ``kv = 1 - cos
+t`` (:func:`tilt_coefficients`, :func:`critical_tilt`).
 
 Frame and units: those of :mod:`murus.retaining.geometry` (x into the backfill, z up, toe at
 the origin); forces in N and moments in N m per metre of wall, accelerations in m/s².
@@ -74,11 +75,12 @@ class PseudoStaticError(ValueError):
 
 @dataclass(frozen=True)
 class Assumptions:
-    """The choices seed 001 leaves open, with their defaults (VALIDATION.md shows their effect).
+    """The choices Savalle et al. (2022) leaves open, with their defaults (VALIDATION.md shows their
+    effect).
 
     delta_ratio : wall friction ``delta = delta_ratio phi`` (default 2/3, the customary value
         for a gravity wall); ``None`` takes the wall-backfill interface friction of the wall
-        (37.7 deg = phi in seed 001 Table 6).
+        (37.7 deg = phi in Savalle et al. (2022), Table 6).
     delta_deg : wall friction [deg], overrides ``delta_ratio`` when given.
     static_point : height of the static thrust above the bottom of the back face, as a
         fraction of its height (1/3: triangular pressure).
@@ -98,8 +100,8 @@ class Assumptions:
         height ``H - z_front``, as if the joint were horizontal).
     modes : mechanisms checked, among ``"sliding"`` and ``"overturning"``.
     joints : ``"all"``, ``"base"`` (only the base joint) or ``"above-base"`` (all but the
-        base: the bottom course fixed to the foundation, as the DEM models of seed 001 fix the
-        bottom wall units).
+        base: the bottom course fixed to the foundation, as the DEM models of Savalle et al. (2022)
+        fix the bottom wall units).
     """
 
     delta_ratio: float | None = 2.0 / 3.0
@@ -396,7 +398,8 @@ def _kh_max(wall: RetainingWall, asm: Assumptions, kv_ratio: float) -> float:
 def critical_acceleration(wall: RetainingWall, kv_ratio: float = 0.0,
                           assumptions: Assumptions | None = None,
                           signs: tuple[int, ...] | None = None) -> PseudoStaticResult:
-    """Pseudo-static resistance ``A_pseudo = kh g`` of ``wall`` (seed 001 §4.4, Table 8).
+    """Pseudo-static resistance ``A_pseudo = kh g`` of ``wall`` (Savalle et al. (2022), §4.4, Table
+    8).
 
     ``kv = s kv_ratio kh`` for ``s`` in ``signs`` (default both, +1 upwards first); the
     smallest ``kh`` at which the smallest safety factor over joints and mechanisms is 1.
@@ -456,7 +459,8 @@ def tilt_coefficients(tilt: float) -> tuple[float, float]:
     """``(kh, kv) = (sin t, 1 - cos t)`` for a tilt ``t`` [rad] of the wall and its backfill.
 
     In the tilted frame gravity is ``g (sin t, -cos t)``: a horizontal coefficient ``sin t``
-    out of the slope and a vertical one ``1 - cos t`` upwards (seed 001 refs [18, 33]).
+    out of the slope and a vertical one ``1 - cos t`` upwards (Savalle et al. (2022), refs [18,
+    33]).
     """
     t = float(tilt)
     if not (math.isfinite(t) and 0.0 <= t < 0.5 * math.pi):

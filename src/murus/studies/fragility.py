@@ -16,7 +16,7 @@ The fragility of a limit state is ``P(LS | IM = x) = Phi(ln(x / theta) / beta)``
   right-censored at the highest level. Without censoring ``ln theta`` is the mean of the log
   capacities and ``beta`` their standard deviation (MLE, divisor n).
 
-Limit states (seed 002 §4): ``theta_max / alpha >= 0.1`` (limited rocking), ``>= 0.4``
+Limit states (EURODYN (2020), §4): ``theta_max / alpha >= 0.1`` (limited rocking), ``>= 0.4``
 (moderate rocking), overturning. Confidence bands: bootstrap over the records (the same records
 are scaled to every level, so resampling records keeps the correlation between stripes), or the
 Fisher information (expected information of the binomial likelihood for MSA, observed information
@@ -26,12 +26,13 @@ for IDA) with the delta method for the curve.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 __all__ = ["FragilityFit", "fit_msa", "fit_ida", "fisher_covariance", "fragility_curve",
-           "LIMIT_STATES", "exceedance", "fit_fragility", "fragility", "seed002_configs",
+           "LIMIT_STATES", "exceedance", "fit_fragility", "fragility", "restraint_configs",
            "plot_fragility"]
 
 #: name -> threshold on theta_max / alpha (None: overturning).
@@ -344,14 +345,14 @@ def _fit(e: np.ndarray, levels: np.ndarray, method: str) -> FragilityFit:
 
 
 # ----------------------------------------------------------------------------- analysis --
-def seed002_configs(body, *, delta_t: float = 10.186, c_over_cd: float = 0.10, walls="eq11",
+def restraint_configs(body, *, delta_t: float = 10.186, c_over_cd: float = 0.10, walls="eq11",
                     K_over_Kd: float = 1.0) -> dict:
-    """Free-standing, tied and damped versions of a seed 002 wall (dict name -> RockingModel):
-    free-standing (two-sided); tied: a tension-only tie ``K = K_over_Kd K_d`` (eq. 12) at the
-    top and one-sided transverse walls (eq. 11 by default); damped: the tied wall with a
+    """Free-standing, tied and damped versions of an EURODYN (2020) wall (dict name ->
+    RockingModel): free-standing (two-sided); tied: a tension-only tie ``K = K_over_Kd K_d`` (eq.
+    12) at the top and one-sided transverse walls (eq. 11 by default); damped: the tied wall with a
     damper ``c = c_over_cd c_d`` at the top (eq. 13, characteristic time ``delta_t`` [s]; the
-    default 10.186 s is the value calibrated in validation/restrained.py on seed 002 Figure 9,
-    and 10 % c_d is the seed's design value for limited rocking)."""
+    default 10.186 s is the value calibrated in validation/restrained.py on EURODYN (2020), Figure
+    9, and 10 % c_d is the seed's design value for limited rocking)."""
     from murus.rocking import Damper, RockingModel, SpringBed, Tie
     from murus.rocking.design import bed_stiffness_equal, reference_damping, tie_design
 
@@ -366,6 +367,26 @@ def seed002_configs(body, *, delta_t: float = 10.186, c_over_cd: float = 0.10, w
             f"tied + damper {100 * c_over_cd:g} % c_d": damped}
 
 
+
+def seed002_configs(body, **kw) -> dict:
+    """Deprecated alias of :func:`restraint_configs` (removed in the next release).
+
+    Parameters
+    ----------
+    body : RigidBlock
+        The wall.
+    **kw
+        The keywords of :func:`restraint_configs`.
+
+    Returns
+    -------
+    dict
+        ``{name: RockingModel}``.
+    """
+    warnings.warn("seed002_configs is deprecated: use restraint_configs", DeprecationWarning,
+                  stacklevel=2)
+    return restraint_configs(body, **kw)
+
 def fragility(models, records="farfield", im="PGA", levels=None, *, method: str = "msa",
               ci: str = "bootstrap", n_boot: int = 200, level: float = 0.90, seed: int = 0,
               duration=None, executor="process", workers=None, scheduler=None, out=None,
@@ -373,7 +394,7 @@ def fragility(models, records="farfield", im="PGA", levels=None, *, method: str 
     """Fragility analysis of one or more rocking models over a record suite.
 
     models:
-        A RockingModel or a dict ``{name: RockingModel}`` (e.g. :func:`seed002_configs`), run
+        A RockingModel or a dict ``{name: RockingModel}`` (e.g. :func:`restraint_configs`), run
         side by side (dimension ``config``).
     records:
         Default the FEMA P695 far-field set (44 components); see
