@@ -4,7 +4,8 @@ Mordant et al. (SERIES), §2.3, Figures 6, 7, 19 and 20).
 Mordant et al. (SERIES), §2.3 sorts its tests by comparing the rotations measured at the bottom and
 at the top of the wall: a "significant difference" (low levels, S01-S03: the wall bends as a
 cantilever), "quasi-equal rotations" (high levels, S07-S09: the wall rocks as a rigid body on its
-base joint), and a hybrid in between (S04-S06). The seed gives no number; the criterion here is
+base joint), and a hybrid in between (S04-S06). Mordant et al. (SERIES) give no number; the
+criterion here is
 
     ratio = max |rot_bottom| / max |rot_top|
 
@@ -18,9 +19,9 @@ relative to the table, :mod:`murus.identify.testdata`) with
   giving at least 80 % of the top rotation, the deformation of the wall at most 20 %);
 - ``hybrid`` otherwise.
 
-The defaults are a reading of the seed's words, not values from it; they are parameters of
-:class:`Criterion`. Both peaks are taken after a centred moving average of ``smooth`` samples
-(default 1: none) so that isolated noise spikes can be filtered out.
+The defaults are a reading of the text of Mordant et al. (SERIES), not values from it; they are
+parameters of :class:`Criterion`. Both peaks are taken after a centred moving average of ``smooth``
+samples (default 1: none) so that isolated noise spikes can be filtered out.
 
 The lifted-length history ``L - Lc(t)`` (Mordant et al. (SERIES), Figures 19-20) comes from the base
 transducers by :mod:`murus.identify.compressive`.

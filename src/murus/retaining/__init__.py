@@ -20,8 +20,7 @@ The EN 1998-5 Annex E earth pressure itself is in :mod:`murus.eurocode.ec8_5`. T
 are imported on first use (PEP 562), so that the command line stays light.
 
 >>> from murus.retaining import critical_acceleration, preset
->>> round(critical_acceleration(preset("DSRW1")).A_pseudo, 2)   # Savalle et al. (2022), Table 8:
-1.58
+>>> round(critical_acceleration(preset("DSRW1")).A_pseudo, 2)   # Savalle et al. (2022): 1.58
 1.59
 """
 

@@ -2,8 +2,8 @@
 
 Thin layer over :mod:`murus.retaining` (Savalle et al. (2022), §4.4). The wall is a preset
 (``DSRW1`` ... ``DSRW4``, ``C3s`` of Savalle et al. (2022), Table 5, or ``mockup-<H/B>`` for the
-scaled-down walls of its §3). Every open assumption of the seed's analytical tool is an option with
-the default of
+scaled-down walls of its §3). Every open assumption of the analytical tool of the paper is an option
+with the default of
 :class:`murus.retaining.pseudostatic.Assumptions`. Bad input exits with code 2 and a one-line
 ``error:`` message on stderr. The library is imported inside the commands (no numba, no
 matplotlib), so that ``murus --help`` stays fast.
@@ -233,7 +233,7 @@ def collapse(
                                        "Savalle et al. (2022) walls)."),
     boundary: str | None = typer.Option(None, "--boundary", help="With --backfill discrete: "
                                         "lateral boundary, 'absorbing' (viscous; default "
-                                        "at full scale, the seed's free field) or 'container' "
+                                        "at full scale, the paper's free field) or 'container' "
                                         "(a rigid plate moving with the base; default for the "
                                         "mock-ups, tested in a box)."),
     radius: float | None = typer.Option(None, "--radius", help="With --backfill discrete: "

@@ -94,7 +94,7 @@ def _vertical(kv_mode: str) -> str:
 def pseudo_static_resistance(wall: RetainingWall, kv_mode: str = "none",
                              assumptions=None, vertical_ratio: float = 0.5) -> float:
     """``A_pseudo`` [m/s²] of ``wall`` (horizontal component), with ``kv = +-0.5 kh`` when a
-    vertical component is applied (both signs, the worse: the seed prints one value)."""
+    vertical component is applied (both signs, the worse: the paper prints one value)."""
     from murus.retaining.pseudostatic import critical_acceleration
 
     r = 0.0 if _vertical(kv_mode) == "none" else vertical_ratio

@@ -28,7 +28,7 @@ Materials: Savalle et al. (2022), Table 6 (full-scale walls): units 20.0 kN/m³ 
 kg/m³, taken from ``wall.wall_unit_weight``), unit-unit interface kn = ks = 2.8e12 Pa/m and
 friction 25.0 deg (from ``wall.joint_friction_deg``); Table 1 for the mock-ups (2.6e12 Pa/m,
 32 deg). ``stiffness_scale`` scales kn and ks (the time step grows as its inverse square
-root; the seed's "perfect stones" make the walls nearly rigid, so a softer joint changes the
+root; the "perfect stones" of the paper make the walls nearly rigid, so a softer joint changes the
 collapse acceleration little while making the run cheaper: used by the tests and stated in the
 results).
 

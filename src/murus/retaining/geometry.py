@@ -446,7 +446,7 @@ def mockup(slenderness: float, width: float = MOCKUP_WIDTH, **overrides) -> Reta
     """A scaled-down mock-up of Savalle et al. (2022), §3 (experiments of [33]) with ``H =
     slenderness B``.
 
-    What the seed gives: vertical walls of constant width (34 mm printed) and heights giving
+    What the paper gives: vertical walls of constant width (34 mm printed) and heights giving
     H/B = 1.3-3.3, H the height free to move above the fixed first course, level sand
     backfill, the materials of Table 1. What it does not give: the brick (course) height and
     length, hence the positions of the bed joints (``stone_height=None``: only the base joint

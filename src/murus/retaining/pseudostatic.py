@@ -5,7 +5,7 @@ Savalle et al. (2022) §4.4 computes the pseudo-static resistance ``A_pseudo`` o
 wall "using an analytical approach based on the limit-equilibrium of a Coulomb's wedge of soil
 [18, 27]" with the properties of Tables 5 and 6 and perfect stones ("no internal rotation of
 the stones"); Table 8 gives 1.58 m/s² for DSRW1 under horizontal action and 1.50 m/s² with a
-vertical component of half the horizontal one. The seed gives no equations; this module is a
+vertical component of half the horizontal one. The paper gives no equations; this module is a
 reconstruction from EN 1998-5 and the usual DSRW limit analysis, every open choice being an
 explicit :class:`Assumptions` field (documented, with their effect, in VALIDATION.md).
 
@@ -35,7 +35,7 @@ safety factor over joints and mechanisms reaches 1 (:func:`critical_acceleration
 
 Defaults. ``delta = 2/3 phi`` and the whole thrust at ``h/3`` (EN 1998-5 §7.3.2.3(5)), the
 base parallel to the beds, the worse sign of ``kv``: DSRW1 gives 1.588 m/s² (Table 8: 1.58)
-and 1.469 m/s² with ``kv = 0.5 kh`` (1.50), and the walls whose values the seed does not
+and 1.469 m/s² with ``kv = 0.5 kh`` (1.50), and the walls whose values the paper does not
 print give behaviour factors consistent with the mean and minimum it states. The literal
 reading of Table 6 (``delta = phi = 37.7 deg``) with the EN mid-height increment is 13 % high.
 VALIDATION.md has the sensitivity to each choice.

@@ -80,7 +80,7 @@ class RigidBlock:
     --------
     >>> blk = RigidBlock(width=0.3, height=3.0, density=21000 / 9.81)   # EURODYN (2020) block1
     >>> round(blk.mass), round(blk.R, 3), round(blk.I_O)
-    (1927, 1.508, 5838)
+    (1927, 1.507, 5838)
     """
 
     width: float

@@ -5,7 +5,7 @@ law code and numbers into the parameter vector (:meth:`fill`); the kernel evalua
 impact (:func:`murus.rocking.kernels.restitution`).
 
 Mordant et al. (SERIES), §3.3.2 lost the text of its equations 13-18 in extraction; the laws below
-reconstruct them from the physical description of the seed and the rocking literature (Housner 1963
+reconstruct them from the physical description of the paper and the rocking literature (Housner 1963
 for the momentum balance; the ``1 - k sin^2 alpha`` family, with ``k = 2`` for a mass on top and
 ``k = 3/2`` for a uniform rectangle, as in EURODYN (2020), §4.3). What was assumed is stated on
 each.
@@ -118,7 +118,7 @@ class AmplitudeDependent:
 
     ``e_n = 1 - (k0 + k1 r_n) sin^2(alpha_n)``
 
-    - eqs. 14-15 (the alternative formulation of the seed's reference [8], "different options
+    - eqs. 14-15 (the alternative formulation of its reference [8], "different options
       are possible regarding the coefficient of sin^2 alpha"): ``k1 = 0`` and ``k0`` free;
       ``k0 = 2`` is Housner's value for a mass on top (Mordant et al. (SERIES), eq. 10), ``k0 =
       3/2`` the value for a uniform rectangle, the default of :meth:`coefficient`;
@@ -128,10 +128,10 @@ class AmplitudeDependent:
       ``k1 > 0``. The largest rotation of the whole response is not known while integrating:
       ``variant = "causal"`` (default) uses the running maximum (deterministic, one run);
       ``"iterated"`` re-runs the analysis with the previous run's maximum until it is stable
-      (:func:`murus.rocking.simulate`, at most ``max_iterations``), which is the seed's
+      (:func:`murus.rocking.simulate`, at most ``max_iterations``), which is the paper's
       definition when it converges;
     - eq. 17: once the input has ended (free vibration) ``(k0_free, k1_free)`` replace
-      ``(k0, k1)`` (the seed observed less dissipation then); ``None``: the same law;
+      ``(k0, k1)`` (the paper observed less dissipation then); ``None``: the same law;
     - eq. 18: the energy lost at each impact is multiplied by ``f = (lambda / A0)^2``,
       ``lambda = h / b`` the aspect ratio of the wall and ``A0`` the calibrated reference aspect
       ratio ("proportional to the square of the proportion of the aspect ratios"), so that

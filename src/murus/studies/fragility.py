@@ -352,7 +352,7 @@ def restraint_configs(body, *, delta_t: float = 10.186, c_over_cd: float = 0.10,
     12) at the top and one-sided transverse walls (eq. 11 by default); damped: the tied wall with a
     damper ``c = c_over_cd c_d`` at the top (eq. 13, characteristic time ``delta_t`` [s]; the
     default 10.186 s is the value calibrated in validation/restrained.py on EURODYN (2020), Figure
-    9, and 10 % c_d is the seed's design value for limited rocking)."""
+    9, and 10 % c_d is the design value of EURODYN (2020) for limited rocking)."""
     from murus.rocking import Damper, RockingModel, SpringBed, Tie
     from murus.rocking.design import bed_stiffness_equal, reference_damping, tie_design
 
