@@ -6,6 +6,7 @@ import shutil
 from pathlib import Path
 
 import pytest
+from studies_inputs import study_toml, write_study
 from typer.testing import CliRunner
 
 from murus.studies.cli import app
@@ -15,39 +16,13 @@ ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "studies" / "seed002_spectrum_block2.toml"
 runner = CliRunner()
 
-BASE = """\
-[study]
-name = "t"
-chunk_size = 8
+BASE = study_toml()
 
-[case.body]
-width = 0.3
-height = 3.0
-density = 2140.7
-
-[case.restraint]
-motion_sides = "one"
-
-[case.restraint.transverse_walls]
-stiffness = "eq11"
-
-[sweep]
-K_over_Kd = [0.0, 0.5, 1.0]
-
-[records]
-folder = "recs"
-units = "m/s2"
-"""
 
 
 @pytest.fixture
 def study_dir(tmp_path, records):
-    from murus.motion import write
-
-    (tmp_path / "recs").mkdir()
-    for m in records[:2]:
-        write(m, tmp_path / "recs" / f"{m.name}.csv")
-    (tmp_path / "s.toml").write_text(BASE)
+    write_study(tmp_path, records, BASE)
     return tmp_path
 
 
