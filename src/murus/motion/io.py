@@ -692,6 +692,21 @@ def write(motion: GroundMotion, path, format: str | None = None, units: str = "m
 
     The format follows ``format`` or the extension (.at2 -> AT2, anything else -> CSV). The
     file is written to a temporary name and renamed, so nothing is left half-written.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record.
+    path : str or pathlib.Path
+        The file.
+    format : str, optional
+        ``"csv"`` or ``"at2"``; default from the extension.
+    units : str
+        Units of the CSV values: ``"m/s2"``, ``"g"`` or ``"cm/s2"``.
+
+    Returns
+    -------
+    pathlib.Path
     """
     path = Path(path)
     fmt = (format or ("at2" if path.suffix.lower() == ".at2" else "csv")).lower()

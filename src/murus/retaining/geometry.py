@@ -454,6 +454,23 @@ def mockup(slenderness: float, width: float = MOCKUP_WIDTH, **overrides) -> Reta
     as h² and the weight as h), and any batter or bed inclination (taken as zero). Note that
     "between 50 mm and 140 mm high" with H/B = 1.3-3.3 implies B = 38-42 mm rather than 34 mm
     (the printed heights may include the fixed course): pass ``width`` to test it.
+
+    Parameters
+    ----------
+    slenderness : float
+        ``H / B`` [-].
+    width : float
+        ``B`` [m].
+    **overrides
+        Any parameter of :class:`RetainingWall`.
+
+    Returns
+    -------
+    RetainingWall
+
+    References
+    ----------
+    Savalle et al. (2022), §3.1, Tables 1 and 3.
     """
     r = _num("slenderness", slenderness, 0.0, True)
     w = _num("width", width, 0.0, True)
@@ -466,7 +483,23 @@ def mockup(slenderness: float, width: float = MOCKUP_WIDTH, **overrides) -> Reta
 def preset(name: str, **overrides) -> RetainingWall:
     """Savalle et al. (2022) walls: ``DSRW1``-``DSRW4`` and ``C3s`` (Tables 5 and 6), or
     ``mockup-<H/B>`` for the scaled-down walls of §3 (``mockup-2.7``). ``overrides`` change any
-    parameter."""
+    parameter.
+
+    Parameters
+    ----------
+    name : str
+        ``"DSRW1"`` ... ``"DSRW4"``, ``"C3s"`` or ``"mockup-<H/B>"`` (case-insensitive).
+    **overrides
+        Any parameter of :class:`RetainingWall`.
+
+    Returns
+    -------
+    RetainingWall
+
+    References
+    ----------
+    Savalle et al. (2022), Tables 1, 5 and 6.
+    """
     key = str(name).strip()
     up = key.upper()
     if up.startswith("MOCKUP-"):

@@ -264,7 +264,23 @@ def _forces(wall: RetainingWall, part: WallPart, kh: float, kv: float, asm: Assu
 
 def check_joint(wall: RetainingWall, joint: BedJoint | int, kh: float, kv: float = 0.0,
                 assumptions: Assumptions | None = None) -> JointCheck:
-    """Sliding and overturning of the wall above ``joint`` under ``kh``, ``kv``."""
+    """Sliding and overturning of the wall above ``joint`` under ``kh``, ``kv``.
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    joint : BedJoint or int
+        The joint (or its index, 0 the base).
+    kh, kv : float
+        Seismic coefficients [-] (``kv`` positive upward).
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+
+    Returns
+    -------
+    JointCheck
+    """
     asm = assumptions or Assumptions()
     if isinstance(joint, int):
         try:
@@ -310,7 +326,21 @@ def _joints(wall: RetainingWall, asm: Assumptions) -> tuple[BedJoint, ...]:
 
 def check_joints(wall: RetainingWall, kh: float, kv: float = 0.0,
                  assumptions: Assumptions | None = None) -> list[JointCheck]:
-    """:func:`check_joint` for every joint (base first)."""
+    """:func:`check_joint` for every joint (base first).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    kh, kv : float
+        Seismic coefficients [-] (``kv`` positive upward).
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+
+    Returns
+    -------
+    list of JointCheck
+    """
     asm = assumptions or Assumptions()
     return [check_joint(wall, j, kh, kv, asm) for j in _joints(wall, asm)]
 
@@ -405,6 +435,25 @@ def critical_acceleration(wall: RetainingWall, kv_ratio: float = 0.0,
     smallest ``kh`` at which the smallest safety factor over joints and mechanisms is 1.
     Raises :class:`PseudoStaticError` if the wall is not statically stable or no limit is
     found below the largest seismic angle EN 1998-5 (E.2) admits.
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    kv_ratio : float
+        ``|kv| / kh`` [-].
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+    signs : tuple of int, optional
+        Signs of ``kv`` tried (+1 upward).
+
+    Returns
+    -------
+    PseudoStaticResult
+
+    References
+    ----------
+    Savalle et al. (2022), §4.4, Table 8; EN 1998-5 Annex E.
     """
     asm = assumptions or Assumptions()
     r = float(kv_ratio)
@@ -440,7 +489,25 @@ def critical_acceleration(wall: RetainingWall, kv_ratio: float = 0.0,
 def safety_curves(wall: RetainingWall, kh, kv_ratio: float = 0.0, sign: int = 1,
                   assumptions: Assumptions | None = None) -> dict[str, np.ndarray]:
     """Safety factors on a grid of ``kh``: arrays ``[joint, kh]`` for each mechanism, and the
-    joint heights. For plots (VALIDATION.md)."""
+    joint heights. For plots (VALIDATION.md).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    kh : array_like
+        Horizontal coefficients [-].
+    kv_ratio : float
+        ``|kv| / kh`` [-].
+    sign : int
+        Sign of ``kv`` (+1 upward).
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+
+    Returns
+    -------
+    dict of numpy.ndarray
+    """
     asm = assumptions or Assumptions()
     kh = np.asarray(kh, dtype=float)
     joints = _joints(wall, asm)
@@ -461,6 +528,16 @@ def tilt_coefficients(tilt: float) -> tuple[float, float]:
     In the tilted frame gravity is ``g (sin t, -cos t)``: a horizontal coefficient ``sin t``
     out of the slope and a vertical one ``1 - cos t`` upwards (Savalle et al. (2022), refs [18,
     33]).
+
+    Parameters
+    ----------
+    tilt : float
+        Tilt of the table [rad].
+
+    Returns
+    -------
+    tuple of float
+        ``(kh, kv)`` [-].
     """
     t = float(tilt)
     if not (math.isfinite(t) and 0.0 <= t < 0.5 * math.pi):
@@ -469,7 +546,18 @@ def tilt_coefficients(tilt: float) -> tuple[float, float]:
 
 
 def tilt_from_coefficients(kh: float, kv: float) -> float:
-    """The tilt [rad] equivalent to ``(kh, kv)`` when ``kh² + (1 - kv)² = 1`` (else an error)."""
+    """The tilt [rad] equivalent to ``(kh, kv)`` when ``kh² + (1 - kv)² = 1`` (else an error).
+
+    Parameters
+    ----------
+    kh, kv : float
+        Seismic coefficients [-] (``kv`` positive upward).
+
+    Returns
+    -------
+    float
+        Tilt [rad].
+    """
     if abs(kh * kh + (1.0 - kv) ** 2 - 1.0) > 1e-9:
         raise PseudoStaticError(f"(kh, kv) = ({kh!r}, {kv!r}) is not a tilt: kh² + (1 - kv)² "
                                 "must be 1")
@@ -479,7 +567,20 @@ def tilt_from_coefficients(kh: float, kv: float) -> float:
 def critical_tilt(wall: RetainingWall, assumptions: Assumptions | None = None) -> tuple[
         float, int, str]:
     """Tilt [rad] of a tilting table at which the smallest safety factor is 1, its joint and
-    mechanism (``kh = sin t``, ``kv = 1 - cos t``)."""
+    mechanism (``kh = sin t``, ``kv = 1 - cos t``).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+
+    Returns
+    -------
+    tuple
+        Tilt [rad], joint index, mechanism (``"sliding"`` or ``"overturning"``).
+    """
     from scipy.optimize import brentq
 
     asm = assumptions or Assumptions()

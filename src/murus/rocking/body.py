@@ -204,6 +204,20 @@ def restrained_wall_block(label: str) -> RigidBlock:
     """One of the six unit-length blocks of EURODYN (2020), Table 1 (``block1`` ... ``block6``).
 
     Thickness ``s`` and slenderness ``lambda`` from the table, unit weight 21 kN/m³.
+
+    Parameters
+    ----------
+    label : str
+        ``"block1"`` ... ``"block6"``.
+
+    Returns
+    -------
+    RigidBlock
+        Width ``s`` [m], height ``lambda s`` [m], 1 m thick, density 21000 / g [kg/m³].
+
+    References
+    ----------
+    EURODYN (2020), Table 1 (docs/references.md, key ``eurodyn2020``).
     """
     table = {
         "block1": (10, 0.3),
@@ -224,7 +238,25 @@ def restrained_wall_block(label: str) -> RigidBlock:
 def series_clay_wall(kind: str, self_weight: bool = False, density: float = 0.0) -> RigidBlock:
     """A wall of Mordant et al. (SERIES), §1.2: ``"short"`` (0.72 m) or ``"long"`` (2.10 m), 1.80 m
     high,
-    0.138 m thick, with 5 t at mid-top; its self-weight is neglected unless ``self_weight``."""
+    0.138 m thick, with 5 t at mid-top; its self-weight is neglected unless ``self_weight``.
+
+    Parameters
+    ----------
+    kind : str
+        ``"short"`` (B = 0.72 m) or ``"long"`` (B = 2.10 m).
+    self_weight : bool
+        Include the self-weight of the masonry (neglected by default).
+    density : float
+        Masonry density [kg/m³], needed with ``self_weight``.
+
+    Returns
+    -------
+    RigidBlock
+
+    References
+    ----------
+    Mordant et al. (SERIES), §1.2 (docs/references.md, key ``mordant_series``).
+    """
     widths = {"short": 0.72, "long": 2.10}
     if kind not in widths:
         raise BodyError(f"unknown Mordant et al. (SERIES) wall {kind!r}; "

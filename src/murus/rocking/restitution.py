@@ -60,7 +60,13 @@ class Housner:
 @dataclass(frozen=True)
 class Constant:
     """A constant coefficient ``e`` in [0, 1] given by the user (``e = 1``: elastic impacts,
-    used by EURODYN (2020), §4.2 to isolate viscous damping)."""
+    used by EURODYN (2020), §4.2 to isolate viscous damping).
+
+    Parameters
+    ----------
+    e : float
+        Coefficient of restitution of the angular velocity [-], in [0, 1].
+    """
 
     e: float
     KIND: ClassVar[int] = 0
@@ -140,7 +146,25 @@ class AmplitudeDependent:
     ``alpha_n`` is the slenderness about the current pivot (Mordant et al. (SERIES), eq. 12).
     Defaults ``k0 = k1 = 1``: the largest half-cycle dissipates as Housner's top-mass wall (``k =
     2``), small ones half as much — a starting point for calibration (``murus.identify``), not a
-    published value."""
+    published value.
+
+    Parameters
+    ----------
+    k0, k1 : float
+        Coefficients of ``e_n = 1 - (k0 + k1 r_n) sin^2(alpha_n)`` [-].
+    k0_free, k1_free : float, optional
+        The coefficients once the input has ended (eq. 17); ``None``: ``k0``, ``k1``.
+    A0 : float, optional
+        Slenderness scale of the aspect factor of eq. 18 [-]; ``None``: off.
+    variant : str
+        ``"causal"`` (running maximum) or ``"iterated"`` (eq. 16 iterated to a fixed point).
+    max_iterations : int
+        Largest number of runs of the ``"iterated"`` variant.
+
+    References
+    ----------
+    Mordant et al. (SERIES), §3.3.2, eqs. 14-18 (reconstructed); Housner (1963).
+    """
 
     k0: float = 1.0
     k1: float = 1.0

@@ -48,7 +48,27 @@ class Tie:
     ``tension_only`` (default): the tie works only when the wall moves outward (a rod anchored
     by a plate); ``False``: the bidirectional elastic tie of EURODYN (2020), Figure 2.
     ``pretension`` [N] and ``yield_force`` [N] (elastic-perfectly plastic, with the plastic
-    elongation carried along the run) are the options EURODYN (2020) leaves out."""
+    elongation carried along the run) are the options EURODYN (2020) leaves out.
+
+    Parameters
+    ----------
+    stiffness : float
+        Axial stiffness [N/m] (>= 0).
+    height : float
+        Height of the anchorage above the base [m].
+    x : float
+        Body coordinate of the anchorage [m] (0: mid-thickness).
+    tension_only : bool
+        The tie works only when the wall moves outward.
+    pretension : float
+        Initial tension [N].
+    yield_force : float, optional
+        Yield force [N] of an elastic-perfectly plastic tie; ``None``: elastic.
+
+    References
+    ----------
+    EURODYN (2020), eqs. 2 and 12.
+    """
 
     stiffness: float
     height: float
@@ -95,7 +115,23 @@ class SpringBed:
     (tests/rocking/test_restraints.py checks the convergence as the stiffness grows). The
     geometric cascade of ever smaller bounces ends, with the wall at rest against the walls,
     once the excursion a bounce starts (``theta'^2 / (2 |theta''|)`` under the restoring
-    acceleration at ``theta = 0``) is below ``rest_tol * alpha``."""
+    acceleration at ``theta = 0``) is below ``rest_tol * alpha``.
+
+    Parameters
+    ----------
+    stiffness : float
+        Stiffness per unit height [N/m/m]; ``inf`` for rigid transverse walls.
+    effective_height : float
+        Height of the bed [m].
+    z1 : float
+        Height of its lower end [m].
+    x : float, optional
+        Body coordinate of the face it acts on [m] (default ``+b/2``).
+
+    References
+    ----------
+    EURODYN (2020), eqs. 3-6 and 10.
+    """
 
     stiffness: float
     effective_height: float
@@ -121,7 +157,21 @@ class SpringBed:
 class Damper:
     """A horizontal linear viscous damper of coefficient ``coefficient`` [N s/m] at ``height``
     [m] and body coordinate ``x`` [m] (EURODYN (2020), eq. 7, term T_D; eq. 13 gives the reference
-    ``c_d``, :func:`murus.rocking.design.reference_damping`)."""
+    ``c_d``, :func:`murus.rocking.design.reference_damping`).
+
+    Parameters
+    ----------
+    coefficient : float
+        Damping coefficient [N s/m] (>= 0).
+    height : float
+        Height of the anchorage above the base [m].
+    x : float
+        Body coordinate of the anchorage [m].
+
+    References
+    ----------
+    EURODYN (2020), eqs. 7 and 13.
+    """
 
     coefficient: float
     height: float
@@ -174,7 +224,24 @@ class Pivot:
     zero would leave no restoring moment at all). The default reading is the one that predicts
     rocking for tests S07-S09 of both walls of Mordant et al. (SERIES) and not for the long wall at
     S06 (VALIDATION.md). ``alpha_n``, ``R_n``, the inertia about the pivot and Housner's ``e_n``
-    follow the lever (eqs. 12-13)."""
+    follow the lever (eqs. 12-13).
+
+    Parameters
+    ----------
+    law : str
+        ``"corner"`` or ``"compressive-length"``.
+    reading : str
+        ``"effective-width"``, ``"kern"``, ``"neutral-axis"`` or ``"corner"``.
+    factor : float
+        Factor on the eccentricity of the equivalent static load [-].
+    min_lever_fraction : float
+        Smallest lever as a fraction of ``b/2`` [-].
+
+    References
+    ----------
+    Mordant et al. (SERIES), §3.3.1, eqs. 11-13 (reconstructed); EN 1996-1-1, as in
+    :mod:`murus.eurocode.ec6`.
+    """
 
     law: str = "corner"
     reading: str = "effective-width"

@@ -58,7 +58,22 @@ class FragilityFit:
 
 
 def fragility_curve(x, median: float, beta: float):
-    """``Phi(ln(x / median) / beta)``."""
+    """``Phi(ln(x / median) / beta)``.
+
+    Parameters
+    ----------
+    x : array_like
+        IM values (IM units).
+    median : float
+        Median capacity (IM units).
+    beta : float
+        Logarithmic standard deviation [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Probability of exceedance [-].
+    """
     from scipy.special import ndtr
 
     x = np.asarray(x, dtype=float)
@@ -82,7 +97,25 @@ def _check_stripes(levels, n, z):
 
 def fit_msa(levels, n, z) -> FragilityFit:
     """Maximum-likelihood lognormal fragility from stripes: ``z[j]`` of ``n[j]`` records exceed
-    the limit state at the level ``levels[j]`` (Baker 2015 eq. 11)."""
+    the limit state at the level ``levels[j]`` (Baker 2015 eq. 11).
+
+    Parameters
+    ----------
+    levels : array_like
+        IM levels of the stripes (IM units, > 0).
+    n : array_like
+        Number of records at each level.
+    z : array_like
+        Number of records exceeding the limit state at each level.
+
+    Returns
+    -------
+    FragilityFit
+
+    References
+    ----------
+    Baker (2015), eq. 11.
+    """
     from scipy.optimize import minimize
     from scipy.special import log_ndtr
 
@@ -154,7 +187,23 @@ def fisher_covariance(median: float, beta: float, levels, n) -> np.ndarray:
 def fit_ida(capacities, censored_at: float | None = None) -> FragilityFit:
     """Maximum-likelihood lognormal fragility from record capacities (IM at which each record
     first exceeds the limit state); NaN capacities are right-censored at ``censored_at`` (the
-    highest level run). Covariance from the observed information (numerical Hessian)."""
+    highest level run). Covariance from the observed information (numerical Hessian).
+
+    Parameters
+    ----------
+    capacities : array_like
+        Capacity of each record, in IM units; NaN: not exceeded up to ``censored_at``.
+    censored_at : float, optional
+        Highest level run (IM units).
+
+    Returns
+    -------
+    FragilityFit
+
+    References
+    ----------
+    Baker (2015), eqs. 3-4.
+    """
     from scipy.optimize import minimize
     from scipy.special import log_ndtr
 
@@ -240,7 +289,39 @@ def fit_fragility(ds, *, x: str = "im", method: str = "msa", ci: str = "bootstra
     ``fragility_beta`` and their ``_lo``/``_hi`` bounds (two-sided ``level``),
     ``fragility_status``, ``p_exceed`` (observed fractions), ``fragility_curve`` with
     ``_lo``/``_hi`` on ``im_curve``, and ``n_valid``. ``progress(done, total)``, if given, is
-    called after each fit (a fit with its bootstrap can take seconds)."""
+    called after each fit (a fit with its bootstrap can take seconds).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result with dimensions ``x`` and ``record``.
+    x : str
+        Name of the intensity dimension.
+    method : str
+        ``"msa"`` or ``"ida"``.
+    ci : str
+        Confidence intervals: ``"bootstrap"``, ``"fisher"`` or ``"none"``.
+    n_boot : int
+        Bootstrap samples.
+    level : float
+        Two-sided confidence level [-].
+    seed : int
+        Seed of the bootstrap.
+    limit_states : dict, optional
+        ``{name: theta_max / alpha threshold}``; default the limit states of EURODYN (2020), §4.
+    n_curve : int
+        Points of the fitted curves.
+    progress : callable, optional
+        ``progress(done, total)``.
+
+    Returns
+    -------
+    xarray.Dataset
+
+    References
+    ----------
+    Baker (2015).
+    """
     import xarray as xr
     from scipy.special import ndtr, ndtri
 
@@ -352,7 +433,30 @@ def restraint_configs(body, *, delta_t: float = 10.186, c_over_cd: float = 0.10,
     12) at the top and one-sided transverse walls (eq. 11 by default); damped: the tied wall with a
     damper ``c = c_over_cd c_d`` at the top (eq. 13, characteristic time ``delta_t`` [s]; the
     default 10.186 s is the value calibrated in validation/restrained.py on EURODYN (2020), Figure
-    9, and 10 % c_d is the design value of EURODYN (2020) for limited rocking)."""
+    9, and 10 % c_d is the design value of EURODYN (2020) for limited rocking).
+
+    Parameters
+    ----------
+    body : RigidBlock
+        The wall.
+    delta_t : float
+        Characteristic time of eq. 13 [s].
+    c_over_cd : float
+        Damper coefficient over ``c_d`` [-].
+    walls : str or float
+        ``"eq11"``, ``"rigid"`` or a spring-bed stiffness [N/m/m].
+    K_over_Kd : float
+        Tie stiffness over ``K_d`` [-].
+
+    Returns
+    -------
+    dict
+        ``{name: RockingModel}``.
+
+    References
+    ----------
+    EURODYN (2020), eqs. 11-13 and Figure 9.
+    """
     from murus.rocking import Damper, RockingModel, SpringBed, Tie
     from murus.rocking.design import bed_stiffness_equal, reference_damping, tie_design
 
@@ -450,7 +554,23 @@ def fragility(models, records="farfield", im="PGA", levels=None, *, method: str 
 def plot_fragility(ds, ax=None, *, limit_state=None, config=None, progress=None):
     """Fragility curves with their confidence bands and the observed fractions (markers), one
     colour per configuration, one line style per limit state (fitted first by
-    :func:`fit_fragility`, with its ``progress``, unless ``ds`` has them). Returns the Axes."""
+    :func:`fit_fragility`, with its ``progress``, unless ``ds`` has them). Returns the Axes.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A fragility result (or a sweep to fit first).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw.
+    limit_state, config : str, optional
+        Restrict to one limit state or configuration.
+    progress : callable, optional
+        ``progress(done, total)`` of the fit.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
     import matplotlib.pyplot as plt
 
     if "fragility_curve" not in ds:

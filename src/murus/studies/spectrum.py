@@ -45,6 +45,32 @@ def spectrum_case(body, *, walls="eq11", restitution="housner", tie_height=None,
     c_over_cd, delta_t:
         A damper at ``damper_height`` (default the top) with ``c = c_over_cd * c_d`` (eq. 13,
         characteristic time ``delta_t`` [s]).
+
+    Parameters
+    ----------
+    body : RigidBlock
+        The wall.
+    walls : str or float
+        See above.
+    restitution : str or float
+        See above.
+    tie_height : float, optional
+        Height of the tie [m] (default the top).
+    tension_only : bool
+        The tie works in tension only.
+    c_over_cd, delta_t : float, optional
+        See above.
+    damper_height : float, optional
+        Height of the damper [m] (default the top).
+    duration : float, optional
+        Duration of each run [s] (default the record's).
+    rtol : float
+        Relative tolerance of the integrator.
+
+    Returns
+    -------
+    dict
+        The case tables.
     """
     b = body
     case = {
@@ -208,7 +234,27 @@ def plot_rocking_spectrum(ds, ax=None, *, record=None, x=None, limit_states=LIMI
     dimension, ``K_over_Kd``), in the style of EURODYN (2020), Figures 3-4: one curve per record (or
     the chosen ``record``, a name or index), the limit states (dashed), the free-standing value
     (dotted, when the Dataset has it) and overturned cases as crosses at the top. With many
-    records the median and the 16-84 % band are drawn over thin lines. Returns the Axes."""
+    records the median and the 16-84 % band are drawn over thin lines. Returns the Axes.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A rocking-spectrum result.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw.
+    record : str or int, optional
+        One record (name or index).
+    x : str, optional
+        The swept dimension.
+    limit_states : dict
+        ``{name: theta_max / alpha}`` lines.
+    ymax : float, optional
+        Upper limit of the axis.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
     plt = _plt()
     if ax is None:
         _, ax = plt.subplots(figsize=(7.0, 3.6), layout="constrained")
@@ -282,7 +328,23 @@ def plot_overturning_map(ds, x=None, y=None, ax=None, *, what: str = "overturned
     """A map over two dimensions (default: the first swept parameter and ``record``, or the
     first two parameters, averaged over the records) of the fraction of overturned cases
     (``what="overturned"``) or of the median ``theta_max / alpha`` (``what="theta"``).
-    Returns the Axes."""
+    Returns the Axes.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result.
+    x, y : str, optional
+        The two dimensions.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw.
+    what : str
+        ``"overturned"`` or ``"theta"``.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
     plt = _plt()
     if ax is None:
         _, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
