@@ -42,7 +42,26 @@ __all__ = ["envelope", "spectrum_compatible", "generate_ec8", "check_ec8", "Crit
 
 def envelope(t: np.ndarray, rise: float, stationary: float, decay: float,
              kind: str = "trapezoidal") -> np.ndarray:
-    """Envelope (0 to 1) at times t [s]: rise, stationary and decay durations [s]."""
+    """Envelope (0 to 1) at times t [s]: rise, stationary and decay durations [s].
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times [s].
+    rise, stationary, decay : float
+        Durations [s].
+    kind : str
+        ``"trapezoidal"`` or ``"jennings"``.
+
+    Returns
+    -------
+    numpy.ndarray
+        [-].
+
+    References
+    ----------
+    Jennings, Housner and Tsai (1968).
+    """
     t = np.asarray(t, float)
     t1, t2 = rise, rise + stationary
     if kind == "trapezoidal":
@@ -148,7 +167,21 @@ def generate_ec8(ag: float, ground: str = "B", spectrum_type: int = 1, n: int = 
 
 @dataclass
 class Criterion:
-    """One EN 1998-1 §3.2.3.1.2 condition: ``ratio`` = value / required (>= 1 passes)."""
+    """One EN 1998-1 §3.2.3.1.2 condition: ``ratio`` = value / required (>= 1 passes).
+
+    Attributes
+    ----------
+    name : str
+        The condition.
+    passed : bool
+    value, required : float
+        Obtained and required values.
+    ratio : float
+        ``value / required``.
+    period : float, optional
+        Period of the worst ratio [s].
+    note : str
+    """
 
     name: str
     passed: bool
@@ -161,7 +194,20 @@ class Criterion:
 
 @dataclass
 class CompatibilityReport:
-    """Result of :func:`check_ec8`: criteria, the mean spectrum and the target."""
+    """Result of :func:`check_ec8`: criteria, the mean spectrum and the target.
+
+    Attributes
+    ----------
+    criteria : list of Criterion
+    periods : numpy.ndarray
+        [s].
+    mean_psa, target : numpy.ndarray
+        [m/s²].
+    period_range : tuple of float
+        [s].
+    spectra : list of numpy.ndarray
+        PSA of each record [m/s²].
+    """
 
     criteria: list[Criterion]
     periods: np.ndarray

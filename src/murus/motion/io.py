@@ -155,7 +155,19 @@ _ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.\-()]*):(.*)$")
 
 
 def detect_format(path, text: str | None = None) -> str:
-    """Format name ('at2', 'esm', 'cosmos' or 'csv') from the content, then the extension."""
+    """Format name ('at2', 'esm', 'cosmos' or 'csv') from the content, then the extension.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    text : str, optional
+        Its content, if already read.
+
+    Returns
+    -------
+    str
+    """
     path = Path(path)
     if text is None:
         text = _read_text(path)
