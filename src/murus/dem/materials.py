@@ -26,6 +26,8 @@ class JointError(ValueError):
 class Joint:
     """Mohr-Coulomb joint (elastic-perfectly plastic in shear, brittle in tension).
 
+    Parameters
+    ----------
     kn, ks : normal and shear stiffness per unit area [Pa/m];
     friction_deg : friction angle [deg], 0 <= phi < 90;
     cohesion, tension : initial cohesion c and tensile strength T [Pa];

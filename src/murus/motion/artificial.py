@@ -96,6 +96,39 @@ def spectrum_compatible(target, periods, dt: float = 0.01, rise: float = 2.0,
     target : array of PSA [m/s²] at ``periods`` [s] (or a callable T -> PSA).
     pga_min : the record is scaled up if its PGA is below this value [m/s²] (EC8: ag S).
     The result carries meta['stationary_duration'], meta['seed'], meta['v_end'], meta['d_end'].
+
+    Parameters
+    ----------
+    target : array_like or callable
+        PSA [m/s²] at ``periods``, or ``T -> PSA``.
+    periods : array_like
+        Matching periods [s].
+    dt : float
+        Time step [s].
+    rise, stationary, decay : float
+        Envelope durations [s].
+    envelope_kind : str
+        ``"trapezoidal"`` or ``"jennings"``.
+    damping : float
+        [-].
+    iterations : int
+        Spectral corrections.
+    f_min : float
+        Lowest frequency kept [Hz].
+    pga_min : float, optional
+        Smallest PGA [m/s²].
+    seed : int, optional
+        Seed of the noise.
+    name : str
+        Label.
+
+    Returns
+    -------
+    GroundMotion
+
+    References
+    ----------
+    Gasparini and Vanmarcke (1976); EN 1998-1 §3.2.3.1.2.
     """
     periods = np.asarray(periods, float)
     tgt = np.asarray(target(periods) if callable(target) else target, float)
@@ -142,6 +175,37 @@ def generate_ec8(ag: float, ground: str = "B", spectrum_type: int = 1, n: int = 
     ag [m/s²] reference PGA on rock; records are reproducible for a given ``seed`` (record k
     uses the seed sequence spawned from ``seed``). Default matching periods: 80 log-spaced
     periods from 0.03 to 4 s.
+
+    Parameters
+    ----------
+    ag : float
+        Reference PGA on rock [m/s²].
+    ground : str
+        Ground type ``"A"`` ... ``"E"``.
+    spectrum_type : int
+        1 or 2.
+    n : int
+        Number of records.
+    seed : int
+        Seed.
+    damping : float
+        [-].
+    importance : str or float, optional
+        Importance class or factor.
+    dt : float
+        Time step [s].
+    stationary, rise, decay : float
+        Envelope durations [s].
+    envelope_kind : str
+        ``"trapezoidal"`` or ``"jennings"``.
+    periods : array_like, optional
+        Matching periods [s].
+    iterations : int
+        Spectral corrections.
+
+    Returns
+    -------
+    list of GroundMotion
     """
     from murus.eurocode.ec8 import elastic_spectrum, parameters
 
@@ -249,6 +313,33 @@ def check_ec8(records: list[GroundMotion], ag: float, ground: str = "B",
 
     ag [m/s²]; the period range is ``period_range`` (s) or [0.2 T1, 2 T1]. Each criterion has
     pass/fail, the worst ratio and, for the spectrum, the period where it occurs.
+
+    Parameters
+    ----------
+    records : list of GroundMotion
+        The records.
+    ag : float
+        Reference PGA on rock [m/s²].
+    ground : str
+        Ground type.
+    spectrum_type : int
+        1 or 2.
+    T1 : float, optional
+        Fundamental period [s].
+    period_range : tuple of float, optional
+        [s], instead of ``[0.2 T1, 2 T1]``.
+    damping : float
+        [-].
+    importance : str or float, optional
+        Importance class or factor.
+    min_stationary : float
+        Shortest stationary part [s].
+    n_periods : int
+        Periods of the check.
+
+    Returns
+    -------
+    CompatibilityReport
     """
     from murus.eurocode.ec8 import _importance, elastic_spectrum, parameters
 

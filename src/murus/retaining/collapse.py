@@ -389,7 +389,30 @@ def peak_ratio_check(wall: RetainingWall, frequency: float, A_col: float,
                      ratios: Sequence[float] = (0.6, 0.7), vertical: str = "none",
                      executor: Executor | None = None, **kw) -> dict[float, CollapseResult]:
     """S1 runs with ``A_peak = ratio A_col`` and the S2 slope (Savalle et al. (2022), §4.2, Figure
-    14: stable at 0.6, collapsed at 0.7). Returns ``{ratio: CollapseResult}`` (``.stable``)."""
+    14: stable at 0.6, collapsed at 0.7). Returns ``{ratio: CollapseResult}`` (``.stable``).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    frequency : float
+        [Hz].
+    A_col : float
+        [m/s²].
+    ratios : sequence of float
+        ``A_peak / A_col`` [-].
+    vertical : str
+        Vertical component.
+    executor : concurrent.futures.Executor, optional
+        Where the runs go.
+    **kw
+        Keywords of :func:`collapse_run`.
+
+    Returns
+    -------
+    dict
+        ``{ratio: CollapseResult}``.
+    """
     if not (A_col > 0 and math.isfinite(A_col)):
         raise CollapseError(f"A_col must be positive, got {A_col!r}")
     jobs = [(wall, frequency, vertical, dict(kw, signal="S1", a_peak=r * A_col))
@@ -414,7 +437,15 @@ def _map(executor: Executor | None, jobs):
 class BehaviourTable:
     """Savalle et al. (2022), Tables 7 and 8 layout: one row per case (wall, frequency, vertical)
     with ``t_col`` [s], ``A_col``, ``A_peak = ratio A_col``, ``A_pseudo`` [m/s²], ``r`` and the run
-    time; ``results`` the runs; ``peak_checks`` optional S1 checks per case."""
+    time; ``results`` the runs; ``peak_checks`` optional S1 checks per case.
+
+    Attributes
+    ----------
+    rows : list of dict
+    results : list of CollapseResult
+    peak_ratio : float
+        [-].
+    """
 
     rows: list[dict]
     results: list[CollapseResult] = field(default_factory=list, repr=False)
@@ -461,7 +492,31 @@ def behaviour_factor(wall: RetainingWall, freqs: Sequence[float] = (3.0, 5.0, 10
                      peak_ratio: float = 0.6, **kw) -> BehaviourTable:
     """S2 collapse runs of ``wall`` for every frequency and vertical mode (through
     ``executor``, default serial) and the behaviour factor ``r = peak_ratio A_col / A_pseudo``
-    (Savalle et al. (2022), Tables 7-8). ``kw`` go to :func:`collapse_run`."""
+    (Savalle et al. (2022), Tables 7-8). ``kw`` go to :func:`collapse_run`.
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    freqs : sequence of float
+        Frequencies [Hz].
+    kv_modes : sequence of str
+        ``"none"``, ``"in_phase"``, ``"opposition"``.
+    executor : concurrent.futures.Executor, optional
+        Where the runs go (default serial).
+    peak_ratio : float
+        ``A_peak / A_col`` [-].
+    **kw
+        Keywords of :func:`collapse_run`.
+
+    Returns
+    -------
+    BehaviourTable
+
+    References
+    ----------
+    Savalle et al. (2022), §4.2-4.4, Tables 7 and 8.
+    """
     freqs = [float(f) for f in freqs]
     modes = [_vertical(v) for v in kv_modes]
     if not freqs or not modes:

@@ -107,6 +107,21 @@ class DemWall:
     kinematic base body, ``top`` the stone whose horizontal displacement relative to the base
     is d_top (the front stone of the top course), ``back`` the back-face segments,
     ``back_height`` the vertical height of the back face [m], ``joint`` the stone joint used.
+
+    Attributes
+    ----------
+    model : murus.dem.Model
+    wall : RetainingWall
+    stones : list of int
+    courses : list of list of int
+    polygons : list of numpy.ndarray
+        [m].
+    foundation, top : int
+    back : list
+    back_height : float
+        [m].
+    joint : murus.dem.Joint
+    options : dict
     """
 
     model: object
@@ -222,6 +237,8 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
                bond_phase: int = 0) -> DemWall:
     """The DEM model of the cross-section of ``wall`` (module docstring), one metre thick.
 
+    Parameters
+    ----------
     kn, ks : stone-stone joint stiffness [Pa/m] (default: Savalle et al. (2022), Table 6, 2.8e12, or
         Table 1 for a mock-up, 2.6e12), both multiplied by ``stiffness_scale``;
     foundation_depth : thickness of the kinematic foundation slab [m] (default one stone
@@ -350,6 +367,21 @@ class EquivalentThrust:
     or scalar); ``assumptions`` those of the pseudo-static resistance (default
     :class:`~murus.retaining.pseudostatic.Assumptions`); ``scale`` multiplies the thrust (0:
     no backfill). ``last`` keeps the latest ``(t, kh, kv, E_s, dE)``.
+
+    Parameters
+    ----------
+    dw : DemWall
+        The wall.
+    acc : callable, optional
+        ``acc(t) -> (a_x, a_y)`` [m/s²].
+    assumptions : Assumptions, optional
+        Those of the pseudo-static resistance.
+    scale : float
+        Factor on the thrust [-].
+
+    References
+    ----------
+    EN 1998-5 Annex E; Savalle et al. (2022), §4.
     """
 
     def __init__(self, dw: DemWall, acc: Callable | None = None, assumptions=None,

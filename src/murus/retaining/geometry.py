@@ -104,6 +104,15 @@ class BedJoint:
     where the joint leaves the section (on the back face, or on the base for a horizontal
     base). ``angle`` [rad] is the inclination towards the backfill (the joint goes down into
     the slope). ``index`` 0 is the base.
+
+    Attributes
+    ----------
+    index : int
+        0 for the base.
+    front, back : tuple of float
+        Ends ``(x, z)`` [m].
+    angle : float
+        Inclination towards the backfill [rad].
     """
 
     index: int
@@ -134,6 +143,20 @@ class WallPart:
     ``polygon`` vertices (counter-clockwise), ``area`` [m²], ``centroid`` (x, z) [m],
     ``weight`` [N/m]; ``back_bottom`` and ``back_top`` the ends of its back face in contact
     with the backfill, ``back_height`` their vertical distance [m].
+
+    Attributes
+    ----------
+    joint : BedJoint
+    polygon : tuple
+        Vertices ``(x, z)`` [m], counter-clockwise.
+    area : float
+        [m²].
+    centroid : tuple of float
+        [m].
+    weight : float
+        [N/m].
+    back_bottom, back_top : tuple of float
+        Ends of the back face in contact with the backfill [m].
     """
 
     joint: BedJoint

@@ -78,6 +78,8 @@ class Assumptions:
     """The choices Savalle et al. (2022) leaves open, with their defaults (VALIDATION.md shows their
     effect).
 
+    Parameters
+    ----------
     delta_ratio : wall friction ``delta = delta_ratio phi`` (default 2/3, the customary value
         for a gravity wall); ``None`` takes the wall-backfill interface friction of the wall
         (37.7 deg = phi in Savalle et al. (2022), Table 6).
@@ -168,6 +170,21 @@ class JointCheck:
     normal ``N`` (compression positive) and the tangential ``T`` (out of the slope positive);
     moments about the front edge [N m/m]: ``M_stab``, ``M_over``. ``back_height`` [m] is the
     height the thrust acts on.
+
+    Attributes
+    ----------
+    joint : int
+        Index (0 the base).
+    height, back_height : float
+        [m].
+    kh, kv : float
+        [-].
+    weight, E_static, dE, N, T : float
+        [N/m].
+    fs_sliding, fs_overturning : float
+        Safety factors [-].
+    M_stab, M_over : float
+        [N m/m].
     """
 
     joint: int
@@ -364,6 +381,22 @@ class PseudoStaticResult:
     edge above the toe) and ``mode`` of the governing mechanism; ``fs_static`` the smallest
     static safety factor; ``by_sign`` the limits for each sign of ``kv`` ({+1: upwards,
     -1: downwards}: (kh, joint, mode)).
+
+    Attributes
+    ----------
+    wall : str
+    A_pseudo : float
+        [m/s²].
+    kh, kv, kv_ratio : float
+        [-].
+    joint : int
+    joint_height : float
+        [m].
+    mode : str
+    fs_static : float
+        [-].
+    by_sign : dict
+    assumptions : Assumptions
     """
 
     wall: str

@@ -35,7 +35,19 @@ class WedgeError(ValueError):
 class WedgeResult:
     """Active thrust ``thrust`` [N/m] on a back face of vertical height ``height`` [m], the
     critical failure-plane inclination ``rho`` [rad] to the horizontal, and the equivalent
-    coefficient ``K = 2 thrust / (gamma (1 - kv) height²)`` of EN 1998-5 (E.1)."""
+    coefficient ``K = 2 thrust / (gamma (1 - kv) height²)`` of EN 1998-5 (E.1).
+
+    Attributes
+    ----------
+    thrust : float
+        [N/m].
+    rho : float
+        Inclination of the failure plane [rad].
+    K : float
+        Equivalent coefficient [-].
+    height : float
+        Vertical height of the back face [m].
+    """
 
     thrust: float
     rho: float

@@ -45,7 +45,21 @@ _B_MIN, _B_MAX = 1.0 / 5.0, 1.0 / 0.01  # beta in [0.01, 5]
 class FragilityFit:
     """A lognormal fragility: ``median`` (IM units), ``beta`` [-], ``cov`` the 2 x 2 covariance
     of ``(ln median, beta)`` (NaN if not available), ``loglik``, ``status`` ("ok", "none
-    exceeded", "all exceeded", "boundary": beta hit its bound of [0.01, 5])."""
+    exceeded", "all exceeded", "boundary": beta hit its bound of [0.01, 5]).
+
+    Attributes
+    ----------
+    median : float
+        Median capacity (IM units).
+    beta : float
+        Logarithmic standard deviation [-].
+    cov : numpy.ndarray
+        Covariance of ``(ln median, beta)``.
+    loglik : float
+        Log-likelihood at the optimum.
+    status : str
+        ``"ok"``, ``"none exceeded"``, ``"all exceeded"`` or ``"boundary"``.
+    """
 
     median: float
     beta: float
