@@ -49,7 +49,19 @@ class ClassifyError(ValueError):
 
 @dataclass(frozen=True)
 class Criterion:
-    """Thresholds of the classification (module docstring)."""
+    """Thresholds of the classification (module docstring).
+
+    Parameters
+    ----------
+    cantilever_below : float
+        Ratio below which the wall bends as a cantilever [-].
+    rocking_above : float
+        Ratio above which it rocks [-].
+    min_rotation : float
+        Smallest top rotation classified [rad].
+    smooth : int
+        Samples of the centred moving average.
+    """
 
     cantilever_below: float = 0.3
     rocking_above: float = 0.8
@@ -69,7 +81,19 @@ class Criterion:
 @dataclass
 class Classification:
     """Result: ``label`` (one of ``CLASSES``), ``ratio`` of the peaks, ``peak_bottom`` and
-    ``peak_top`` [rad]."""
+    ``peak_top`` [rad].
+
+    Attributes
+    ----------
+    name : str
+        The test.
+    label : str
+        One of ``CLASSES``.
+    ratio : float
+        ``max |rot_bottom| / max |rot_top|`` [-].
+    peak_bottom, peak_top : float
+        [rad].
+    """
 
     name: str
     label: str
@@ -112,7 +136,19 @@ def classify(rot_bottom, rot_top, criterion: Criterion | None = None,
 
 def classify_test(test, criterion: Criterion | None = None) -> Classification:
     """Classify a :class:`~murus.identify.testdata.ShakingTableTest` (needs ``rot_bottom`` and
-    ``rot_top``)."""
+    ``rot_top``).
+
+    Parameters
+    ----------
+    test : ShakingTableTest
+        The test.
+    criterion : Criterion, optional
+        The thresholds (default :class:`Criterion`).
+
+    Returns
+    -------
+    Classification
+    """
     if not test.has_rotations:
         raise ClassifyError(f"{test.source or test.name}: needs the rot_bottom and rot_top "
                             "channels")
@@ -120,14 +156,39 @@ def classify_test(test, criterion: Criterion | None = None) -> Classification:
 
 
 def classify_sequence(sequence, criterion: Criterion | None = None) -> list[Classification]:
-    """Classify every seismic test of a sequence that has both rotations."""
+    """Classify every seismic test of a sequence that has both rotations.
+
+    Parameters
+    ----------
+    sequence : TestSequence
+        The tests of a specimen.
+    criterion : Criterion, optional
+        The thresholds (default :class:`Criterion`).
+
+    Returns
+    -------
+    list of Classification
+    """
     return [classify(e.test.rot_bottom, e.test.rot_top, criterion, name=e.label)
             for e in sequence.seismic if e.test.has_rotations]
 
 
 def lifted_length(test, closure: float = 0.0):
     """``(t [s], L - Lc(t) [m])`` of a test with base transducers (Mordant et al. (SERIES), Figures
-    19-20)."""
+    19-20).
+
+    Parameters
+    ----------
+    test : ShakingTableTest
+        A test with base transducers.
+    closure : float
+        Elastic closure of the base joint [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Times [s] and lifted length [m].
+    """
     from murus.identify.compressive import test_contact
 
     tc = test_contact(test, closure)

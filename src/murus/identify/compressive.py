@@ -68,7 +68,24 @@ def fit_plane(positions, displacements):
 
 
 def contact_length(positions, displacements, length: float, closure: float = 0.0):
-    """Contact length [m] at each instant (module docstring). Shapes as :func:`fit_plane`."""
+    """Contact length [m] at each instant (module docstring). Shapes as :func:`fit_plane`.
+
+    Parameters
+    ----------
+    positions : array_like
+        Transducer positions along the wall [m].
+    displacements : array_like
+        Their readings [m], one row per instant.
+    length : float
+        Wall length [m].
+    closure : float
+        Elastic closure of the base joint [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        [m].
+    """
     if not (math.isfinite(length) and length > 0):
         raise CompressiveError(f"the wall length must be positive, got {length!r}")
     if not (math.isfinite(closure) and closure >= 0):
@@ -120,7 +137,19 @@ class TestContact:
 
 
 def test_contact(test, closure: float = 0.0) -> TestContact:
-    """Contact-length history of a :class:`~murus.identify.testdata.ShakingTableTest`."""
+    """Contact-length history of a :class:`~murus.identify.testdata.ShakingTableTest`.
+
+    Parameters
+    ----------
+    test : ShakingTableTest
+        A test with base transducers.
+    closure : float
+        Elastic closure of the base joint [m].
+
+    Returns
+    -------
+    TestContact
+    """
     if not test.has_lvdt:
         raise CompressiveError(f"{test.source or test.name}: no base transducers "
                                "(lvdt_1, lvdt_2 ... columns)")
@@ -173,7 +202,27 @@ def compressive_table(sequence, closure: float = 0.0, level: str = "measured",
 
     The Eurocode 6 columns use :class:`murus.eurocode.ec6.EquivalentStatic` with the top mass
     of the test file (``top_mass_kg``), the wall height and ``factor`` (2.5: the plateau of the
-    EN 1998-1 spectrum, as in Mordant et al. (SERIES), Table 2)."""
+    EN 1998-1 spectrum, as in Mordant et al. (SERIES), Table 2).
+
+    Parameters
+    ----------
+    sequence : TestSequence
+        The tests of a specimen.
+    closure : float
+        Elastic closure of the base joint [m].
+    level : str
+        ``"measured"`` or ``"nominal"`` PGA.
+    factor : float
+        Spectral amplification of the equivalent static load [-].
+
+    Returns
+    -------
+    CompressiveTable
+
+    References
+    ----------
+    Mordant et al. (SERIES), Table 2; EN 1996-1-1.
+    """
     from murus.eurocode.ec6 import EquivalentStatic
 
     if level not in ("measured", "nominal"):

@@ -68,7 +68,23 @@ class ModalError(ValueError):
 class FRF:
     """H1 estimate: frequency ``f`` [Hz], complex ``H`` [-], ``coherence`` [-], auto spectral
     densities ``Gxx``, ``Gyy`` [(m/s2)^2/Hz], segment length ``nperseg`` and sampling rate
-    ``fs`` [Hz]; ``n_averages`` Welch segments."""
+    ``fs`` [Hz]; ``n_averages`` Welch segments.
+
+    Attributes
+    ----------
+    f : numpy.ndarray
+        [Hz].
+    H : numpy.ndarray
+        Complex FRF [-].
+    coherence : numpy.ndarray
+        [-].
+    Gxx, Gyy : numpy.ndarray
+        [(m/s²)²/Hz].
+    nperseg : int
+    fs : float
+        [Hz].
+    n_averages : int
+    """
 
     f: np.ndarray
     H: np.ndarray
@@ -130,7 +146,14 @@ def _clean(v):
 
 @dataclass
 class ModalResult:
-    """Identified modes (by increasing frequency) and the FRF they come from."""
+    """Identified modes (by increasing frequency) and the FRF they come from.
+
+    Attributes
+    ----------
+    frf : FRF
+    modes : list of Mode
+    name : str
+    """
 
     frf: FRF
     modes: list[Mode]
@@ -156,7 +179,20 @@ class ModalResult:
 
 def transmissibility(f, modes) -> np.ndarray:
     """Transmissibility ``1 + sum r_k w^2 / (w_k^2 - w^2 + 2 i zeta_k w_k w)`` at frequencies
-    ``f`` [Hz] for ``modes = [(f_k [Hz], zeta_k, r_k), ...]`` (module docstring)."""
+    ``f`` [Hz] for ``modes = [(f_k [Hz], zeta_k, r_k), ...]`` (module docstring).
+
+    Parameters
+    ----------
+    f : array_like
+        [Hz].
+    modes : sequence of tuple
+        ``(f_k [Hz], zeta_k [-], r_k [-])``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex [-].
+    """
     w = 2 * np.pi * np.asarray(f, dtype=float)
     H = np.ones_like(w, dtype=complex)
     for fk, zk, rk in modes:
@@ -180,7 +216,23 @@ def frf(data, fs: float | None = None, nperseg: int | None = None,
     """H1 FRF and coherence of a test (``ShakingTableTest``) or of ``(x, y)`` sampled at ``fs``
     [Hz]. Segment length: ``nperseg`` samples, or the power of two giving a resolution at most
     ``df`` [Hz], or by default the power of two nearest to an eighth of the record (about 15
-    averages with 50 % overlap)."""
+    averages with 50 % overlap).
+
+    Parameters
+    ----------
+    data : ShakingTableTest or tuple
+        A test, or ``(x, y)`` [m/s²].
+    fs : float, optional
+        Sampling rate of ``(x, y)`` [Hz].
+    nperseg : int, optional
+        Segment length [samples].
+    df : float, optional
+        Largest frequency resolution [Hz].
+
+    Returns
+    -------
+    FRF
+    """
     from scipy import signal
 
     x, y, fs = _xy(data, fs)
@@ -413,7 +465,21 @@ class Evolution:
 def evolution(sequence, n_modes: int = 1, **kwargs) -> Evolution:
     """Identify every white-noise test of ``sequence`` (a
     :class:`~murus.identify.testdata.TestSequence`) with :func:`identify` (``kwargs`` passed
-    on) and tabulate the first ``n_modes`` modes along the sequence."""
+    on) and tabulate the first ``n_modes`` modes along the sequence.
+
+    Parameters
+    ----------
+    sequence : TestSequence
+        The tests of a specimen.
+    n_modes : int
+        Modes tabulated.
+    **kwargs
+        Keywords of :func:`identify`.
+
+    Returns
+    -------
+    Evolution
+    """
     labels, number, after, results = [], [], [], []
     last_pga = 0.0
     for e in sequence.entries:

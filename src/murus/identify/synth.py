@@ -75,7 +75,22 @@ def modal_response(acc, dt: float, modes):
     filter) and filtered. Returns
     ``(absolute acceleration [m/s2], relative displacement [m])`` at the output point:
     ``a_g + sum r_k q_k''`` and ``sum r_k q_k``; the transfer function of the first is
-    :func:`murus.identify.modal.transmissibility`."""
+    :func:`murus.identify.modal.transmissibility`.
+
+    Parameters
+    ----------
+    acc : array_like
+        Table acceleration [m/s²].
+    dt : float
+        [s].
+    modes : sequence of tuple
+        ``(f_k [Hz], zeta_k [-], r_k [-])``.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Absolute acceleration [m/s²] and relative displacement [m].
+    """
     from scipy import signal
     from scipy.linalg import expm
 
@@ -127,7 +142,25 @@ class SynthWall:
     """The virtual specimen (module docstring): length ``L``, height ``H`` [m], top mass
     [kg], initial frequency [Hz] and damping ratio, base closure [m], number of transducers
     (evenly from 2 % to 98 % of ``L``), smallest contact length of the elastic base as a
-    fraction of ``L``."""
+    fraction of ``L``.
+
+    Parameters
+    ----------
+    length, height, thickness : float
+        [m].
+    top_mass : float
+        [kg].
+    frequency : float
+        Initial frequency [Hz].
+    damping : float
+        Initial damping ratio [-].
+    closure : float
+        Base closure [m].
+    n_lvdt : int
+        Number of base transducers.
+    min_contact : float
+        Smallest contact length over ``length`` [-].
+    """
 
     length: float = 0.72
     height: float = 1.80
@@ -277,7 +310,23 @@ def synthesize_tests(*, seed: int = 0, wall: SynthWall | None = None,
 def synthesize_sequence(folder, *, seed: int = 0, name: str = "virtual wall", **kwargs) -> Path:
     """Write a virtual test sequence into ``folder`` (created; files ``NN_<test>.csv``,
     ``sequence.toml`` and ``truth.json``); ``kwargs`` as :func:`synthesize_tests`. Returns
-    the folder. Deterministic for a given ``seed``."""
+    the folder. Deterministic for a given ``seed``.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        Created.
+    seed : int
+        Seed of the noise.
+    name : str
+        Name of the specimen.
+    **kwargs
+        Keywords of :func:`synthesize_tests`.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     tests, truth = synthesize_tests(seed=seed, **kwargs)
     folder = Path(folder)
     write_sequence(folder, tests, name=name)

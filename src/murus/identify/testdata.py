@@ -254,7 +254,17 @@ def read_test(path) -> ShakingTableTest:
 
     Raises :class:`TestDataError` with a one-line message naming the file, line and column for
     a malformed header, a missing channel, an unknown unit, a non-numeric or NaN value, or a
-    non-uniform time column."""
+    non-uniform time column.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The test file.
+
+    Returns
+    -------
+    ShakingTableTest
+    """
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -403,7 +413,21 @@ _ORDER = ("table_acc", "top_acc")
 
 
 def write_test(test: ShakingTableTest, path, with_time: bool = True) -> Path:
-    """Write ``test`` in the documented format (SI units, ``%.9g``); returns the path."""
+    """Write ``test`` in the documented format (SI units, ``%.9g``); returns the path.
+
+    Parameters
+    ----------
+    test : ShakingTableTest
+        The test.
+    path : str or pathlib.Path
+        The file.
+    with_time : bool
+        Write the time column.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     path = Path(path)
     head = ["# murus shaking-table test", f"# name: {test.name}", f"# kind: {test.kind}",
             f"# sampling_rate_hz: {test.sampling_rate:.12g}"]
@@ -438,7 +462,20 @@ def write_test(test: ShakingTableTest, path, with_time: bool = True) -> Path:
 @dataclass
 class SequenceEntry:
     """One test of a sequence: its position (1-based), file, kind, nominal PGA [g] and the
-    loaded data."""
+    loaded data.
+
+    Attributes
+    ----------
+    number : int
+        Position in the sequence (1-based).
+    file : str
+    kind : str
+        ``"seismic"`` or ``"white_noise"``.
+    pga_g : float or None
+        Nominal PGA [g].
+    test : ShakingTableTest
+    label : str
+    """
 
     number: int
     file: str
@@ -451,7 +488,14 @@ class SequenceEntry:
 @dataclass
 class TestSequence:
     """The ordered tests of one specimen (Mordant et al. (SERIES), Table 1 and §2: white-noise tests
-    between seismic tests of increasing level)."""
+    between seismic tests of increasing level).
+
+    Attributes
+    ----------
+    name : str
+    entries : list of SequenceEntry
+    folder : str or None
+    """
 
     __test__ = False
 
@@ -485,7 +529,17 @@ def _natural_key(s: str):
 
 
 def read_sequence(folder) -> TestSequence:
-    """Read a sequence folder (``sequence.toml`` or the naming convention, module docstring)."""
+    """Read a sequence folder (``sequence.toml`` or the naming convention, module docstring).
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        The sequence folder.
+
+    Returns
+    -------
+    TestSequence
+    """
     import tomllib
 
     folder = Path(folder)
@@ -545,7 +599,21 @@ def read_sequence(folder) -> TestSequence:
 
 
 def write_sequence(folder, tests: list[ShakingTableTest], name: str = "sequence") -> Path:
-    """Write ``tests`` as ``NN_<name>.csv`` files and a ``sequence.toml`` in ``folder``."""
+    """Write ``tests`` as ``NN_<name>.csv`` files and a ``sequence.toml`` in ``folder``.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        Created if needed.
+    tests : list of ShakingTableTest
+        In order.
+    name : str
+        Name of the specimen.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     lines = [f"name = {_toml_str(name)}", ""]
