@@ -4,8 +4,9 @@ retaining 5000 backfill discs, on 1 and 2 numba threads; peak memory; where the 
 kernel timed in isolation on the state of the run); extrapolation to a full-scale retaining wall
 (10 simulated seconds) against the issue's goal of 2e7 contact updates per second.
 
-UDEC (the seed's tool, commercial) cannot run here: its figure from Savalle et al. (2022) (12 hours
-of computation per simulated second for the scaled-down wall model) is quoted as the peer point.
+UDEC (the tool of Savalle et al. (2022), commercial) cannot run here: its figure from
+Savalle et al. (2022) (12 hours of computation per simulated second for the scaled-down wall model)
+is quoted as the peer point.
 
 ``python benchmarks/bench_dem.py [--out benchmarks/RESULTS_dem.md] [--quick]``
 """

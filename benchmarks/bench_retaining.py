@@ -6,14 +6,16 @@ exceeds 20 % of H,
 - with the equivalent EN 1998-5 thrust (the wall alone, about 60 bodies): goal < 1 minute;
 - with the discrete disc backfill (W = 5 m, absorbing lateral boundary, about 2,000 discs, its
   generation and settling included): goal < 15 minutes on 2 cores for a run of about 8.5
-  simulated seconds (the seed's t_col at 5 Hz).
+  simulated seconds (the t_col of Savalle et al. (2022) at 5 Hz).
 
-The murus discrete-backfill wall collapses earlier than the seed's (t_col near 5.7 s against
+The murus discrete-backfill wall collapses earlier than that of Savalle et al. (2022) (t_col near
+5.7 s against
 8.5 s: VALIDATION.md), so the time of an 8.5-s run is also given as the measured setup plus the
 measured dynamic phase scaled to 8.5 simulated seconds (labelled as such).
 
-Peer: UDEC, the seed's tool (commercial, not runnable here): Savalle et al. (2022) reports 12 hours
-of computation per simulated second for its scaled-down wall model, quoted as the peer point.
+Peer: UDEC, the tool of Savalle et al. (2022) (commercial, not runnable here): Savalle et al. (2022)
+reports 12 hours of computation per simulated second for its scaled-down wall model, quoted as the
+peer point.
 
 ``python benchmarks/bench_retaining.py [--out benchmarks/RESULTS_retaining.md] [--threads 2]
 [--quick]`` (``--quick``: 1 simulated second of each, for a check of the script).

@@ -1,4 +1,4 @@
-"""Restrained rocking (EURODYN (2020), eqs. 1-9): moment terms against the seed's formulas,
+"""Restrained rocking (EURODYN (2020), eqs. 1-9): moment terms against the paper's formulas,
 linearised frequencies and the closed-form time away from the stop, energy balance with a damper,
 tie options, bad combinations."""
 
@@ -233,7 +233,7 @@ def test_piecewise_linear_frequency_with_a_soft_tie():
 def test_seed002_figure9_reductions():
     """EURODYN (2020), Figure 9 (tests/data/rocking/seed002_fig9.csv): with the characteristic time
     of eq. 13 calibrated on the free-standing block (82 %), the restrained block's reduction is a
-    prediction; the seed prints "27 %" read off a figure, so 2 points of tolerance."""
+    prediction; the paper prints "27 %" read off a figure, so 2 points of tolerance."""
     import csv
     import sys
     from pathlib import Path
