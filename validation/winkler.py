@@ -182,7 +182,7 @@ def _calibrated(w, drop: float) -> float:
     return brentq(lambda E: _ec6_drop(w, E) - drop, 1e6, 1e11, xtol=1e3)
 
 
-def seed000(fig_dir: Path) -> list[str]:
+def series_walls(fig_dir: Path) -> list[str]:
     plt = _plt()
     from murus.motion.artificial import generate_ec8
 
@@ -395,7 +395,7 @@ def run(fig_dir: Path) -> str:
            "### Convergence to the rigid rocking model as the layer stiffens", ""]
     out += convergence(fig_dir)
     out += [""]
-    out += seed000(fig_dir)
+    out += series_walls(fig_dir)
     return "\n".join(out) + "\n"
 
 

@@ -15,7 +15,7 @@ def _table1(data_dir):
     return rows
 
 
-def test_seed002_table1_within_half_percent(data_dir):
+def test_eurodyn2020_table1_within_half_percent(data_dir):
     rows = _table1(data_dir)
     assert len(rows) == 6
     for row in rows:
@@ -35,7 +35,7 @@ def test_seed002_table1_within_half_percent(data_dir):
         ("short", 0.197396, 1.835647, 2.311745, 12.0 / 13.0),
     ],
 )
-def test_seed000_walls_top_mass(kind, alpha, R, p, e):
+def test_series_walls_top_mass(kind, alpha, R, p, e):
     w = series_clay_wall(kind)
     assert w.mass == 5000.0
     assert w.alpha == pytest.approx(alpha, abs=1e-6)

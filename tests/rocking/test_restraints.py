@@ -27,7 +27,7 @@ def _params(**kw):
 
 
 @pytest.mark.parametrize("x_t", [0.0, HB, -HB])
-def test_tie_moment_is_seed002_eq2(x_t):
+def test_tie_moment_is_eurodyn2020_eq2(x_t):
     """T_K = sign(th) K R_t^2 cos(A_t) (sin alpha_t - sin A_t), A_t = alpha_t - sign(th) th,
     with (R_t, alpha_t) of the tie seen from the active pivot; the moment is -T_K."""
     Kt, y = 2.5e5, 2.2
@@ -42,7 +42,7 @@ def test_tie_moment_is_seed002_eq2(x_t):
         assert got == pytest.approx(-TK, rel=1e-12, abs=1e-9)
 
 
-def test_damper_moment_is_seed002_eq7():
+def test_damper_moment_is_eurodyn2020_eq7():
     """T_D = c R_d^2 cos^2(A_d) theta'; the moment is -T_D whatever the sign of theta'."""
     c, y = 3.0e4, H
     P = _params(damper=Damper(c, y))
@@ -55,7 +55,7 @@ def test_damper_moment_is_seed002_eq7():
             assert K.restraint_moment(th, om, s, HB, P) == pytest.approx(-TD, rel=1e-12)
 
 
-def test_spring_bed_is_seed002_eq6_and_quadrature():
+def test_spring_bed_is_eurodyn2020_eq6_and_quadrature():
     """EURODYN (2020), eqs. 3-6 (with the factor s its B term needs) equal -cos(th) times the bed
     moment for the bed at the distance s from the inward pivot; any face position agrees with
     a numerical quadrature of the spring forces; no force on outward rotations."""
@@ -230,7 +230,7 @@ def test_piecewise_linear_frequency_with_a_soft_tie():
     assert w_sim == pytest.approx(piecewise_linear_frequency(BLOCK, Kd, A), rel=2e-3)
 
 
-def test_seed002_figure9_reductions():
+def test_eurodyn2020_figure9_reductions():
     """EURODYN (2020), Figure 9 (tests/data/rocking/seed002_fig9.csv): with the characteristic time
     of eq. 13 calibrated on the free-standing block (82 %), the restrained block's reduction is a
     prediction; the paper prints "27 %" read off a figure, so 2 points of tolerance."""

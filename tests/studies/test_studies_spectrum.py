@@ -20,7 +20,7 @@ def spec(records):
                             executor="serial")
 
 
-def test_models_follow_seed002(spec):
+def test_models_follow_eurodyn2020(spec):
     b = restrained_wall_block("block1")
     Kd = tie_design(b).K_d
     K = spec["tie_stiffness"].values
