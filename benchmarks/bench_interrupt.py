@@ -5,7 +5,8 @@ process is killed (SIGKILL).
 
     python benchmarks/bench_interrupt.py [--out benchmarks/RESULTS_interrupt.md] [--repeat 3]
 
-The study is 12 chunks of the small seed 002 sweep of the tests, made slow by a hook that sleeps
+The study is 12 chunks of the small EURODYN (2020) sweep of the tests, made slow by a hook that
+sleeps
 0.4 s (1 s for the SIGKILL runs) at the start of each chunk, so that the run is going on when the
 signal comes; the signal is sent as soon as the first chunk is stored.
 """
@@ -26,60 +27,15 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(ROOT / "tests" / "studies"))
 
-CHILD = """\
-import functools, sys
-import murus.studies.sweep as sweep
-from murus.studies.faults import Sleep
-sweep.run_plan = functools.partial(sweep.run_plan, hook=Sleep(float(sys.argv[1])))
-sys.argv = ["murus", *sys.argv[2:]]
-from murus.cli import app
-app()
-"""
+# the slow study, its child command and the /proc helpers are those of the tests
+from studies_inputs import SLOW_CHILD as CHILD  # noqa: E402
+from studies_inputs import SLOW_STUDY as STUDY  # noqa: E402
+from studies_inputs import alive, children, write_study  # noqa: E402
+
 CLI = "from murus.cli import app; app()"
-STUDY = """\
-[study]
-name = "slow"
-chunk_size = 2
-
-[case.body]
-width = 0.3
-height = 3.0
-density = 2140.7
-
-[case.restraint]
-motion_sides = "one"
-
-[case.restraint.transverse_walls]
-stiffness = "eq11"
-
-[sweep]
-K_over_Kd = { linspace = [0.0, 1.0, 12] }
-
-[records]
-folder = "recs"
-units = "m/s2"
-"""
 EXAMPLE = ROOT / "examples" / "retaining" / "mockup_behaviour_factor.toml"
 
 
-def children(pid: int) -> list[int]:
-    out = []
-    for d in Path("/proc").iterdir():
-        if d.name.isdigit():
-            try:
-                stat = (d / "stat").read_text()
-            except OSError:
-                continue
-            if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
-                out.append(int(d.name))
-    return out
-
-
-def alive(pid: int) -> bool:
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
-    except OSError:
-        return False
 
 
 def launch(code: str, args, cwd: Path) -> subprocess.Popen:
@@ -131,16 +87,11 @@ def main() -> None:
     a = ap.parse_args()
     from studies_inputs import synthetic_records
 
-    from murus.motion import write
-
     rows, kills = [], []
     with tempfile.TemporaryDirectory() as tmp:
         tmp_name = tmp
         tmp = Path(tmp)
-        (tmp / "recs").mkdir()
-        for m in synthetic_records()[:2]:
-            write(m, tmp / "recs" / f"{m.name}.csv")
-        (tmp / "s.toml").write_text(STUDY)
+        write_study(tmp, synthetic_records(), STUDY)
         for label, ex in (("study run, serial", ["--serial"]),
                           ("study run, process pool (2)", ["--workers", "2"]),
                           ("study run, Dask LocalCluster (2)", ["--dask", "local", "--workers",

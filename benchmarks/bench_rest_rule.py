@@ -1,5 +1,5 @@
 """Cost of the rest rule of issue 15 (item 7): the free-standing batch of
-``benchmarks/bench_rocking.py`` (10,032 histories of 20 s: 6 seed 002 blocks x 44 FEMA P695
+``benchmarks/bench_rocking.py`` (10,032 histories of 20 s: 6 EURODYN (2020) blocks x 44 FEMA P695
 far-field components x 38 scale factors 0.1-1.5, ``simulate_batch``, rtol 1e-9) with the old rule
 (the wall put at rest at the first impact below ``rest_tol * p * alpha``) and the new one (the
 cascade summed, at rest at its accumulation point when the ground allows), back to back in
@@ -47,11 +47,11 @@ def worker() -> None:
     import numpy as np
 
     from murus.motion import suite
-    from murus.rocking import RockingModel, seed002_block, simulate_batch
+    from murus.rocking import RockingModel, restrained_wall_block, simulate_batch
     from murus.rocking import kernels as K
 
     recs = [m.sliced(0.0, 20.0) for m in suite("farfield")]
-    blocks = [seed002_block(f"block{i}") for i in range(1, 7)]
+    blocks = [restrained_wall_block(f"block{i}") for i in range(1, 7)]
     scales = np.linspace(0.1, 1.5, 38)
     models = [RockingModel(b) for b in blocks]
     motions = [m.scaled(s) for m in recs for s in scales]
@@ -111,7 +111,7 @@ def main() -> None:
         f"Machine: {os.cpu_count()} cores; numba {numba.__version__}; command: "
         "`python benchmarks/bench_rest_rule.py` (old rule: the source tree of git revision "
         f"{OLD_REV}). The free-standing batch of the engine benchmark, 10,032 histories of 20 s "
-        "(6 seed 002 blocks x 44 FEMA P695 far-field components x 38 scale factors 0.1-1.5), "
+        "(6 EURODYN (2020) blocks x 44 FEMA P695 far-field components x 38 scale factors 0.1-1.5), "
         "`simulate_batch`, rtol 1e-9, one numba thread, old and new rule in alternating "
         f"subprocesses, each the best of {REPEAT_IN_PROCESS} batches.", "",
         "| rule | batch time on 1 thread [s] (runs) | median [s] | steps per history | "

@@ -1,5 +1,6 @@
 """Benchmark of the restrained rocking wall (issue 4, item 9): the batch of the engine
-benchmark (6 seed 002 blocks x 44 FEMA P695 far-field components, first 20 s, x 38 scale factors
+benchmark (6 EURODYN (2020) blocks x 44 FEMA P695 far-field components, first 20 s, x 38 scale
+factors
 = 10,032 histories) run free-standing and with a tie (K_d, eq. 12), a damper (5 % c_d, eq. 13)
 and one-sided contact against transverse walls (K' = 4.5e8 N/m/m), in the same process.
 
@@ -16,16 +17,23 @@ from pathlib import Path
 import numba
 import numpy as np
 
-from murus.rocking import Damper, RockingModel, SpringBed, Tie, seed002_block, simulate_batch
+from murus.rocking import (
+    Damper,
+    RockingModel,
+    SpringBed,
+    Tie,
+    restrained_wall_block,
+    simulate_batch,
+)
 from murus.rocking import kernels as K
 from murus.rocking.design import reference_damping, tie_design
 
 HERE = Path(__file__).resolve().parent
-DELTA_T = 10.186  # s, eq. 13 characteristic time calibrated on seed 002 Figure 9
+DELTA_T = 10.186  # s, eq. 13 characteristic time calibrated on EURODYN (2020), Figure 9
 
 
 def configurations():
-    blocks = [seed002_block(f"block{i}") for i in range(1, 7)]
+    blocks = [restrained_wall_block(f"block{i}") for i in range(1, 7)]
 
     def restrained(b, walls):
         return RockingModel(b, tie=Tie(tie_design(b).K_d, b.height),
@@ -72,7 +80,7 @@ def main(quick: bool = False) -> None:
         "# Restrained rocking benchmark (issue 4)", "",
         f"Machine: {numba.config.NUMBA_NUM_THREADS} cores, {platform.processor() or 'cpu'}; "
         f"numba {numba.__version__}; command: `python benchmarks/bench_restrained.py`", "",
-        f"{rows[0]['n']:,} histories of 20 s (6 seed 002 blocks x 44 FEMA P695 far-field "
+        f"{rows[0]['n']:,} histories of 20 s (6 EURODYN (2020) blocks x 44 FEMA P695 far-field "
         "components x 38 scale factors 0.1-1.5), `simulate_batch`, event-driven, rtol 1e-9, "
         "Housner's e. Restrained: tie K_d at the top (eq. 12), damper 5 % c_d at the top "
         "(eq. 13, delta_t = 10.186 s), transverse walls K' = 4.5e8 N/m/m (one-sided).", "",

@@ -1,18 +1,21 @@
 """Speed of a full-scale dry-stone retaining wall run to collapse (issue 6, item 7): DSRW1 of
-seed 001 under the S2 ramp at 5 Hz (the slope that reaches A_pseudo at 2.5 s, seed 001 §4.2),
-run by :func:`murus.retaining.collapse.collapse_run` until d_top exceeds 20 % of H,
+Savalle et al. (2022) under the S2 ramp at 5 Hz (the slope that reaches A_pseudo at 2.5 s,
+Savalle et al. (2022), §4.2), run by :func:`murus.retaining.collapse.collapse_run` until d_top
+exceeds 20 % of H,
 
 - with the equivalent EN 1998-5 thrust (the wall alone, about 60 bodies): goal < 1 minute;
 - with the discrete disc backfill (W = 5 m, absorbing lateral boundary, about 2,000 discs, its
   generation and settling included): goal < 15 minutes on 2 cores for a run of about 8.5
-  simulated seconds (the seed's t_col at 5 Hz).
+  simulated seconds (the t_col of Savalle et al. (2022) at 5 Hz).
 
-The murus discrete-backfill wall collapses earlier than the seed's (t_col near 5.7 s against
+The murus discrete-backfill wall collapses earlier than that of Savalle et al. (2022) (t_col near
+5.7 s against
 8.5 s: VALIDATION.md), so the time of an 8.5-s run is also given as the measured setup plus the
 measured dynamic phase scaled to 8.5 simulated seconds (labelled as such).
 
-Peer: UDEC, the seed's tool (commercial, not runnable here): seed 001 reports 12 hours of
-computation per simulated second for its scaled-down wall model, quoted as the peer point.
+Peer: UDEC, the tool of Savalle et al. (2022) (commercial, not runnable here): Savalle et al. (2022)
+reports 12 hours of computation per simulated second for its scaled-down wall model, quoted as the
+peer point.
 
 ``python benchmarks/bench_retaining.py [--out benchmarks/RESULTS_retaining.md] [--threads 2]
 [--quick]`` (``--quick``: 1 simulated second of each, for a check of the script).
@@ -28,8 +31,9 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-UDEC_H_PER_S = 12.0  # seed 001: hours of computation per simulated second (scaled-down model)
-SEED_T_COL = 8.5  # s, seed 001 Table 7, DSRW1 at 5 Hz (issue 6 item 7: "about 8.5 s")
+# Savalle et al. (2022): hours of computation per simulated second (scaled-down model)
+UDEC_H_PER_S = 12.0
+SEED_T_COL = 8.5  # s, Savalle et al. (2022), Table 7, DSRW1 at 5 Hz (issue 6 item 7: "about 8.5 s")
 GOALS = {"thrust": 60.0, "discrete": 900.0}  # s, issue 6 item 7
 F = 5.0
 
@@ -88,9 +92,11 @@ def main(argv=None) -> None:
              f"benchmarks/RESULTS_retaining.md`{' --quick' if args.quick else ''}. "
              "Kernels compiled (cache) before timing.")
     L.append("")
-    L.append("Case: DSRW1 (seed 001 Table 5, H = 2.5 m), S2 at 5 Hz, A = A_pseudo / 2.5 s "
+    L.append("Case: DSRW1 (Savalle et al. (2022), Table 5, H = 2.5 m), S2 at 5 Hz, A = A_pseudo / "
+             "2.5 s "
              "(A_pseudo = 1.59 m/s² from the murus limit analysis), collapse at d_top = 20 % H; "
-             "joint stiffness of seed 001 Table 6 x 1e-3, mass-proportional damping 10 % on "
+             "joint stiffness of Savalle et al. (2022), Table 6 x 1e-3, mass-proportional damping "
+             "10 % on "
              "velocities relative to the base (the defaults of `collapse_run`). Discrete "
              "backfill: W = 5 m, absorbing lateral boundary, discs of mean radius 0.04 m "
              "(`murus.retaining.backfill`); its time includes the generation of the packing "
@@ -118,7 +124,7 @@ def main(argv=None) -> None:
     for d in rows:
         L.append(f"- {d['kind']}: {d['per_s']:.1f} s of computation per simulated second, "
                  f"{udec / d['per_s']:.0f} x less than UDEC's {UDEC_H_PER_S:g} h per simulated "
-                 "second in seed 001 (its scaled-down model, another machine: an "
+                 "second in Savalle et al. (2022) (its scaled-down model, another machine: an "
                  "order-of-magnitude comparison).")
     L.append("")
     Path(args.out).write_text("\n".join(L))

@@ -7,7 +7,7 @@ below 1e-3 p alpha, murus at the accumulation point of the cascade since issue 1
     the FEMA P695 far-field records (first 20 s, scaled to 1.5 and 3 times the uplift
     acceleration of the block); accuracy of both against a reference (murus at rtol 1e-12,
     itself checked against the peer at rtol 1e-12);
-  - batch: 10,032 histories of 20 s (6 seed 002 blocks x 44 records x 38 scale factors) on all
+  - batch: 10,032 histories of 20 s (6 EURODYN (2020) blocks x 44 records x 38 scale factors) on all
     cores, and on one core for the scaling;
   - profile: where the time of one history goes.
 
@@ -35,7 +35,7 @@ from murus import G  # noqa: E402
 from murus.rocking import (  # noqa: E402
     Record,
     RockingModel,
-    seed002_block,
+    restrained_wall_block,
     simulate,
     simulate_batch,
     sine_pulse,
@@ -65,7 +65,7 @@ def sampled_pulse(amp, f, dt=0.005, cycles=1.0):
 def cases(quick):
     from murus.motion import suite
 
-    blocks = [seed002_block("block1"), seed002_block("block2")]
+    blocks = [restrained_wall_block("block1"), restrained_wall_block("block2")]
     out = []
     for b in blocks:
         thr = G * math.tan(b.alpha)
@@ -131,7 +131,7 @@ def batch(threads=None):
     from murus.motion import suite
 
     recs = [m.sliced(0.0, 20.0) for m in suite("farfield")]
-    blocks = [seed002_block(f"block{i}") for i in range(1, 7)]
+    blocks = [restrained_wall_block(f"block{i}") for i in range(1, 7)]
     scales = np.linspace(0.1, 1.5, 38)
     models = [RockingModel(b) for b in blocks]
     motions = [m.scaled(s) for m in recs for s in scales]
@@ -151,7 +151,7 @@ def profile_one():
     from murus.motion import suite
 
     rec = suite("farfield")[21].sliced(0.0, 20.0)
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     mdl = RockingModel(b)
     T = 25.0
     ts, r = best_of(lambda: simulate(mdl, rec, duration=T), repeat=20)
@@ -187,7 +187,7 @@ def main():
              f"command: `python benchmarks/bench_rocking.py{' --quick' if args.quick else ''}`",
              ""]
     # warm up the compiled kernels
-    simulate(RockingModel(seed002_block("block1")), sine_pulse(3.0, 1.0), duration=2.0)
+    simulate(RockingModel(restrained_wall_block("block1")), sine_pulse(3.0, 1.0), duration=2.0)
     rows = per_history(args.quick)
     rock = [r for r in rows if r["ref_theta"] > 0]
     # not chaotic: a relative change of 1e-6 of the input amplitude moves the answer by less than
@@ -253,7 +253,7 @@ def main():
     by_name = {(c[0].name, c[1].name): c[1] for c in cases(args.quick)}
     eq_ratios = []
     for r in chk:
-        b = seed002_block(r["block"])
+        b = restrained_wall_block(r["block"])
         rec = by_name[(r["block"], r["motion"])]
         tpp, pr = best_of(lambda b=b, rec=rec: rocking_solve_ivp(
             b.mass, b.R, b.alpha, b.I_O, b.housner_restitution(), rec.dt, rec.acc,
@@ -269,7 +269,8 @@ def main():
     n = br.raw[..., 0].size
     lines += [
         "## Batch: 10,032 histories of 20 s", "",
-        "6 seed 002 blocks x 44 FEMA P695 far-field components (first 20 s) x 38 scale factors "
+        "6 EURODYN (2020) blocks x 44 FEMA P695 far-field components (first 20 s) x 38 scale "
+        "factors "
         "(0.1 to 1.5), `simulate_batch`, event-driven, rtol 1e-9:", "",
         "| cores | time [s] | histories per second |", "|---|---|---|",
         f"| 1 | {el1:.2f} | {n / el1:.0f} |",
@@ -306,7 +307,7 @@ def main():
     per_step = (prof["kernel_s"] - prof["rest_s"]) / prof["steps"]
     lines += [
         "## Profile of one history", "",
-        f"Record {prof['name']} (dt = {prof['dt']} s, 20 s + 5 s free), seed 002 block1: "
+        f"Record {prof['name']} (dt = {prof['dt']} s, 20 s + 5 s free), EURODYN (2020) block1: "
         f"`simulate()` {prof['simulate_s'] * 1e3:.3f} ms, of which the kernel "
         f"{prof['kernel_s'] * 1e3:.3f} ms ({prof['kernel_s'] / prof['simulate_s'] * 100:.0f} %; "
         "the rest is the Python front end: parameter vectors, output arrays, sampling the input "

@@ -1,4 +1,4 @@
-"""Benchmark of the sweep runner (issue 7, item 6): the full seed 002 §4.1 spectrum set, 6
+"""Benchmark of the sweep runner (issue 7, item 6): the full EURODYN (2020), §4.1 spectrum set, 6
 geometries (Table 1) x 50 tie stiffnesses 0 <= K <= K_d (eq. 12, one-sided, K' by eq. 11) x 44
 FEMA P695 far-field components = 13,200 histories, run serially in this process (numba threads
 over the cores), on a local process pool (1 and 2 workers) and on a local Dask cluster (1 and 2
@@ -23,12 +23,12 @@ HERE = Path(__file__).resolve().parent
 
 
 def make_plan(quick: bool):
-    from murus.rocking import seed002_block
+    from murus.rocking import restrained_wall_block
     from murus.studies.records import RecordSet
     from murus.studies.spectrum import spectrum_case
     from murus.studies.study import make_study
 
-    case = spectrum_case(seed002_block("block1"))
+    case = spectrum_case(restrained_wall_block("block1"))
     blocks = [f"block{i}" for i in range(1, 7)]
     ratios = np.linspace(0.0, 1.0, 8 if quick else 50)
     recs = RecordSet(kind="suite", suite="farfield")
@@ -106,7 +106,8 @@ def main() -> None:
         "# Sweep runner benchmark (issue 7)", "",
         f"Machine: {cores} cores, {platform.processor() or 'cpu'}; numba {numba.__version__}; "
         "command: `python benchmarks/bench_studies.py`", "",
-        f"{n:,} histories: the seed 002 §4.1 rocking spectra of all six geometries (Table 1) "
+        f"{n:,} histories: the EURODYN (2020), §4.1 rocking spectra of all six geometries (Table "
+        f"1) "
         f"x {plan.shape[1]} tie stiffnesses 0 <= K <= K_d (tension-only tie at the top, eq. 12; "
         "one-sided, transverse walls K' by eq. 11; free-standing at K = 0) x "
         f"{plan.n_records} FEMA P695 far-field components (whole records + 5 s of free motion), "

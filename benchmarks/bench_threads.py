@@ -91,10 +91,10 @@ def rocking_case():
     import numpy as np
 
     from murus.motion import suite
-    from murus.rocking import RockingModel, seed002_block
+    from murus.rocking import RockingModel, restrained_wall_block
 
     recs = [r.sliced(0.0, 20.0) for r in suite("farfield")][:4]
-    models = [RockingModel(seed002_block(f"block{i}")) for i in range(1, 7)]
+    models = [RockingModel(restrained_wall_block(f"block{i}")) for i in range(1, 7)]
     motions = [r.scaled(s) for r in recs for s in np.linspace(0.1, 1.5, 10)]
     return models, motions
 
@@ -208,7 +208,7 @@ def write(out: Path, res: dict, info: dict, load0, load1, total: float, extra: s
     w(f"Cases: DEM, the disc case (b) of `bench_dem.py` ({info['bodies']} bodies, "
       f"{info['pairs']} candidate pairs, dt = {info['dt']:.3g} s) after 300 settling steps, "
       f"{r0['steps']} steps per run from the same state (one sample every 25 steps); rocking, "
-      "`simulate_batch` of the six blocks of seed 002 under 4 far-field records x 10 scales "
+      "`simulate_batch` of the six blocks of EURODYN (2020) under 4 far-field records x 10 scales "
       f"(240 histories of 20 s). Mean of {r0['reps']} runs per mode, the modes alternated "
       "(A B C C B A ...), so that a ratio is one of sums over the same stretch of time. "
       "Busy: `while True: pass` processes started by the benchmark. 'others' is the number "

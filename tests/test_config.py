@@ -72,7 +72,8 @@ def test_vanishing_length_refused_with_its_minimum(tmp_path):
 
 
 def test_limits_leave_room_for_real_walls(tmp_path):
-    """The largest masonry walls and the mock-ups of seed 001 (44 mm stones) stay inside."""
+    """The largest masonry walls and the mock-ups of Savalle et al. (2022) (44 mm stones) stay
+    inside."""
     assert PHYSICAL_LIMITS["height"][0] >= 100.0 and PHYSICAL_LIMITS["width"][0] >= 100.0
     load_case(_case(tmp_path, width="0.044", scale="-2.5"))
 

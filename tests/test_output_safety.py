@@ -3,12 +3,12 @@ atomically, bad ``--out`` paths are refused up front, permissions follow the uma
 exits 130; plus ``murus --version`` and the output extension check of ``motion ramp``."""
 
 import json
-import math
 import os
 from importlib.metadata import version
 
 import numpy as np
 import pytest
+from rocking_inputs import rocking_case, write_record
 from typer.testing import CliRunner
 
 from murus import outputs
@@ -17,21 +17,7 @@ from murus.outputs import MANIFEST, OutputError, check_dir, check_file, write_di
 
 runner = CliRunner()
 
-CASE = """
-[body]
-width = 0.25
-height = 1.0
-thickness = 1.0
-density = 2000.0
-[restitution]
-law = "housner"
-[motion]
-file = "record.csv"
-units = "g"
-[solver]
-method = "event"
-duration = 2.0
-"""
+CASE = rocking_case(2.0)
 
 RUN_FILES = ["response.png", "summary.json", "timeseries.csv"]
 
@@ -53,9 +39,7 @@ def project(tmp_path):
     """A user's folder: case file, record, notes."""
     proj = tmp_path / "proj"
     proj.mkdir()
-    t = np.arange(0, 1.5, 0.01)
-    a = 0.5 * np.sin(2 * math.pi * 2.0 * t) * np.exp(-t)
-    np.savetxt(proj / "record.csv", np.column_stack([t, a]), delimiter=",", fmt="%.6f")
+    write_record(proj, seconds=1.5)
     (proj / "wall.toml").write_text(CASE)
     (proj / "notes.txt").write_text("my notes\n")
     return proj

@@ -189,9 +189,9 @@ def test_dem_results_do_not_depend_on_parts_nor_threads(monkeypatch):
 
 
 def test_rocking_batch_threads_argument():
-    from murus.rocking import RockingModel, seed002_block, simulate_batch, sine_pulse
+    from murus.rocking import RockingModel, restrained_wall_block, simulate_batch, sine_pulse
 
-    models = [RockingModel(seed002_block(f"block{i}")) for i in (1, 2)]
+    models = [RockingModel(restrained_wall_block(f"block{i}")) for i in (1, 2)]
     motions = [sine_pulse(a * 9.81, 2.0) for a in (0.3, 0.6)]
     before = numba.get_num_threads()
     a = simulate_batch(models, motions, duration=3.0, threads=1)

@@ -1,4 +1,5 @@
-"""Validation of the EN 1996-1-1 compressed length against seed 000 Table 2 (issue 4, item 1)."""
+"""Validation of the EN 1996-1-1 compressed length against Mordant et al. (SERIES), Table 2 (issue
+4, item 1)."""
 
 from __future__ import annotations
 
@@ -14,7 +15,8 @@ def section() -> str:
     case = EquivalentStatic(mass=5000.0, height=1.80, factor=2.5)
     out = [
         "## Eurocode 6 compressed length (issue 4, item 1)", "",
-        "Seed 000 Table 2, walls without rubber: 5 t on top, equivalent static force 2.5 x the "
+        "Mordant et al. (SERIES), Table 2, walls without rubber: 5 t on top, equivalent static "
+        "force 2.5 x the "
         "acceleration level x the top mass at 1.80 m (`murus.eurocode.ec6`).", "",
         "| wall | level [g] | linear, seed [mm] | linear, murus [mm] | constant, seed [mm] | "
         "constant, murus [mm] |", "|---|---|---|---|---|---|",

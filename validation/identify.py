@@ -1,10 +1,10 @@
 """Validation of the shaking-table processing chain (murus.identify, issue 8).
 
-No public shaking-table data of seed 000 ships offline, so each step is validated where the
-answer is known: modal identification of base-excited systems of known frequencies and damping
-ratios, the Timoshenko cantilever against the exact solution of its equations, the calibration
-of the restitution laws against histories synthesised with known parameters, and the whole
-chain on a virtual test sequence (``murus lab synthesize``).
+No public shaking-table data of Mordant et al. (SERIES) ships offline, so each step is validated
+where the answer is known: modal identification of base-excited systems of known frequencies and
+damping ratios, the Timoshenko cantilever against the exact solution of its equations, the
+calibration of the restitution laws against histories synthesised with known parameters, and the
+whole chain on a virtual test sequence (``murus lab synthesize``).
 
 ``section(fig_dir)`` returns the Markdown section and writes figures; ``python
 validation/identify.py`` prints it.
@@ -81,7 +81,7 @@ def calibration_rows() -> list[str]:
 
     from murus.identify.calibrate import calibrate
     from murus.rocking import RockingModel
-    from murus.rocking.body import seed000_wall
+    from murus.rocking.body import series_clay_wall
     from murus.rocking.restitution import AmplitudeDependent
 
     lines = ["| data | noise | fitted | true | std. error |", "|---|---|---|---|---|"]
@@ -93,7 +93,7 @@ def calibration_rows() -> list[str]:
                      f"k0 = {p['k0']:.3f}, k1 = {p['k1']:.3f} | 1.5, 0.8 | "
                      f"{se['k0']:.2g}, {se['k1']:.2g} |")
     ms = tk.synthetic(AmplitudeDependent(**tk.TRUE, A0=2.0), kinds=("short", "long"), noise=0.02)
-    base = RockingModel(seed000_wall("short"), AmplitudeDependent(**tk.TRUE))
+    base = RockingModel(series_clay_wall("short"), AmplitudeDependent(**tk.TRUE))
     res = calibrate(base, ms, {"A0": 4.0}, bounds={"A0": (0.5, 10.0)})
     lines.append(f"| short + long walls (A0 of eq. 18) | 2 % | A0 = {res.params['A0']:.3f} | "
                  f"2.0 | {res.std_error['A0']:.2g} |")
@@ -134,7 +134,8 @@ def virtual_sequence(fig_dir: Path) -> list[str]:
 def section(fig_dir: Path | None = None) -> str:
     fig_dir = fig_dir or FIG
     parts = ["## Shaking-table processing and calibration (murus.identify)", "",
-             "No shaking-table data of seed 000 are available offline; each step is checked "
+             "No shaking-table data of Mordant et al. (SERIES) are available offline; each step "
+             "is checked "
              "where the answer is known.", "",
              "### White-noise identification (H1 FRF, modal fit)", "",
              "600 s of band-limited (0.5-40 Hz) white noise at 100 Hz, exact discrete-time "
@@ -142,12 +143,14 @@ def section(fig_dir: Path | None = None) -> str:
              "tolerances: 2 % on the frequency, 15 % on the damping).", "",
              *modal_rows(), "",
              "### Timoshenko cantilever against the exact solution", "",
-             "Seed 000 short wall (0.72 x 1.80 x 0.138 m, E = 5.6 GPa, G = 0.4 E, 1800 "
+             "Mordant et al. (SERIES) short wall (0.72 x 1.80 x 0.138 m, E = 5.6 GPa, G = 0.4 E, "
+             "1800 "
              "kg/m3); exact frequencies from the transfer matrix of the Timoshenko equations "
              "with the tip mass; relative error of the finite elements (f1, f2), converging as "
              "h^2 from above:", "", *cantilever_rows(), "",
-             "### Calibration of the restitution laws (seed 000 eqs. 14-18)", "",
-             "Histories of the seed 000 walls under two 3-cycle sine pulses synthesised with "
+             "### Calibration of the restitution laws (Mordant et al. (SERIES), eqs. 14-18)", "",
+             "Histories of the Mordant et al. (SERIES) walls under two 3-cycle sine pulses "
+             "synthesised with "
              "k0 = 1.5, k1 = 0.8 (and A0 = 2), then fitted (`murus.identify.calibrate`, peaks "
              "objective, 4 starts from a 40-point Latin-hypercube screen):", "",
              *calibration_rows(), "",

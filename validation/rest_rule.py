@@ -11,12 +11,12 @@ scaled by 1 + 1e-6 and when the tolerance is loosened to 1e-11. On every fourth 
 free-standing cases the reference is checked against the independent scipy peer
 (``benchmarks/peer_solve_ivp.py``, RK45 at rtol 1e-10, rest at 1e-9).
 
-Cases: seed 002 block1 and block2 (lambda = 10 and 8.33 ... see :func:`seed002_block`) under the
-FEMA P695 far-field (first 20 s, one component of each pair) and near-field pulse records,
+Cases: EURODYN (2020) block1 and block2 (lambda = 10 and 8.33 ... see :func:`restrained_wall_block`)
+under the FEMA P695 far-field (first 20 s, one component of each pair) and near-field pulse records,
 scaled to 1.5 and 3 times the uplift acceleration of the free-standing block, plus 5 s of free
-motion; free-standing, with a tie (K_d at the top, seed 002 eq. 12), with a damper (5 % c_d,
+motion; free-standing, with a tie (K_d at the top, EURODYN (2020), eq. 12), with a damper (5 % c_d,
 eq. 13), and one-sided against rigid transverse walls with tie and damper (the restrained wall
-of seed 002 §4).
+of EURODYN (2020), §4).
 
 Runs are cached as JSON under ``validation/results/rest_rule/`` (``runcache``); ``--recompute``
 runs them again. ``python validation/rest_rule.py [--out FILE] [--jobs N]``.
@@ -49,11 +49,11 @@ PEER_EVERY = 4  # the (slow) scipy peer on every 4th record of the free-standing
 
 
 def model(config: str, block: str, rest_tol: float = 1e-3):
-    """The rocking model of a configuration (seed 002 block, restraints at the top)."""
-    from murus.rocking import Damper, RockingModel, SpringBed, Tie, seed002_block
+    """The rocking model of a configuration (EURODYN (2020) block, restraints at the top)."""
+    from murus.rocking import Damper, RockingModel, SpringBed, Tie, restrained_wall_block
     from murus.rocking.design import reference_damping, tie_design
 
-    b = seed002_block(block)
+    b = restrained_wall_block(block)
     kw: dict = {}
     if config in ("tie", "onesided"):
         kw["tie"] = Tie(tie_design(b).K_d, b.height)
@@ -105,10 +105,10 @@ def _run(mdl, dt, acc, rtol, method="event"):
 def compute(key: str) -> dict:
     """Run every record and scale of ``key`` = ``CONFIG-BLOCK`` and write its JSON record."""
     from murus import G
-    from murus.rocking import seed002_block
+    from murus.rocking import restrained_wall_block
 
     config, block = key.split("-")
-    b = seed002_block(block)
+    b = restrained_wall_block(block)
     thr = G * math.tan(b.alpha)
     default = model(config, block)
     ref = model(config, block, rest_tol=1e-9)
@@ -144,10 +144,10 @@ def compute_old(key: str) -> dict:
     """The default runs of ``key`` only, written to ``old_rule-KEY.json``: run with the source
     tree of the old rule first on ``PYTHONPATH`` (``--old-rule``), for the before/after columns."""
     from murus import G
-    from murus.rocking import seed002_block
+    from murus.rocking import restrained_wall_block
 
     config, block = key.split("-")
-    b = seed002_block(block)
+    b = restrained_wall_block(block)
     thr = G * math.tan(b.alpha)
     default = model(config, block)
     rows = []
@@ -257,7 +257,7 @@ def section(recompute: bool = False, jobs: int = 1) -> str:
         "only when the ground cannot lift the wall over the cascade and as long again after it; "
         "otherwise it integrates on (`murus.rocking.kernels.cascade_end`). Before issue 15 the "
         "wall was put at rest at once (second table below).", "",
-        f"Cases: seed 002 block1 and block2, {n_rec} FEMA P695 records (far-field first 20 s "
+        f"Cases: EURODYN (2020) block1 and block2, {n_rec} FEMA P695 records (far-field first 20 s "
         "and near-field pulse, component a), scaled to 1.5 and 3 times g tan(alpha), 5 s of "
         "free motion. Default: rest_tol 1e-3, rtol 1e-11. Reference: the same kernel at rtol "
         "1e-12 and rest_tol 1e-9. Stable: the reference rocks, does not overturn, and moves by "
@@ -342,7 +342,8 @@ def section(recompute: bool = False, jobs: int = 1) -> str:
         "second-order location nor the short bounces of a cascade, and near the overturning "
         "threshold an error of a fraction of a per cent decides the verdict: use the "
         "event-driven default for verdicts, fragility and anything near collapse; Newmark only "
-        "to reproduce seed 000's fixed-step results or for smooth, well-resolved responses.",
+        "to reproduce the fixed-step results of Mordant et al. (SERIES) or for smooth, "
+        "well-resolved responses.",
         "",
     ]
     return "\n".join(lines) + "\n"

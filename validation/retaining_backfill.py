@@ -1,7 +1,8 @@
 """Validation of the discrete granular backfill (:mod:`murus.retaining.backfill`) behind the DEM
-wall (issue 6 item 2a): seed 001 Figure 10, the crest response of DSRW1 does not depend on the
-backfill width (W = 5 m and 2W), and the collapse acceleration of DSRW1 at 5 Hz with the
-discrete backfill against seed 001 Table 7 (A_col = 5.38 m/s²) and the equivalent thrust.
+wall (issue 6 item 2a): Savalle et al. (2022), Figure 10, the crest response of DSRW1 does not
+depend on the backfill width (W = 5 m and 2W), and the collapse acceleration of DSRW1 at 5 Hz with
+the discrete backfill against Savalle et al. (2022), Table 7 (A_col = 5.38 m/s²) and the equivalent
+thrust.
 
 Runs (DSRW1, S2 at 5 Hz, the seed's slope A = A_pseudo / 2.5, to collapse d_top > 20 % H or
 15 s; discs of mean radius 0.04 m; absorbing lateral boundary, as the seed's free-field
@@ -33,7 +34,7 @@ CACHE = ROOT / "validation" / "results" / "retaining_backfill"
 THRUST_CACHE = ROOT / "validation" / "results" / "retaining_dynamic" / "dsrw1_5_base.json"
 F = 5.0
 T_MAX = 15.0
-SEED_ACOL = 5.38  # seed 001 Table 7, DSRW1 5 Hz, horizontal only [m/s²]
+SEED_ACOL = 5.38  # Savalle et al. (2022), Table 7, DSRW1 5 Hz, horizontal only [m/s²]
 
 
 def runs() -> dict[str, dict]:
@@ -130,7 +131,7 @@ def figure(recs: dict, fig_dir: Path) -> str:
     ax.set_ylim(-5, 60)
     ax.set_xlim(0, 15)
     ax.set_title("DSRW1, S2 at 5 Hz: crest displacement for two backfill widths "
-                 "(seed 001 Fig. 10)", fontsize=9)
+                 "(Savalle et al. (2022), Fig. 10)", fontsize=9)
     ax.legend(fontsize=7, loc="upper left")
     path = fig_dir / "backfill_width.png"
     fig.tight_layout()
@@ -148,7 +149,8 @@ def section(recompute: bool = False, jobs: int = 1, fig_dir: Path = FIG) -> str:
     keys = list(runs())
     recs = ensure(keys, recompute, jobs)
     fig = figure(recs, fig_dir)
-    lines = ["## Discrete granular backfill: backfill width (seed 001 Figure 10) and DSRW1 "
+    lines = ["## Discrete granular backfill: backfill width (Savalle et al. (2022), Figure 10) "
+             "and DSRW1 "
              "collapse", "",
              "DSRW1 under S2 at 5 Hz (slope A_pseudo / 2.5, to d_top > 0.5 m or 15 s) with "
              "the disc backfill of `murus.retaining.backfill` behind the DEM wall (no "
@@ -198,7 +200,8 @@ def section(recompute: bool = False, jobs: int = 1, fig_dir: Path = FIG) -> str:
                  "m/s²: the W effect is to be read against this scatter.")
     acol = _acol(recs["W5"])
     txt = (f"A_col with the discrete backfill (absorbing, W = 5 m): **{acol:.2f} m/s²**, "
-           f"{100 * (acol / SEED_ACOL - 1):+.0f} % against seed 001 Table 7 ({SEED_ACOL} "
+           f"{100 * (acol / SEED_ACOL - 1):+.0f} % against Savalle et al. (2022), Table 7 "
+           f"({SEED_ACOL} "
            "m/s²)")
     if THRUST_CACHE.exists():
         th = json.loads(THRUST_CACHE.read_text())["summary"]

@@ -1,5 +1,5 @@
-"""Validation of the behaviour-factor study (issue 6 item 4; seed 001 §4.2-4.4, Tables 7-8,
-Figure 14): the example case file ``examples/retaining/seed001_dsrw1_behaviour_factor.toml``
+"""Validation of the behaviour-factor study (issue 6 item 4; Savalle et al. (2022), §4.2-4.4, Tables
+7-8, Figure 14): the example case file ``examples/retaining/seed001_dsrw1_behaviour_factor.toml``
 (DSRW1: S2 at 3, 5, 10 Hz, at 5 Hz with a vertical component in phase and in opposition, and
 the S1 checks at 0.6 and 0.7 A_col of each) and DSRW2-DSRW4 at 5 Hz (S2 only), run by
 :func:`murus.retaining.study.run_behaviour_study` with the equivalent thrust.
@@ -72,7 +72,8 @@ def section(workers: int = 1) -> str:
     res = run_all(workers)
     seed = {(r["wall"], float(r["frequency_Hz"]), r["vertical"].replace("-", "_")): r
             for r in _seed_rows()}
-    L = ["## Dry-stone retaining walls: behaviour factor (seed 001 Tables 7-8, Figure 14)", ""]
+    L = ["## Dry-stone retaining walls: behaviour factor (Savalle et al. (2022), Tables 7-8, "
+         "Figure 14)", ""]
     L.append("The behaviour-factor study of `murus.retaining.study` on the example case file "
              "`examples/retaining/seed001_dsrw1_behaviour_factor.toml` (DSRW1) and on DSRW2-4 "
              "at 5 Hz, with the equivalent thrust and the numerics of the dynamic-collapse "
@@ -115,7 +116,8 @@ def section(workers: int = 1) -> str:
              else "below it in some cases")
     if r1:
         L.append(f"- murus r of DSRW1 over its collapsed cases: mean {sum(r1) / len(r1):.2f}, "
-                 f"minimum {min(r1):.2f} ({len(r1)} cases); seed 001 (DSRW1, Table 8): mean "
+                 f"minimum {min(r1):.2f} ({len(r1)} cases); Savalle et al. (2022) (DSRW1, Table "
+                 f"8): mean "
                  f"2.08, minimum 1.83; over all the walls murus gives mean "
                  f"{sum(r for _, r in rs) / len(rs):.2f}, minimum {min(r for _, r in rs):.2f}. "
                  "The seed proposes r = 1.5 for design; the murus r is "

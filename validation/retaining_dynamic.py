@@ -1,5 +1,5 @@
 """Validation of the dynamic collapse model of dry-stone retaining walls (DEM wall + equivalent
-EN 1998-5 thrust, :mod:`murus.retaining.collapse`) against seed 001 (issue 6, item 6):
+EN 1998-5 thrust, :mod:`murus.retaining.collapse`) against Savalle et al. (2022) (issue 6, item 6):
 
 1. the six scaled-down mock-ups of §3 (Table 3: acceleration at failure A_fail and failure mode
    against the experiments of [33] and UDEC; Table 4: backfill friction 45/50/55 deg);
@@ -35,8 +35,8 @@ FIG = ROOT / "docs" / "figures" / "retaining"
 DATA = ROOT / "tests" / "data" / "retaining"
 CACHE = ROOT / "validation" / "results" / "retaining_dynamic"
 
-#: The mock-ups' input slope A [m/s³], not printed in seed 001: reconstructed from Table 2
-#: (UDEC, H/B = 2.7, cross-section 3: d_top = 5 mm, i.e. 5 % of H = 91.8 mm, at 19.9 s) and
+#: The mock-ups' input slope A [m/s³], not printed in Savalle et al. (2022): reconstructed from
+#: Table 2 (UDEC, H/B = 2.7, cross-section 3: d_top = 5 mm, i.e. 5 % of H = 91.8 mm, at 19.9 s) and
 #: Table 3 (UDEC A_fail = 2.6 m/s² for that wall): A = 2.6 / 19.9. It agrees with "the
 #: experimental signals range from 15 to 30 s" (A_fail = 2.0-4.6 m/s² at 15-35 s).
 A_MOCK = 2.6 / 19.9
@@ -49,7 +49,7 @@ DSRW1_F = (3.0, 5.0, 10.0)
 FRAMES = ("base", "absolute")
 
 
-#: DSRW1 backfill, seed 001 Table 6: E = 92.7 MPa, nu = 0.22, 14.9 kN/m³.
+#: DSRW1 backfill, Savalle et al. (2022), Table 6: E = 92.7 MPa, nu = 0.22, 14.9 kN/m³.
 SOIL_E, SOIL_NU, SOIL_GAMMA = 92.7e6, 0.22, 14.9e3
 
 
@@ -361,7 +361,8 @@ def figures(recs: dict, fig_dir: Path) -> list[str]:
              label="murus A_pseudo (limit equilibrium)")
     ax1.set_xlabel("slenderness H/B [-]")
     ax1.set_ylabel("A_fail [m/s²]")
-    ax1.set_title("Mock-ups, 10 Hz, failure at d_top = 5 % H (seed 001 Table 3)", fontsize=8)
+    ax1.set_title("Mock-ups, 10 Hz, failure at d_top = 5 % H (Savalle et al. (2022), Table 3)",
+                  fontsize=8)
     ax1.legend(fontsize=7)
     f = np.array(DSRW1_F)
     ax2.plot(f, [SEED_TABLE7[(x, "none")][1] for x in f], "ks-", label="UDEC (seed Table 7)")
@@ -671,12 +672,14 @@ def section(fig_dir: Path | None = None, recompute: bool = False, jobs: int = 1)
     agree = sum(1 for m, e in zip(modes_b, exp_modes, strict=True) if m and m in e)
     names = figures(recs, fig_dir)
     shp = shapes_figure(recs, fig_dir)
-    out = ["## Dry-stone retaining walls: dynamic collapse (seed 001 §3 and §4.3)", ""]
+    out = ["## Dry-stone retaining walls: dynamic collapse (Savalle et al. (2022), §3 and §4.3)",
+           ""]
     out += [
         "The DEM wall of `murus.retaining.dem_wall` (stones block by block, the EN 1998-5 "
         "Annex E thrust applied to the back-face stones and updated with the base acceleration, "
         "a kinematic backstop along the back face) under the harmonic ramp S(t) = A t "
-        "sin(2 pi f t) of seed 001 eq. (5), run by `murus.retaining.collapse.collapse_run` "
+        "sin(2 pi f t) of Savalle et al. (2022), eq. (5), run by "
+        "`murus.retaining.collapse.collapse_run` "
         "until the top stone's displacement relative to the base d_top exceeds the threshold "
         "(5 % of H for the mock-ups, §3.1; 20 % for the full-scale walls, §4.2). Numerics: "
         "mass-proportional damping xi = 10 % at the input frequency (Tables 1 and 6), joint "

@@ -1,5 +1,6 @@
-"""Validation of the pseudo-static resistance of dry-stone retaining walls against seed 001 §4.4
-(Table 8), with the sensitivity to every assumption the seed leaves open (issue 6, item 3).
+"""Validation of the pseudo-static resistance of dry-stone retaining walls against
+Savalle et al. (2022), §4.4 (Table 8), with the sensitivity to every assumption the seed leaves open
+(issue 6, item 3).
 
 Run through ``make validate`` or ``python validation/retaining_pseudostatic.py [--out FILE]``;
 writes PNGs under ``docs/figures/retaining/`` and returns the Markdown section.
@@ -200,7 +201,7 @@ def figure(fig_dir: Path) -> str:
             down.append(m.by_sign.get(-1, m.by_sign[1])[0] * G)
         ax2.plot(ratios, up, color=c, label=f"{name}, kv upwards")
         ax2.plot(ratios, down, color=c, ls="--", label=f"{name}, kv downwards")
-    ax2.plot([0, 0.5], [1.58, 1.50], "k*", ms=9, label="seed 001 Table 8 (DSRW1)")
+    ax2.plot([0, 0.5], [1.58, 1.50], "k*", ms=9, label="Savalle et al. (2022), Table 8 (DSRW1)")
     ax2.set_xlabel("kv / kh [-]")
     ax2.set_ylabel("A_pseudo (horizontal) [m/s²]")
     ax2.set_title("A_pseudo against the vertical component", fontsize=8)
@@ -224,9 +225,11 @@ def section(fig_dir: Path | None = None) -> str:
     d1 = critical_acceleration(preset("DSRW1"))
     d5 = critical_acceleration(preset("DSRW1"), 0.5)
     tilt, _, _ = critical_tilt(preset("DSRW1"))
-    out = ["## Dry-stone retaining walls: pseudo-static resistance (seed 001 §4.4)", ""]
+    out = ["## Dry-stone retaining walls: pseudo-static resistance (Savalle et al. (2022), §4.4)",
+           ""]
     out += [
-        "Seed 001 computes the pseudo-static resistance A_pseudo of its walls \"using an "
+        "Savalle et al. (2022) computes the pseudo-static resistance A_pseudo of its walls "
+        "\"using an "
         "analytical approach based on the limit-equilibrium of a Coulomb's wedge of soil\" with "
         "the properties of Tables 5 and 6 and perfect stones, and gives no equations. murus "
         "(`murus.retaining.pseudostatic`, `murus retaining pseudo-static`) takes the wall above "
@@ -287,7 +290,7 @@ def section(fig_dir: Path | None = None) -> str:
         f"and {_pct(st[9]['a5'], 1.50)}. A horizontal base under inclined beds makes sliding "
         f"on the base govern ({_pct(st[6]['a0'], 1.58)}).",
         "",
-        "### Scaled-down mock-ups (seed 001 §3, Table 3)", "",
+        "### Scaled-down mock-ups (Savalle et al. (2022), §3, Table 3)", "",
         "Vertical walls, level sand, the materials of Table 1 (delta = 2/3 x 45 = 30 deg); only "
         "the base joint (course heights not given). The pseudo-static resistance depends on "
         "H/B only (friction has no length scale), so the seed's inconsistent width (34 mm "

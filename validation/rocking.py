@@ -20,8 +20,8 @@ from murus.rocking import (
     cosine_pulse,
     critical_amplitude,
     rectangular_pulse,
-    seed000_wall,
-    seed002_block,
+    restrained_wall_block,
+    series_clay_wall,
     simulate,
     sine_pulse,
 )
@@ -44,7 +44,7 @@ def table1() -> list[str]:
     with open(ROOT / "tests" / "data" / "rocking" / "seed002_table1.csv") as fh:
         rdr = csv.DictReader(line for line in fh if not line.startswith("#"))
         for r in rdr:
-            b = seed002_block(r["label"])
+            b = restrained_wall_block(r["label"])
             rows.append(
                 f"| {r['label']} | {r['m_kg']} | {b.mass:.1f} | {r['R_m']} | {b.R:.4f} | "
                 f"{r['I0_kgm2']} | {b.I_O:.0f} | "
@@ -205,11 +205,12 @@ def seed_walls() -> tuple[list[str], str]:
     rows = ["| wall | alpha [rad] | R [m] | p [rad/s] | e = cos 2 alpha | g tan alpha [m/s²] |",
             "|---|---|---|---|---|---|"]
     for kind in ("short", "long"):
-        w = seed000_wall(kind)
+        w = series_clay_wall(kind)
         rows.append(f"| {kind} ({w.width} m) | {w.alpha:.6f} | {w.R:.6f} | {w.p:.6f} | "
                     f"{w.housner_restitution():.6f} | {w.uplift_acceleration:.4f} |")
-    # seed 002 block1 free vibration from 0.9 alpha, two-sided, e = 1 and Housner (Figure 7a, c=0)
-    b1 = seed002_block("block1")
+    # EURODYN (2020) block1 free vibration from 0.9 alpha, two-sided, e = 1 and Housner (Figure 7a,
+    # c=0)
+    b1 = restrained_wall_block("block1")
     fig, ax = plt.subplots(figsize=(8, 3.2), layout="constrained")
     for law, lab in ((Constant(1.0), "e = 1"), ("housner", f"Housner e = "
                                                  f"{b1.housner_restitution():.4f}")):
@@ -217,7 +218,8 @@ def seed_walls() -> tuple[list[str], str]:
         ax.plot(r.t, r.theta / r.alpha, lw=0.8, label=lab)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("theta/alpha")
-    ax.set_title("Seed 002 block1, free vibration from theta0/alpha = 0.9, two-sided, no damper "
+    ax.set_title("EURODYN (2020) block1, free vibration from theta0/alpha = 0.9, two-sided, no "
+                 "damper "
                  "(Figure 7a, c = 0)", fontsize=9)
     ax.legend(fontsize=8)
     fig.savefig(FIG / "seed002_block1_free.png", dpi=110)
@@ -228,14 +230,15 @@ def seed_walls() -> tuple[list[str], str]:
 def section() -> str:
     FIG.mkdir(parents=True, exist_ok=True)
     out = ["## Rigid-block rocking engine (issue 2)", ""]
-    out += ["### Seed 002 Table 1: blocks of unit length, 21 kN/m³", ""]
+    out += ["### EURODYN (2020), Table 1: blocks of unit length, 21 kN/m³", ""]
     out += table1()
     out += ["", "The table rounds R to 0.01 m, which explains the differences (all below 0.5 %).",
             ""]
     rows, fig = seed_walls()
-    out += ["### Seed 000 walls with 5 t on top (self-weight neglected, section 3.1)", ""]
+    out += ["### Mordant et al. (SERIES) walls with 5 t on top (self-weight neglected, §3.1)",
+            ""]
     out += rows
-    out += ["", f"![seed 002 block1](docs/figures/rocking/{fig})", ""]
+    out += ["", f"![EURODYN (2020) block1](docs/figures/rocking/{fig})", ""]
     lines, fig = free_decay()
     out += ["### Free rocking against the closed form", ""] + lines
     out += ["", f"![free decay](docs/figures/rocking/{fig})", ""]
@@ -243,7 +246,8 @@ def section() -> str:
     out += ["### Overturning under pulses (linearised equation, closed forms)", ""] + lines
     out += ["", f"![pulses](docs/figures/rocking/{fig})", ""]
     lines, fig = newmark_convergence()
-    out += ["### Newmark (seed 000 section 3.1.2): second order with the impact located", ""]
+    out += ["### Newmark (Mordant et al. (SERIES), section 3.1.2): second order with the impact "
+            "located", ""]
     out += lines + ["", f"![newmark](docs/figures/rocking/{fig})", ""]
     return "\n".join(out) + "\n"
 

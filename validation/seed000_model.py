@@ -1,15 +1,15 @@
-"""Seed 000 §3: the plain (Housner) and modified rocking models of the tested walls.
+"""Mordant et al. (SERIES), §3: the plain (Housner) and modified rocking models of the tested walls.
 
-The rocking-onset criterion of seed 000 eq. 9 (corner pivot) and of its modification eq. 11 (pivot
-at the zero-stress point of the compressive length, four readings of
+The rocking-onset criterion of Mordant et al. (SERIES), eq. 9 (corner pivot) and of its modification
+eq. 11 (pivot at the zero-stress point of the compressive length, four readings of
 :class:`murus.rocking.Pivot`) for the seismic tests S04-S09 of Table 1 (walls without rubber),
 and the rotation of the short and long walls at S09 with the modifications of §3.3 (pivot,
 eqs. 11-13; restitution, eqs. 16-18) switched on one after the other (Figures 9-13, 15-18).
 
 The measured table signals of the tests are not available: the input is an EN 1998-1 Type 1,
-ground B spectrum-compatible artificial record (seed 000 §2: "artificially generated seismic
-input signal consistent with Eurocode 8 spectrum"), one fixed record scaled to the PGA of each
-test. Writes PNGs under ``docs/figures/seed000/`` and returns the Markdown section.
+ground B spectrum-compatible artificial record (Mordant et al. (SERIES), §2: "artificially generated
+seismic input signal consistent with Eurocode 8 spectrum"), one fixed record scaled to the PGA of
+each test. Writes PNGs under ``docs/figures/seed000/`` and returns the Markdown section.
 
 Standalone: ``python validation/seed000_model.py --out seed000.md [--fig-dir DIR]``.
 """
@@ -24,7 +24,14 @@ from pathlib import Path
 import numpy as np
 
 from murus import G
-from murus.rocking import AmplitudeDependent, Housner, Pivot, RockingModel, seed000_wall, simulate
+from murus.rocking import (
+    AmplitudeDependent,
+    Housner,
+    Pivot,
+    RockingModel,
+    series_clay_wall,
+    simulate,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 FIG = ROOT / "docs" / "figures" / "seed000"
@@ -41,7 +48,8 @@ WALLS = ("short", "long")
 COLUMN = {"short": "short_no_rubber", "long": "long_no_rubber"}
 TESTS = ("S04", "S05", "S06", "S07", "S08", "S09")
 #: Onset acceleration of each pivot reading in units of g B / H (``H = z_G``, mass on top):
-#: from ``a_g H = g lever(a_g)`` (seed 000 eq. 9 on the corner, eq. 11 with the pivot moved).
+#: from ``a_g H = g lever(a_g)`` (Mordant et al. (SERIES), eq. 9 on the corner, eq. 11 with the
+#: pivot moved).
 READINGS = {"corner": 1 / 2, "kern": 1 / 6, "effective-width": 0.3, "neutral-axis": 1 / 4}
 READING_TEXT = {"corner": "g B/(2H)", "kern": "g B/(6H)", "effective-width": "0.3 g B/H",
                 "neutral-axis": "g B/(4H)"}
@@ -54,7 +62,8 @@ def pivot(reading: str) -> Pivot:
     return Pivot() if reading == "corner" else Pivot("compressive-length", reading)
 
 
-#: The model with the modifications of seed 000 §3.3 switched on one after the other.
+#: The model with the modifications of Mordant et al. (SERIES), §3.3 switched on one after the
+#: other.
 STEPS = (
     ("plain Housner (corner, eq. 9-10)", lambda b: RockingModel(b, Housner())),
     ("+ compressive-length pivot (eq. 11-13)",
@@ -81,7 +90,7 @@ def _plt():
 
 # ---------------------------------------------------------------------------------- inputs ---
 def load_table1(path: Path = TABLE1) -> dict[str, dict[str, float | None]]:
-    """Seed 000 Table 1: ``{test: {column: PGA [g] or None}}``."""
+    """Mordant et al. (SERIES), Table 1: ``{test: {column: PGA [g] or None}}``."""
     with open(path) as fh:
         rows = csv.DictReader(line for line in fh if not line.startswith("#"))
         return {r["test"]: {k: (float(v) if v.strip() else None) for k, v in r.items()
@@ -106,7 +115,7 @@ def scaled_record(pga_g: float, seed: int = RECORD["seed"]):
 
 def threshold_g(wall: str, reading: str) -> float:
     """Ground acceleration [g] at which rocking starts from rest (no vertical input)."""
-    b = seed000_wall(wall)
+    b = series_clay_wall(wall)
     return READINGS[reading] * b.width / b.z_G
 
 
@@ -122,7 +131,7 @@ def onset_tables(table1) -> tuple[list[str], dict]:
     pred: dict = {}
     agree = total = 0
     for wall in WALLS:
-        body = seed000_wall(wall)
+        body = series_clay_wall(wall)
         lines += [f"**{wall.capitalize()} wall** (B/H = {body.width / body.z_G:.4f}): ratio "
                   "PGA / onset acceleration; > 1 (**bold**): rocking predicted.", "",
                   "| test | PGA [g] | " + " | ".join(READINGS) + " |",
@@ -215,7 +224,7 @@ def fig_plain_criterion(table1, fig_dir: Path) -> tuple[str, dict]:
     fig, axs = plt.subplots(3, 2, figsize=(10, 7.5), sharex=True, layout="constrained")
     onset = {}
     for j, wall in enumerate(WALLS):
-        body = seed000_wall(wall)
+        body = series_clay_wall(wall)
         for i, test in enumerate(("S07", "S08", "S09")):
             pga = table1[test][COLUMN[wall]]
             res = simulate(RockingModel(body), scaled_record(pga))
@@ -234,7 +243,8 @@ def fig_plain_criterion(table1, fig_dir: Path) -> tuple[str, dict]:
     for ax in axs[-1]:
         ax.set_xlabel("time [s]")
     fig.suptitle("Rocking criterion of the plain model (corner pivot), artificial EC8 record "
-                 "scaled to the measured PGA (cf. seed 000 Figures 9-11)", fontsize=10)
+                 "scaled to the measured PGA (cf. Mordant et al. (SERIES), Figures 9-11)",
+                 fontsize=10)
     name = "criterion_plain_S07_S09.png"
     fig.savefig(fig_dir / name, dpi=110)
     plt.close(fig)
@@ -244,7 +254,7 @@ def fig_plain_criterion(table1, fig_dir: Path) -> tuple[str, dict]:
 def fig_modified_criterion(table1, fig_dir: Path) -> tuple[str, list[str]]:
     """Figure 13: plain and modified criterion, short wall, S07."""
     plt = _plt()
-    body = seed000_wall("short")
+    body = series_clay_wall("short")
     pga = table1["S07"][COLUMN["short"]]
     rec = scaled_record(pga)
     fig, ax = plt.subplots(figsize=(9, 3.6), layout="constrained")
@@ -263,7 +273,8 @@ def fig_modified_criterion(table1, fig_dir: Path) -> tuple[str, list[str]]:
     ax.set_ylim(0, 3)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("rocking criterion")
-    ax.set_title(f"Short wall, S07 (PGA {pga:g} g): plain vs modified criterion (cf. seed 000 "
+    ax.set_title(f"Short wall, S07 (PGA {pga:g} g): plain vs modified criterion (cf. Mordant et "
+                 f"al. (SERIES) "
                  "Figure 13; axis cut at 3)", fontsize=9)
     ax.legend(fontsize=8, loc="upper right")
     name = "criterion_short_S07.png"
@@ -285,7 +296,7 @@ def _cell(res) -> str:
 def step_runs(table1, seed: int = RECORD["seed"]) -> dict:
     out = {}
     for wall in WALLS:
-        body = seed000_wall(wall)
+        body = series_clay_wall(wall)
         for test in ("S07", "S08", "S09"):
             rec = scaled_record(table1[test][COLUMN[wall]], seed)
             for k, (_, make) in enumerate(STEPS):
@@ -296,7 +307,7 @@ def step_runs(table1, seed: int = RECORD["seed"]) -> dict:
 def step_tables(runs) -> list[str]:
     lines = []
     for wall in WALLS:
-        body = seed000_wall(wall)
+        body = series_clay_wall(wall)
         lines += [f"**{wall.capitalize()} wall** (alpha = {body.alpha:.4f} rad on the corner; "
                   f"h/b = {body.height / body.width:.4f}). Each cell: peak |theta|/alpha; "
                   "impacts; uplift start [s].", "",
@@ -352,7 +363,8 @@ def fig_steps(runs, table1, fig_dir: Path) -> str:
             ax.set_ylabel("theta/alpha")
     for ax in axs[-1]:
         ax.set_xlabel("time [s]")
-    fig.suptitle("Rotation at S09 with the modifications of seed 000 §3.3 switched on in turn "
+    fig.suptitle("Rotation at S09 with the modifications of Mordant et al. (SERIES), §3.3 "
+                 "switched on in turn "
                  "(cf. Figures 12, 15, 18; uncalibrated restitution)", fontsize=10)
     name = "steps_S09.png"
     fig.savefig(fig_dir / name, dpi=100)
@@ -369,7 +381,7 @@ def robustness(table1) -> tuple[list[str], dict]:
     plain_rocks = {w: 0 for w in WALLS}
     for s in ROBUST_SEEDS:
         for wall in WALLS:
-            body = seed000_wall(wall)
+            body = series_clay_wall(wall)
             rec = scaled_record(table1["S09"][COLUMN[wall]], s)
             rs = [simulate(make(body), rec) for _, make in STEPS]
             for k, r in enumerate(rs):
@@ -459,10 +471,12 @@ def section(fig_dir: Path | None = None) -> str:
     table1 = load_table1()
     gm = base_record()
     r = RECORD
-    out = ["## Seed 000 §3: plain and modified rocking models of the tested walls", ""]
+    out = ["## Mordant et al. (SERIES), §3: plain and modified rocking models of the tested walls",
+           ""]
     out += [
-        "Walls of seed 000 §1.2 without rubber: 5 t at mid-top of a massless rigid wall, "
-        "H = 1.80 m, B = 0.72 m (short) and 2.10 m (long) (`seed000_wall`). "
+        "Walls of Mordant et al. (SERIES), §1.2 without rubber: 5 t at mid-top of a massless "
+        "rigid wall, "
+        "H = 1.80 m, B = 0.72 m (short) and 2.10 m (long) (`series_clay_wall`). "
         "The measured table signals are not available; as in the tests (§2: \"artificially "
         "generated seismic input signal consistent with Eurocode 8 spectrum, with an "
         "acceleration level increased step-by-step\") one artificial record is scaled to the "

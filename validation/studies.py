@@ -1,5 +1,5 @@
-"""Validation of the studies layer against seed 002 §4.1 (issue 7, item 7): rocking spectra of
-block2 against the tie stiffness (Figures 3-4) and fragility curves of a free-standing, a tied
+"""Validation of the studies layer against EURODYN (2020), §4.1 (issue 7, item 7): rocking spectra
+of block2 against the tie stiffness (Figures 3-4) and fragility curves of a free-standing, a tied
 and a damped wall over the FEMA P695 far-field set.
 
 Run through ``make validate`` or ``python validation/studies.py [--out FILE]``; writes PNGs
@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 FIG = ROOT / "docs" / "figures" / "studies"
 
 #: FEMA P695 far-field records standing in for the seed's (not in FEMA P695): Duzce 1999 at
-#: Bolu (Turkey, as Dinar 1995; Duzce 1999 is itself in seed 002 Table 2) and Friuli 1976 at
+#: Bolu (Turkey, as Dinar 1995; Duzce 1999 is itself in EURODYN (2020), Table 2) and Friuli 1976 at
 #: Tolmezzo (Italy, Mw 6.5 as Norcia 2016).
 STAND_INS = {
     "Dinar 1995 (Mw 6.2, Figure 3)": ("farfield_03a", "farfield_03b"),
@@ -40,12 +40,12 @@ def n_peaks(y: np.ndarray) -> int:
 
 
 def spectra(fig_dir: Path) -> tuple[list[str], str]:
-    from murus.rocking import seed002_block
+    from murus.rocking import restrained_wall_block
     from murus.studies import RecordSet, plot_rocking_spectrum, rocking_spectrum
 
     plt = _plt()
     names = tuple(n for pair in STAND_INS.values() for n in pair)
-    ds = rocking_spectrum(seed002_block("block2"), RecordSet(kind="suite", select=names),
+    ds = rocking_spectrum(restrained_wall_block("block2"), RecordSet(kind="suite", select=names),
                           executor="serial")
     fig, axes = plt.subplots(2, 2, figsize=(11, 6.5), layout="constrained", sharex=True)
     rows = ["| seed record | FEMA P695 stand-in | free-standing theta/alpha | max over K > 0 "
@@ -76,12 +76,12 @@ def spectra(fig_dir: Path) -> tuple[list[str], str]:
 
 
 def fragility_figure(fig_dir: Path) -> tuple[list[str], str]:
-    from murus.rocking import seed002_block
-    from murus.studies import fragility, plot_fragility, seed002_configs
+    from murus.rocking import restrained_wall_block
+    from murus.studies import fragility, plot_fragility, restraint_configs
 
     plt = _plt()
-    b = seed002_block("block2")
-    models = seed002_configs(b, delta_t=DELTA_T, c_over_cd=0.10)
+    b = restrained_wall_block("block2")
+    models = restraint_configs(b, delta_t=DELTA_T, c_over_cd=0.10)
     levels = np.array([0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0])
     ds = fragility(models, "farfield", im="PGA", levels=levels, executor="serial", n_boot=200)
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.0), layout="constrained", sharey=True)
@@ -112,7 +112,7 @@ def section(fig_dir: Path | None = None) -> str:
     rel = fig_dir.relative_to(ROOT) if fig_dir.is_relative_to(ROOT) else fig_dir
     rows, fig = spectra(fig_dir)
     out = [
-        "## Rocking spectra and fragility (seed 002 §4.1)", "",
+        "## Rocking spectra and fragility (EURODYN (2020), §4.1)", "",
         "Rocking spectra (`murus.studies.rocking_spectrum`) of block2 (lambda = 10, s = 0.6 m): "
         "theta_max/alpha for 50 values 0 <= K <= K_d of a tension-only tie at the top (K_d "
         "from eq. 12), one-sided motion against transverse walls whose stiffness follows the "

@@ -1,4 +1,5 @@
-"""Validation of the elastic-layer (Winkler) base: walls on acoustic rubber layers (seed 000).
+"""Validation of the elastic-layer (Winkler) base: walls on acoustic rubber layers
+(Mordant et al. (SERIES)).
 
 ``run(fig_dir)`` writes PNG figures into ``fig_dir`` and returns the Markdown section; runnable as
 ``python -m validation.winkler`` or ``python validation/winkler.py --out DIR`` (prints the
@@ -14,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from murus import G
-from murus.rocking import seed000_wall, simulate, sine_pulse
+from murus.rocking import series_clay_wall, simulate, sine_pulse
 from murus.rocking.winkler import (
     WinklerBase,
     overturning_acceleration,
@@ -26,19 +27,20 @@ from murus.rocking.winkler import (
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## Walls on acoustic rubber layers (Winkler base)"
 
-#: Assumptions for seed 000 (§1.2): masonry modulus from EN 1996-1-1 §3.7.2 (E = 1000 f_k) with
-#: the measured f_k = 5.6 MPa (the extracted text garbles the digits: "6.5"; read as 5.6 like its
-#: "0.13" for f_b = 13.0), shear modulus 0.4 E (§3.8.3), Timoshenko shear factor 5/6.
+#: Assumptions for Mordant et al. (SERIES) (§1.2): masonry modulus from EN 1996-1-1 §3.7.2 (E = 1000
+#: f_k) with the measured f_k = 5.6 MPa (the extracted text garbles the digits: "6.5"; read as 5.6
+#: like its "0.13" for f_b = 13.0), shear modulus 0.4 E (§3.8.3), Timoshenko shear factor 5/6.
 F_K = 5.6e6
 E_M = 1000.0 * F_K
 G_M = 0.4 * E_M
 KAPPA = 5.0 / 6.0
-#: The rubber strip: 1 cm thick (seed 000 §1.1), compression modulus of a soft acoustic bearing
-#: at the 0.2-0.5 MPa of these walls (our assumption), damping ratio of its vertical mode.
+#: The rubber strip: 1 cm thick (Mordant et al. (SERIES), §1.1), compression modulus of a soft
+#: acoustic bearing at the 0.2-0.5 MPa of these walls (our assumption), damping ratio of its
+#: vertical mode.
 T_LAYER = 0.01
 E_RUBBER = 10e6
 ZETA = 0.05
-#: PGA levels of seed 000 Table 1 (walls without rubber: tests 5, 7, 9) [g].
+#: PGA levels of Mordant et al. (SERIES), Table 1 (walls without rubber: tests 5, 7, 9) [g].
 PGA = {"short": (0.1356, 0.1784, 0.2336), "long": (0.2387, 0.4496, 0.6878)}
 
 
@@ -72,7 +74,7 @@ def _first_excursion(res, body, k):
 
 def convergence(fig_dir: Path) -> list[str]:
     plt = _plt()
-    w = seed000_wall("short")
+    w = series_clay_wall("short")
     ks = np.array([1e8, 1e9, 1e10, 1e11, 1e12, 1e13])
     rig_free = simulate(w, theta0_over_alpha=0.5, duration=1.0).impacts[0, 0]
     pulse = sine_pulse(4.0 * G * math.tan(w.alpha), 2.0)
@@ -105,12 +107,14 @@ def convergence(fig_dir: Path) -> list[str]:
     ax.loglog(ks, e_ov[2] * (ks / ks[2]) ** (-1.0 / 3.0), "k:", lw=0.8, label="slope -1/3")
     ax.set_xlabel("layer stiffness k_w [N/m3]")
     ax.set_ylabel("relative difference to the rigid model")
-    ax.set_title("seed 000 short wall on a Winkler layer -> rigid rocking (Housner)", fontsize=9)
+    ax.set_title("Mordant et al. (SERIES) short wall on a Winkler layer -> rigid rocking (Housner)",
+                 fontsize=9)
     ax.legend(fontsize=7)
     fig.savefig(fig_dir / "winkler_convergence.png", dpi=110)
     plt.close(fig)
     lines = [
-        "Seed 000 short wall (0.72 x 1.80 m, 5 t on top). Free rocking released from "
+        "Mordant et al. (SERIES) short wall (0.72 x 1.80 m, 5 t on top). Free rocking released "
+        "from "
         "theta0 = alpha/2 at rest on its compressed corner zone; one-sine pulse "
         f"4 g tan(alpha) = {4 * a_rig:.3f} m/s² at 2 Hz from rest. Rigid references (event-driven "
         f"engine): first impact {rig_free:.6f} s (free), {rig_imp:.6f} s and first peak "
@@ -149,7 +153,7 @@ def convergence(fig_dir: Path) -> list[str]:
     return lines
 
 
-# --------------------------------------------------------------------- (b) seed 000 ------
+# --------------------------------------------------------------- (b) Mordant et al. (SERIES) ------
 def _wall_layer(w) -> tuple[float, float]:
     """The wall's own flexibility (Timoshenko cantilever under the top mass) as the rotational
     stiffness of an equivalent base layer: K = H² / (H³ / (3 E I) + H / (kappa G A)) [N m/rad],
@@ -178,19 +182,20 @@ def _calibrated(w, drop: float) -> float:
     return brentq(lambda E: _ec6_drop(w, E) - drop, 1e6, 1e11, xtol=1e3)
 
 
-def seed000(fig_dir: Path) -> list[str]:
+def series_walls(fig_dir: Path) -> list[str]:
     plt = _plt()
     from murus.motion.artificial import generate_ec8
 
-    walls = {kind: seed000_wall(kind) for kind in ("short", "long")}
+    walls = {kind: series_clay_wall(kind) for kind in ("short", "long")}
     # ---- frequencies
     E_list = (2e6, 5e6, 10e6, 20e6, 50e6, 100e6)
     lines = [
-        "### Seed 000: the walls with and without rubber",
+        "### Mordant et al. (SERIES): the walls with and without rubber",
         "",
         "A rigid body on a rigid base has no small-amplitude frequency, so the wall without rubber "
         "is given its own flexibility: a Timoshenko cantilever carrying the top mass, "
-        f"E = 1000 f_k = {E_M / 1e9:.1f} GPa (EN 1996-1-1 §3.7.2, f_k = 5.6 MPa from seed 000 "
+        f"E = 1000 f_k = {E_M / 1e9:.1f} GPa (EN 1996-1-1 §3.7.2, f_k = 5.6 MPa from Mordant et "
+        f"al. (SERIES) "
         f"§1.2), G = 0.4 E (§3.8.3), lumped into an equivalent base layer with the same "
         "rotational stiffness; the rubber strip (1 cm, compression modulus E_c, "
         "k_w = E_c / 1 cm) acts in series with it. Our base-case assumption is E_c = "
@@ -232,7 +237,8 @@ def seed000(fig_dir: Path) -> list[str]:
     hist = None
     lines += [
         "Rotations under one EN 1998-1 artificial record (ground B, type 1, seed 2024, "
-        "`murus.motion.artificial.generate_ec8`) scaled to the PGA of seed 000 Table 1: rigid "
+        "`murus.motion.artificial.generate_ec8`) scaled to the PGA of Mordant et al. (SERIES), "
+        "Table 1: rigid "
         "model (Housner e), equivalent wall layer alone ('no rubber') and in series with the "
         f"rubber strip: E_c = {E_RUBBER / 1e6:g} MPa and the value calibrated on a 35 % drop.",
         "",
@@ -305,7 +311,8 @@ def seed000(fig_dir: Path) -> list[str]:
 
     lines += [
         "",
-        "Findings against seed 000 (§2.1, §2.2.2 and conclusions: with rubber 'amplitudes of "
+        "Findings against Mordant et al. (SERIES) (§2.1, §2.2.2 and conclusions: with rubber "
+        "'amplitudes of "
         "the rocking motion are increased but with a more limited damaging of the wall because "
         "of the capacity of the rubber to absorb the impact energy'; the compressive length 'is "
         "larger for a same acceleration level in presence of acoustic insulation devices'):",
@@ -347,7 +354,8 @@ def seed000(fig_dir: Path) -> list[str]:
             ax[1].plot(res.t, res.contact_length / w.width, lw=0.8, label=name)
         ax[0].set_ylabel("theta / alpha")
         ax[0].legend(fontsize=7)
-        ax[0].set_title(f"seed 000 short wall, EC8 artificial record, PGA {pga:.3f} g",
+        ax[0].set_title("Mordant et al. (SERIES) short wall, EC8 artificial record, PGA "
+                        f"{pga:.3f} g",
                         fontsize=9)
         ax[1].set_ylabel("contact length / b")
         ax[1].set_xlabel("time [s]")
@@ -361,7 +369,7 @@ def seed000(fig_dir: Path) -> list[str]:
     ax[0].plot(rg.t, rg.theta / short.alpha, "k--", lw=0.8, label="rigid (Housner)")
     ax[0].set_ylabel("theta / alpha")
     ax[0].legend(fontsize=7)
-    ax[0].set_title("seed 000 short wall, free rocking from alpha/2", fontsize=9)
+    ax[0].set_title("Mordant et al. (SERIES) short wall, free rocking from alpha/2", fontsize=9)
     ax[1].set_ylabel("contact force [kN]")
     ax[1].set_xlabel("time [s]")
     fig.savefig(fig_dir / "winkler_impacts.png", dpi=110)
@@ -387,7 +395,7 @@ def run(fig_dir: Path) -> str:
            "### Convergence to the rigid rocking model as the layer stiffens", ""]
     out += convergence(fig_dir)
     out += [""]
-    out += seed000(fig_dir)
+    out += series_walls(fig_dir)
     return "\n".join(out) + "\n"
 
 

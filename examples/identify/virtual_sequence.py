@@ -1,4 +1,4 @@
-"""Seed 000 §2 on a virtual wall: write a shaking-table test sequence in the murus format
+"""Mordant et al. (SERIES), §2 on a virtual wall: write a shaking-table test sequence in the murus format
 (white-noise tests between seismic tests of increasing PGA), then identify the frequency and
 damping along it (Figures 3-4), classify the seismic tests (§2.3) and tabulate the compressive
 length against Eurocode 6 (Table 2).

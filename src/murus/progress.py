@@ -300,7 +300,8 @@ def progress(total: float | None = None, desc: str = "", *, unit: str = "",
         Amount of work (tasks, steps, simulated seconds); ``None``: unknown (elapsed time
         only).
     desc : str
-        What is being done, shown first ("study seed002", "DEM run", "loading numba kernels").
+        What is being done, shown first ("study spectrum_block2", "DEM run", "loading numba
+        kernels").
     unit : str
         Name of the counted things ("chunks", "cases", "steps"), for the display.
     quiet : bool

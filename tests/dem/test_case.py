@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from dem_inputs import BLOCK_ON_BASE
 from typer.testing import CliRunner
 
 from murus.cli import app
@@ -19,30 +20,8 @@ from murus.dem.case import build, load_case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "dem"
 
-BASE = """\
-[dem]
-duration = 0.05
-
-[materials.stone]
-density = 2000.0
-kn = 1e9
-ks = 1e9
-friction_deg = 30.0
-
-[[blocks]]
-kind = "rectangle"
-width = 2.0
-height = 0.2
-center = [0.0, -0.1]
-kinematic = "fixed"
-
-[[blocks]]
-kind = "rectangle"
-width = 0.4
-height = 0.2
-center = [0.0, 0.1]
-material = "stone"
-
+BASE = BLOCK_ON_BASE.format(duration="0.05", dem="", kn="1e9",
+                            extra='material = "stone"\n') + """\
 [[monitors]]
 name = "u"
 body = 1

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from dem_inputs import BLOCK_ON_BASE
 from typer.testing import CliRunner
 
 from murus.cli import app
@@ -21,29 +22,7 @@ from murus.dem.model import ModelError
 
 G = 9.81
 
-CASE = """\
-[dem]
-duration = {duration}
-{dem}
-[materials.stone]
-density = 2000.0
-kn = {kn}
-ks = {kn}
-friction_deg = 30.0
-
-[[blocks]]
-kind = "rectangle"
-width = 2.0
-height = 0.2
-center = [0.0, -0.1]
-kinematic = "fixed"
-
-[[blocks]]
-kind = "rectangle"
-width = 0.4
-height = 0.2
-center = [0.0, 0.1]
-{extra}
+CASE = BLOCK_ON_BASE + """\
 [[monitors]]
 name = "uy"
 body = 1

@@ -1,4 +1,4 @@
-"""EN 1996-1-1 compressed length against seed 000 Table 2 and closed forms."""
+"""EN 1996-1-1 compressed length against Mordant et al. (SERIES), Table 2 and closed forms."""
 
 import csv
 
@@ -14,7 +14,7 @@ def rows(data_dir):
         return list(csv.DictReader(line for line in fh if not line.startswith("#")))
 
 
-def test_seed000_table2_to_0p1_mm(data_dir):
+def test_series_table2_to_0p1_mm(data_dir):
     case = EquivalentStatic(mass=5000.0, height=1.80, factor=2.5)
     for r in rows(data_dir):
         L, a = float(r["L_m"]), float(r["level_g"])

@@ -78,7 +78,7 @@ def test_E2_against_brute_force_trial_wedge(phi, beta, delta, psi, kh, kv):
     assert K == pytest.approx(Kb, rel=1e-6)
 
 
-def test_seed001_dsrw1_limit_state_coefficient():
+def test_savalle2022_dsrw1_limit_state_coefficient():
     # the coefficient of the governing state of DSRW1 (kh = 0.1619, delta = 2/3 phi)
     K = active_coefficient(R(37.7), 0.0, R(37.7 * 2 / 3), R(90), seismic_angle(0.16191582, 0))
     assert K == pytest.approx(brute_force_K(R(37.7), 0, R(37.7 * 2 / 3), R(90), 0.16191582, 0),

@@ -1,7 +1,8 @@
 """Calibration of the modified rocking model (murus.identify.calibrate): known parameters are
 recovered from histories synthesised by murus.rocking.
 
-Data: the seed 000 short wall (and the long one for A0) under two 3-cycle sine pulses (1.6 and
+Data: the Mordant et al. (SERIES) short wall (and the long one for A0) under two 3-cycle sine pulses
+(1.6 and
 2.2 x g tan(alpha), at 2 and 3 Hz), rotation sampled at 200 Hz, with the restitution law of
 eqs. 14-16 (k0 = 1.5, k1 = 0.8).
 
@@ -22,7 +23,7 @@ import pytest
 from murus.identify.calibrate import CalibrationError, Measurement, calibrate
 from murus.motion.synthetic import sine_pulse
 from murus.rocking import RockingModel, simulate
-from murus.rocking.body import seed000_wall
+from murus.rocking.body import series_clay_wall
 from murus.rocking.restitution import AmplitudeDependent
 
 TRUE = dict(k0=1.5, k1=0.8)
@@ -32,7 +33,7 @@ def synthetic(law, kinds=("short",), noise=0.0, seed=1):
     rng = np.random.default_rng(seed)
     out = []
     for kind in kinds:
-        wall = seed000_wall(kind)
+        wall = series_clay_wall(kind)
         mdl = RockingModel(wall, law)
         for amp, f in ((1.6, 2.0), (2.2, 3.0)):
             gm = sine_pulse(amp * 9.81 * math.tan(wall.alpha), f, cycles=3, dt=0.002,
@@ -68,7 +69,7 @@ def test_recovery_with_two_percent_noise(seed):
 
 def test_aspect_ratio_constant_from_two_walls():
     ms = synthetic(AmplitudeDependent(**TRUE, A0=2.0), kinds=("short", "long"), noise=0.02)
-    base = RockingModel(seed000_wall("short"), AmplitudeDependent(**TRUE))
+    base = RockingModel(series_clay_wall("short"), AmplitudeDependent(**TRUE))
     res = calibrate(base, ms, {"A0": 4.0}, bounds={"A0": (0.5, 10.0)})
     assert res.params["A0"] == pytest.approx(2.0, rel=0.05)
 

@@ -28,8 +28,9 @@ from scipy.optimize import brentq
 
 from murus.identify.cantilever import Cantilever, CantileverError
 
-# seed 000 short wall: 0.72 x 1.80 x 0.138 m, 5 t on top; E = 1000 fk (EN 1996-1-1 §3.7.2)
-# with the measured fk = 5.6 MPa (see validation/winkler.py); clay masonry 1800 kg/m3 (assumed)
+# Mordant et al. (SERIES) short wall: 0.72 x 1.80 x 0.138 m, 5 t on top; E = 1000 fk (EN 1996-1-1
+# §3.7.2) with the measured fk = 5.6 MPa (see validation/winkler.py); clay masonry 1800 kg/m3
+# (assumed)
 WALL = dict(height=1.8, length=0.72, thickness=0.138, modulus=5.6e9, density=1800.0)
 
 
@@ -62,7 +63,8 @@ def exact_timoshenko(c, fmax, n_scan=1500):
 
 @pytest.mark.parametrize("tip", [dict(tip_mass=5000.0, tip_inertia=300.0), {}])
 def test_timoshenko_against_the_exact_solution(tip):
-    """Seed 000 short wall (shear matters: H/L = 2.5), with and without the 5 t on top."""
+    """Mordant et al. (SERIES) short wall (shear matters: H/L = 2.5), with and without the 5 t on
+    top."""
     ref = exact_timoshenko(Cantilever(**WALL, **tip), 400.0)[:2]
     errs = []
     for n in (8, 16, 32):

@@ -60,7 +60,7 @@ def test_criterion_and_input_errors():
 
 def test_lifted_length_of_rigid_rocking():
     """Rigid rocking about the corners: the lifted length is L whenever theta != 0 (with no
-    closure) and 0 at rest (seed 000 Figures 19-20)."""
+    closure) and 0 at rest (Mordant et al. (SERIES), Figures 19-20)."""
     L, x = 0.72, np.linspace(0.02, 0.70, 5)
     th = 5e-3 * np.sin(2 * np.pi * 1.0 * T) * (T > 10)
     d = np.where(th > 0, (L - x)[:, None] * np.sin(th), -x[:, None] * np.sin(th))

@@ -1,6 +1,6 @@
 """Contact length from base transducers (murus.identify.compressive) against closed forms:
 rigid rotations about known points, the EN 1996-1-1 linear stress block on a Winkler bed, and
-the seed 000 Table 2 layout."""
+the Mordant et al. (SERIES), Table 2 layout."""
 
 import math
 

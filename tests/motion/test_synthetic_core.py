@@ -1,5 +1,5 @@
-"""GroundMotion operations, synthetic signals (seed 001 ramps) and processing, against closed
-forms and convergence rates."""
+"""GroundMotion operations, synthetic signals (Savalle et al. (2022) ramps) and processing, against
+closed forms and convergence rates."""
 
 import math
 import warnings

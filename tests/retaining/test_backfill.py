@@ -39,11 +39,11 @@ def small_wall():
 
 
 @pytest.fixture(scope="module")
-def settled():
+def settled(small_wall_packing):
     from murus.retaining.dem_wall import build_wall
 
     w = small_wall()
-    p = generate_packing(w, 1.0, radius=0.02, seed=0)
+    p = small_wall_packing  # generate_packing(w, 1.0, radius=0.02, seed=0), tests/conftest.py
     bf = DiscreteBackfill(w, 1.0, "container", packing=p)
     dw = build_wall(w, stiffness_scale=1e-3, backstop=False, add_bodies=bf.add_to)
     bf.settle(dw)
@@ -179,13 +179,16 @@ def test_collapse_run_rejects_unknown_backfill():
         collapse_run(small_wall(), 5.0, backfill="continuum", A_pseudo=1.0)
 
 
-def test_collapse_run_with_discrete_backfill():
+def test_collapse_run_with_discrete_backfill(small_wall_packing):
     """The integration: a short S2 segment on the small wall, the backfill summary in the
-    options, the d_top history sampled as in the thrust case."""
+    options, the d_top history sampled as in the thrust case. The packing is the one the run
+    would generate from ``W`` and ``radius`` (the session's, tests/conftest.py: the generation
+    is tested by the fixture ``settled``)."""
     from murus.retaining.collapse import collapse_run
 
     r = collapse_run(small_wall(), 5.0, backfill="discrete", t_max=0.1, A_pseudo=1.0,
-                     backfill_options=dict(W=1.0, boundary="absorbing", radius=0.02))
+                     backfill_options=dict(W=1.0, boundary="absorbing", radius=0.02,
+                                           packing=small_wall_packing))
     assert not r.collapsed and r.status == "completed"
     o = r.options["backfill_options"]
     assert r.options["backfill"] == "discrete" and o["boundary"] == "absorbing"

@@ -286,7 +286,7 @@ def test_example_runs_and_reruns_nothing(serial_run):
     r = dict(zip(head, row, strict=True))
     assert r["collapsed"] == "True" and 1.0 < float(r["A_col_m_s2"]) / \
         float(r["A_pseudo_m_s2"]) < 3.0  # dynamic capacity above the pseudo-static one
-    assert r["S1_0.6_A_col"] == "stable"  # seed 001 Figure 14
+    assert r["S1_0.6_A_col"] == "stable"  # Savalle et al. (2022), Figure 14
     for name in ("S2_5Hz_none", "S1_5Hz_none_0.6", "S1_5Hz_none_0.7"):
         assert (out / "cases" / f"{name}.png").stat().st_size > 1000
         h = np.loadtxt(out / "cases" / f"{name}.csv", delimiter=",", skiprows=1)

@@ -1,10 +1,10 @@
 """Collapse protocol and behaviour factor (murus.retaining.collapse) on a cheap mock-up.
 
-The mock-up of seed 001 §3 with H/B = 1.3 and 11 mm courses (four courses and a top course);
-the joint stiffness of seed 001 Table 1 is scaled by 1e-4 (2.6e8 Pa/m: the joint closure under
-the wall's weight, 2.5e-6 m, is 0.1 % of the 5 % H collapse threshold) and the ramp reaches
-A_pseudo at 0.5 s instead of 2.5 s, so that each run takes a few seconds. (At 1e-5 the crest
-stone presses 1.7 mm into the backstop at collapse, 10 % of its thickness: the engine stops
+The mock-up of Savalle et al. (2022), §3 with H/B = 1.3 and 11 mm courses (four courses and a top
+course); the joint stiffness of Savalle et al. (2022), Table 1 is scaled by 1e-4 (2.6e8 Pa/m: the
+joint closure under the wall's weight, 2.5e-6 m, is 0.1 % of the 5 % H collapse threshold) and the
+ramp reaches A_pseudo at 0.5 s instead of 2.5 s, so that each run takes a few seconds. (At 1e-5 the
+crest stone presses 1.7 mm into the backstop at collapse, 10 % of its thickness: the engine stops
 such a run as an interpenetration, issue 15.)
 """
 
@@ -51,7 +51,7 @@ def test_strong_ramp_collapses(strong, wall, a_pseudo):
     assert r.threshold == pytest.approx(0.05 * wall.height)  # mock-ups: 5 % H (§3.1)
     assert r.A_rate == pytest.approx(ramp_rate(a_pseudo, 0.5))
     assert r.A_col == pytest.approx(r.A_rate * r.t_col)
-    # dynamic capacity above the pseudo-static one (seed 001 Table 8: r > 1)
+    # dynamic capacity above the pseudo-static one (Savalle et al. (2022), Table 8: r > 1)
     assert 1.0 < r.A_col / a_pseudo < 3.0
     # d_top crosses the threshold at t_col
     assert r.d_top[-1] > r.threshold
@@ -143,7 +143,7 @@ def test_peak_ratio_check_runs_s1_with_the_same_slope(wall, a_pseudo, strong):
     for ratio, c in checks.items():
         assert c.signal == "S1" and c.a_peak == pytest.approx(ratio * strong.A_col)
         assert c.A_rate == pytest.approx(strong.A_rate)
-    # seed 001 Figure 14: stable at 0.6 A_col; a peak above A_col collapses
+    # Savalle et al. (2022), Figure 14: stable at 0.6 A_col; a peak above A_col collapses
     assert low.stable and low.t_end == pytest.approx(3 * low.a_peak / low.A_rate + 0.2, abs=2e-3)
     assert high.collapsed
 
@@ -183,8 +183,8 @@ def test_damping_frame_is_irrelevant_without_damping(wall, a_pseudo):
 def test_mechanisms_follow_the_limit_analysis_on_a_fast_ramp(wall, a_pseudo, strong):
     # on a fast ramp (A_pseudo reached at 0.5 s) the DEM wall fails by the mechanism that
     # governs the pseudo-static limit analysis: sliding of the squat mock-up (H/B = 1.3),
-    # overturning of the slender one (H/B = 3.3); the modes of seed 001 Table 3 (S, T) in the
-    # experiment and in UDEC. (On the slow 10 Hz ramp of §3 the murus mock-ups all slide:
+    # overturning of the slender one (H/B = 3.3); the modes of Savalle et al. (2022), Table 3 (S, T)
+    # in the experiment and in UDEC. (On the slow 10 Hz ramp of §3 the murus mock-ups all slide:
     # VALIDATION.md, dynamic collapse.)
     from murus.retaining.pseudostatic import critical_acceleration
 

@@ -26,7 +26,7 @@ def test_dsrw1_stones_tile_the_section_in_running_bond():
     assert abs(dw.stone_weight / w.weight - 1.0) < 1e-6
     area = sum(polygon_area_centroid([tuple(p) for p in poly])[0] for poly in dw.polygons)
     assert area == pytest.approx(w.area, rel=1e-9)
-    # seed 001 §4.1: stones 0.1 m high, 0.35 m long; courses follow the bed joints
+    # Savalle et al. (2022), §4.1: stones 0.1 m high, 0.35 m long; courses follow the bed joints
     assert len(dw.courses) == len(w.joints)
     assert max(len(c) for c in dw.courses) <= 3
     # running bond: the first head joint of adjacent courses is offset along the beds

@@ -1,5 +1,6 @@
-"""Pseudo-static limit equilibrium of dry-stone retaining walls (seed 001 §4.4): Table 8, closed
-forms for blocks without backfill, the tilting-table equivalence, the trial wedge, errors."""
+"""Pseudo-static limit equilibrium of dry-stone retaining walls (Savalle et al. (2022), §4.4): Table
+8, closed forms for blocks without backfill, the tilting-table equivalence, the trial wedge,
+errors."""
 
 import csv
 import math
@@ -34,7 +35,7 @@ def table8(data_dir):
         return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
 
 
-# -- seed 001 Table 8 ----------------------------------------------------------------------------
+# -- Savalle et al. (2022), Table 8 ----------------------------------------------------------------
 def test_table8_dsrw1_within_5_percent(data_dir):
     rows = [r for r in table8(data_dir) if r["A_pseudo_m_s2"]]
     assert len(rows) == 5 and {r["wall"] for r in rows} == {"DSRW1"}

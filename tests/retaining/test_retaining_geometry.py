@@ -1,4 +1,5 @@
-"""Dry-stone retaining wall sections: seed 001 Table 5 presets, polygon, joints, bad input."""
+"""Dry-stone retaining wall sections: Savalle et al. (2022), Table 5 presets, polygon, joints, bad
+input."""
 
 import csv
 import math
@@ -142,7 +143,7 @@ def test_mockups():
         m = mockup(r)
         assert m.slenderness == pytest.approx(r)
         assert m.base_width == 0.034 and m.external_batter == 0 and m.bed_inclination_deg == 0
-        assert len(m.joints) == 1  # courses not given by the seed: base joint only
+        assert len(m.joints) == 1  # courses not given by the paper: base joint only
         assert (m.wall_unit_weight, m.backfill_unit_weight) == (14.4e3, 15.4e3)
         assert (m.backfill_friction_deg, m.joint_friction_deg) == (45.0, 32.0)
     assert preset("mockup-2.7") == mockup(2.7)

@@ -1,4 +1,4 @@
-"""Weighted global response of several cross-sections (seed 001 §3.2, Table 2)."""
+"""Weighted global response of several cross-sections (Savalle et al. (2022), §3.2, Table 2)."""
 
 import csv
 from pathlib import Path
@@ -21,7 +21,7 @@ def table2():
     return w, times, printed
 
 
-def test_seed001_table2():
+def test_savalle2022_table2():
     """Sections whose d_top grows linearly and reaches 5 mm at the printed times: the weighted
     time at 5 mm is the printed 20.1 s to its last digit (exact mean 20.070 s)."""
     w, times, printed = table2()

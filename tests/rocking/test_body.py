@@ -1,11 +1,12 @@
-"""Geometry of the rocking bodies against seed 002 Table 1 and seed 000 §3.1 (closed forms)."""
+"""Geometry of the rocking bodies against EURODYN (2020), Table 1 and Mordant et al. (SERIES), §3.1
+(closed forms)."""
 
 import csv
 import math
 
 import pytest
 
-from murus.rocking import BodyError, RigidBlock, seed000_wall, seed002_block
+from murus.rocking import BodyError, RigidBlock, restrained_wall_block, series_clay_wall
 
 
 def _table1(data_dir):
@@ -14,11 +15,11 @@ def _table1(data_dir):
     return rows
 
 
-def test_seed002_table1_within_half_percent(data_dir):
+def test_eurodyn2020_table1_within_half_percent(data_dir):
     rows = _table1(data_dir)
     assert len(rows) == 6
     for row in rows:
-        blk = seed002_block(row["label"])
+        blk = restrained_wall_block(row["label"])
         assert blk.slenderness == pytest.approx(float(row["lambda"]), rel=1e-12)
         assert blk.height == pytest.approx(float(row["h_m"]), rel=1e-12)
         # the table rounds m to 1 kg, R to 0.01 m: 0.5 % covers the rounding (R: 0.33 % worst)
@@ -34,14 +35,14 @@ def test_seed002_table1_within_half_percent(data_dir):
         ("short", 0.197396, 1.835647, 2.311745, 12.0 / 13.0),
     ],
 )
-def test_seed000_walls_top_mass(kind, alpha, R, p, e):
-    w = seed000_wall(kind)
+def test_series_walls_top_mass(kind, alpha, R, p, e):
+    w = series_clay_wall(kind)
     assert w.mass == 5000.0
     assert w.alpha == pytest.approx(alpha, abs=1e-6)
     assert w.R == pytest.approx(R, abs=1e-6)
     assert w.p == pytest.approx(p, abs=1e-6)
     assert w.housner_restitution() == pytest.approx(e, abs=1e-6)
-    # mass on top: I_O = m R^2 (seed 000 eq. 4), e = cos 2 alpha (eq. 10)
+    # mass on top: I_O = m R^2 (Mordant et al. (SERIES), eq. 4), e = cos 2 alpha (eq. 10)
     assert w.I_O == pytest.approx(w.mass * w.R**2, rel=1e-12)
     assert w.housner_restitution() == pytest.approx(math.cos(2 * w.alpha), rel=1e-12)
 

@@ -43,7 +43,7 @@ def test_example_cases_build_every_term():
     model, motion, kw = build(cfg, path, text)
     assert model.motion_sides == "one"
     assert model.tie.stiffness == pytest.approx(6.9227e4)
-    # c = 1 % of c_d = 2 m g delta_t / h (seed 002 eq. 13)
+    # c = 1 % of c_d = 2 m g delta_t / h (EURODYN (2020), eq. 13)
     cd = 2 * model.body.mass * 9.81 * 10.0 / 3.0
     assert model.damper.coefficient == pytest.approx(0.01 * cd, rel=1e-12)
     assert model.transverse_walls.stiffness == 4.5e8

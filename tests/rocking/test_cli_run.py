@@ -5,35 +5,15 @@ import math
 
 import numpy as np
 import pytest
+from rocking_inputs import rocking_case, write_record
 from typer.testing import CliRunner
 
 from murus.cli import app
 
 runner = CliRunner()
 
-CASE = """
-[body]
-width = 0.25
-height = 1.0
-thickness = 1.0
-density = 2000.0
-top_mass = 0.0
-[restitution]
-law = "housner"
-[motion]
-file = "record.csv"
-units = "g"
-scale = 1.0
-[solver]
-method = "event"
-duration = 6.0
-"""
+CASE = rocking_case(6.0, body="top_mass = 0.0\n", motion="scale = 1.0\n")
 
-
-def write_record(folder, name="record.csv", amp_g=0.5):
-    t = np.arange(0, 3.0, 0.01)
-    a = amp_g * np.sin(2 * math.pi * 2.0 * t) * np.exp(-t)
-    np.savetxt(folder / name, np.column_stack([t, a]), delimiter=",", fmt="%.6f")
 
 
 def run(tmp_path, case_text, out="out"):

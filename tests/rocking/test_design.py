@@ -1,4 +1,5 @@
-"""Design equations of seed 002 (eq. 8-13) against closed forms, Table 1, and the `design` CLI."""
+"""Design equations of EURODYN (2020) (eq. 8-13) against closed forms, Table 1, and the `design`
+CLI."""
 
 import csv
 import json
@@ -8,7 +9,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from murus.rocking import RigidBlock, seed002_block
+from murus.rocking import RigidBlock, restrained_wall_block
 from murus.rocking.design import (
     COMMERCIAL_DIAMETERS_MM,
     DesignError,
@@ -33,14 +34,14 @@ def _table1(data_dir):
 
 # -- eq. 10, 11 ------------------------------------------------------------------------------
 def test_eq10_seed_values():
-    # seed 002 §4.3: E_x = 1.5e9, t = 0.3 m, L_eff = 1.0 m -> K' = 4.5e8 N/m/m (§4.2)
+    # EURODYN (2020), §4.3: E_x = 1.5e9, t = 0.3 m, L_eff = 1.0 m -> K' = 4.5e8 N/m/m (§4.2)
     assert bed_stiffness_from_walls(1.5e9, 0.3, 1.0) == pytest.approx(4.5e8, rel=1e-15)
     assert bed_stiffness_from_walls(2.0e9, 0.5, 2.0) == pytest.approx(5.0e8, rel=1e-15)
 
 
 @pytest.mark.parametrize("blk", BLOCKS)
 def test_eq11_printed_and_equal_frequencies(blk):
-    b = seed002_block(blk)
+    b = restrained_wall_block(blk)
     K = 3.0e5
     geo = tie_geometry(b)
     kb = bed_stiffness_equal(b, K)
@@ -55,7 +56,7 @@ def test_eq11_printed_and_equal_frequencies(blk):
 
 # -- geometry --------------------------------------------------------------------------------
 def test_tie_geometry_closed_forms():
-    b = seed002_block("block1")  # b = 0.3, h = 3.0
+    b = restrained_wall_block("block1")  # b = 0.3, h = 3.0
     g0 = tie_geometry(b)  # top, mid-thickness
     assert g0.height == 3.0 and g0.x == 0.0
     assert g0.R_t == pytest.approx(math.hypot(0.15, 3.0), rel=1e-15)
@@ -84,13 +85,13 @@ def test_tie_geometry_closed_forms():
 )
 def test_tie_geometry_validation(height, x, word):
     with pytest.raises(DesignError, match=r"^" + word.replace("(", r"\(").replace(")", r"\)")):
-        tie_geometry(seed002_block("block1"), height, x)
+        tie_geometry(restrained_wall_block("block1"), height, x)
 
 
 # -- eq. 8, 9 --------------------------------------------------------------------------------
 @pytest.mark.parametrize("blk", BLOCKS)
 def test_eq8_eq9_and_linearised_identities(blk):
-    b = seed002_block(blk)
+    b = restrained_wall_block(blk)
     m, R, I_O, zG = b.mass, b.R, b.I_O, b.z_G
     K, Kb, ht = 5.0e6, 2.0e6, 0.8 * b.height
     r = resonance_frequencies(b, K=K, tie_height=ht, K_bed=Kb)
@@ -127,7 +128,7 @@ def test_eq9_linearised_bed_height_two_R_would_match():
 
 
 def test_weak_restraint_gives_nan():
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     r = resonance_frequencies(b)  # free-standing: K = K' = 0
     assert math.isnan(r.omega_plus) and math.isnan(r.omega_minus)
     assert math.isnan(r.omega_plus_lin) and math.isnan(r.omega_minus_lin)
@@ -153,7 +154,7 @@ def test_weak_restraint_gives_nan():
 )
 def test_resonance_validation(kwargs, word):
     with pytest.raises(DesignError) as exc:
-        resonance_frequencies(seed002_block("block1"), **kwargs)
+        resonance_frequencies(restrained_wall_block("block1"), **kwargs)
     assert str(exc.value).startswith(word) and "\n" not in str(exc.value)
 
 
@@ -161,7 +162,7 @@ def test_resonance_validation(kwargs, word):
 @pytest.mark.parametrize("blk", BLOCKS)
 @pytest.mark.parametrize("frac", [1.0, 0.75, 0.5])
 def test_eq12_round_trip(blk, frac):
-    b = seed002_block(blk)
+    b = restrained_wall_block(blk)
     ht = frac * b.height
     td = tie_design(b, ht)
     W, s, h = b.mass * G, b.width, b.height
@@ -177,7 +178,7 @@ def test_eq12_round_trip(blk, frac):
 def test_block1_numbers_against_table1(data_dir):
     row = _table1(data_dir)["block1"]
     m_tab = float(row["m_kg"])  # 1926 kg as printed (21 kN/m3 x 0.9 m3 / 9.81 = 1926.6)
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     assert b.mass == pytest.approx(m_tab, abs=1.0)
     # eq. 12 with s = 0.3, h = 3.0, h_t = h, mu = 0.2: T_d = W (0.3 - 0.15) / 3 = W / 20
     td = tie_design(b)
@@ -197,13 +198,13 @@ def test_block1_numbers_against_table1(data_dir):
 
 
 def test_commercial_diameter():
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     td = tie_design(b, round_to_commercial=True)
     assert td.phi_d == 0.008 and td.commercial
     assert td.phi_required == pytest.approx(tie_design(b).phi_d, rel=1e-15)
     assert td.K_d == pytest.approx(210e9 * math.pi * 0.008**2 / 4 / 10, rel=1e-14)
     # a required diameter between two sizes rounds up to the next one
-    b6 = seed002_block("block6")
+    b6 = restrained_wall_block("block6")
     td6 = tie_design(b6, mu=0.5, round_to_commercial=True)
     mm = td6.phi_required * 1000
     assert td6.phi_d * 1000 == pytest.approx(min(d for d in COMMERCIAL_DIAMETERS_MM if d >= mm))
@@ -235,14 +236,14 @@ def test_stable_wall_needs_no_tie_and_top_mass_uses_z_G():
 )
 def test_tie_design_validation(kwargs, word):
     with pytest.raises(DesignError) as exc:
-        tie_design(seed002_block("block1"), **kwargs)
+        tie_design(restrained_wall_block("block1"), **kwargs)
     assert str(exc.value).startswith(word)
 
 
 # -- eq. 13 ----------------------------------------------------------------------------------
 @pytest.mark.parametrize("blk", BLOCKS)
 def test_eq13_reference_damping(blk):
-    b = seed002_block(blk)
+    b = restrained_wall_block(blk)
     for dt in (0.05, 0.1, 0.5):
         c_d = reference_damping(b, dt)
         assert c_d == pytest.approx(2 * b.mass * G * dt / b.height, rel=1e-12)
@@ -256,7 +257,7 @@ def test_eq13_reference_damping(blk):
 
 # -- report ----------------------------------------------------------------------------------
 def test_design_report_defaults_and_sources():
-    b = seed002_block("block2")
+    b = restrained_wall_block("block2")
     rep = design_report(b, delta_t=0.1, fractions=(0.01, 0.05))
     td = tie_design(b)
     assert rep["stiffness"]["K"] == pytest.approx(td.K_d, rel=1e-15)
@@ -316,7 +317,7 @@ def test_cli_resonance():
     d = json.loads(r.output)
     assert d["resonance"]["omega_plus"] is None  # no tie: no oscillation about O
     assert d["stiffness"]["K_bed"] == pytest.approx(4.5e8, rel=1e-15)
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     ref = resonance_frequencies(b, K=0.0, K_bed=4.5e8)
     assert d["resonance"]["omega_minus"] == pytest.approx(ref.omega_minus, rel=1e-15)
     r = _cli("resonance", "--block", "block1", "--K-over-Kd", "0.5", "--bed-stiffness", "1e5",
@@ -332,7 +333,7 @@ def test_cli_resonance():
     [
         (["tie", "--block", "block1", "--tie-height", "4"], "above the wall (h = 3.0 m)"),
         (["resonance", "--block", "block1", "--K", "-1"], "K must be a non-negative"),
-        (["tie", "--block", "block9"], "unknown seed 002 block 'block9'"),
+        (["tie", "--block", "block9"], "unknown EURODYN (2020) block 'block9'"),
         (["damper", "--block", "block1", "--delta-t", "0"], "--delta-t must be"),
         (["tie", "--width", "0.3"], "--width and --height"),
         (["tie", "--width", "-0.3", "--height", "3"], "width must be a positive"),

@@ -74,7 +74,7 @@ def test_one_sine_nonlinear_slender(Omega, expected):
 
 
 def test_uplift_at_g_tan_alpha():
-    # a slow ramp a_g = k t: the body lifts when k t = g tan(alpha) (seed 000 eq. 9)
+    # a slow ramp a_g = k t: the body lifts when k t = g tan(alpha) (Mordant et al. (SERIES), eq. 9)
     k = 1.0  # m/s3
     dt = 0.01
     t = np.arange(0, 4.0, dt)
@@ -82,7 +82,7 @@ def test_uplift_at_g_tan_alpha():
         res = simulate(BLOCK, (dt, sign * k * t), duration=3.0)
         assert res.uplift_time * k == pytest.approx(2.4525, rel=5e-3)
         assert res.uplift_time * k == pytest.approx(G * math.tan(BLOCK.alpha), rel=1e-9)
-        # in the direction of the ground acceleration (seed 002 eq. 1 sign convention)
+        # in the direction of the ground acceleration (EURODYN (2020), eq. 1 sign convention)
         assert np.sign(res.theta[-1]) == sign
         nm = simulate(BLOCK, (dt, sign * k * t), duration=3.0, method="newmark", dt=0.01)
         assert nm.uplift_time == pytest.approx(res.uplift_time, rel=1e-9)

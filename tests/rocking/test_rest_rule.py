@@ -18,12 +18,12 @@ from murus.rocking import (
     RockingModel,
     SpringBed,
     Tie,
-    seed002_block,
+    restrained_wall_block,
     simulate,
 )
 from murus.rocking.design import reference_damping, tie_design
 
-BLOCK = seed002_block("block2")
+BLOCK = restrained_wall_block("block2")
 E = 0.8
 
 
@@ -115,7 +115,7 @@ def test_default_agrees_with_the_accurate_solver_on_real_records():
     impacts (|theta'| >= 1e-2 p alpha before the impact) where that count is stable too."""
     from murus.motion import suite
 
-    block = seed002_block("block1")
+    block = restrained_wall_block("block1")
     thr = G * math.tan(block.alpha)
     recs = [m.sliced(0.0, 10.0) for m in suite("farfield")[0:8:2]]
     default = _models(block, 1e-3)
@@ -236,16 +236,16 @@ rest_tol = 1e-3
 
 
 def test_elastic_impacts_with_a_damper_come_to_rest():
-    """e = 1 with a damper (seed 002 Figures 7-8, the validation's model): the bounce times form
-    a divergent series (each bounce loses a vanishing fraction of its speed to the damper), so
+    """e = 1 with a damper (EURODYN (2020), Figures 7-8, the validation's model): the bounce times
+    form a divergent series (each bounce loses a vanishing fraction of its speed to the damper), so
     the cascade has no accumulation point; the body is put at rest once its speed after an
     impact is below rest_tol p alpha, as before the accumulation rule (334 impacts in 10 s at
     5 % c_d in VALIDATION.md; the accumulation rule alone gave 22.9 million)."""
     from murus.rocking import Constant, Damper, RockingModel, simulate
-    from murus.rocking.body import seed002_block
+    from murus.rocking.body import restrained_wall_block
     from murus.rocking.design import reference_damping
 
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     c = 0.05 * reference_damping(b, 10.186)
     r = simulate(RockingModel(b, Constant(1.0), damper=Damper(c, b.height)),
                  theta0_over_alpha=0.9, duration=10.0, out_dt=0.01)

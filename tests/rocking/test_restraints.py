@@ -1,6 +1,6 @@
-"""Restrained rocking (seed 002 eqs. 1-9): moment terms against the seed's formulas, linearised
-frequencies and the closed-form time away from the stop, energy balance with a damper, tie
-options, bad combinations."""
+"""Restrained rocking (EURODYN (2020), eqs. 1-9): moment terms against the paper's formulas,
+linearised frequencies and the closed-form time away from the stop, energy balance with a damper,
+tie options, bad combinations."""
 
 from __future__ import annotations
 
@@ -11,12 +11,12 @@ import pytest
 from scipy.integrate import quad
 
 from murus import G
-from murus.rocking import Constant, rectangular_pulse, seed002_block, simulate
+from murus.rocking import Constant, rectangular_pulse, restrained_wall_block, simulate
 from murus.rocking import kernels as K
 from murus.rocking.model import ModelError, RockingModel
 from murus.rocking.restraints import Damper, RestraintError, SpringBed, Tie
 
-BLOCK = seed002_block("block1")
+BLOCK = restrained_wall_block("block1")
 HB = 0.5 * BLOCK.width
 M, ZG, I_O, H = BLOCK.mass, BLOCK.z_G, BLOCK.I_O, BLOCK.height
 THETAS = [-0.3, -0.05, -1e-3, 1e-3, 0.02, 0.1, 0.4]
@@ -27,7 +27,7 @@ def _params(**kw):
 
 
 @pytest.mark.parametrize("x_t", [0.0, HB, -HB])
-def test_tie_moment_is_seed002_eq2(x_t):
+def test_tie_moment_is_eurodyn2020_eq2(x_t):
     """T_K = sign(th) K R_t^2 cos(A_t) (sin alpha_t - sin A_t), A_t = alpha_t - sign(th) th,
     with (R_t, alpha_t) of the tie seen from the active pivot; the moment is -T_K."""
     Kt, y = 2.5e5, 2.2
@@ -42,7 +42,7 @@ def test_tie_moment_is_seed002_eq2(x_t):
         assert got == pytest.approx(-TK, rel=1e-12, abs=1e-9)
 
 
-def test_damper_moment_is_seed002_eq7():
+def test_damper_moment_is_eurodyn2020_eq7():
     """T_D = c R_d^2 cos^2(A_d) theta'; the moment is -T_D whatever the sign of theta'."""
     c, y = 3.0e4, H
     P = _params(damper=Damper(c, y))
@@ -55,8 +55,8 @@ def test_damper_moment_is_seed002_eq7():
             assert K.restraint_moment(th, om, s, HB, P) == pytest.approx(-TD, rel=1e-12)
 
 
-def test_spring_bed_is_seed002_eq6_and_quadrature():
-    """Seed 002 eqs. 3-6 (with the factor s its B term needs) equal -cos(th) times the bed
+def test_spring_bed_is_eurodyn2020_eq6_and_quadrature():
+    """EURODYN (2020), eqs. 3-6 (with the factor s its B term needs) equal -cos(th) times the bed
     moment for the bed at the distance s from the inward pivot; any face position agrees with
     a numerical quadrature of the spring forces; no force on outward rotations."""
     kp, hp, s_ = 4.5e8, 2.5, BLOCK.width
@@ -109,13 +109,13 @@ def test_time_away_from_the_stops_matches_closed_form():
             t_star = 2.0 / w * math.atan(v / (w * delta))
             r = simulate(mdl, omega0=side * v, duration=3 * t_star, rtol=1e-12)
             assert r.impacts[0, 0] == pytest.approx(t_star, rel=1e-4)
-    # seed 002 eq. 9 (h' = 2 R and m g R: its hidden assumptions) against the bed side: 2 %
+    # EURODYN (2020), eq. 9 (h' = 2 R and m g R: its hidden assumptions) against the bed side: 2 %
     w9 = BLOCK.p * math.sqrt(8 * kp * BLOCK.R**2 / (3 * M * G) - 1)
     assert w9 == pytest.approx(math.sqrt((kp * H**3 / 3 - M * G * ZG) / I_O), rel=0.02)
 
 
 def test_small_oscillation_frequency_and_eq8():
-    """A bidirectional elastic tie (seed 002 Figure 2) with elastic impacts: a small free
+    """A bidirectional elastic tie (EURODYN (2020), Figure 2) with elastic impacts: a small free
     oscillation has the frequency sqrt((K h^2 - m g z_G) / I_O) within 2 % (the constant
     gravity moment m g b/2 perturbs it by O(delta/theta0) = 0.3 % here), and eq. 8 gives it."""
     Kt = 1.0e7
@@ -230,10 +230,10 @@ def test_piecewise_linear_frequency_with_a_soft_tie():
     assert w_sim == pytest.approx(piecewise_linear_frequency(BLOCK, Kd, A), rel=2e-3)
 
 
-def test_seed002_figure9_reductions():
-    """Seed 002 Figure 9 (tests/data/rocking/seed002_fig9.csv): with the characteristic time of
-    eq. 13 calibrated on the free-standing block (82 %), the restrained block's reduction is a
-    prediction; the seed prints "27 %" read off a figure, so 2 points of tolerance."""
+def test_eurodyn2020_figure9_reductions():
+    """EURODYN (2020), Figure 9 (tests/data/rocking/seed002_fig9.csv): with the characteristic time
+    of eq. 13 calibrated on the free-standing block (82 %), the restrained block's reduction is a
+    prediction; the paper prints "27 %" read off a figure, so 2 points of tolerance."""
     import csv
     import sys
     from pathlib import Path

@@ -1,5 +1,5 @@
-"""The modified rocking model of seed 000 §3.3: compressive-length pivot (eqs. 11-13) and the
-restitution laws (eqs. 14-18), each against its closed form."""
+"""The modified rocking model of Mordant et al. (SERIES), §3.3: compressive-length pivot (eqs.
+11-13) and the restitution laws (eqs. 14-18), each against its closed form."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from murus.rocking import (
     Pivot,
     RockingModel,
     rectangular_pulse,
-    seed000_wall,
+    series_clay_wall,
     simulate,
     sine_pulse,
 )
@@ -24,7 +24,7 @@ from murus.rocking import kernels as K
 from murus.rocking.restitution import RestitutionError
 from murus.rocking.restraints import RestraintError
 
-SHORT = seed000_wall("short")  # B = 0.72 m, mass 5 t at H = 1.8 m
+SHORT = series_clay_wall("short")  # B = 0.72 m, mass 5 t at H = 1.8 m
 B, H = SHORT.width, SHORT.z_G
 ONSET = {  # ground acceleration that starts rocking [m/s2], from a_g H = g * lever(a_g)
     "corner": G * B / (2 * H),
@@ -57,8 +57,8 @@ def test_kernel_lever_matches_python_and_ec6(reading):
 
 @pytest.mark.parametrize("reading", sorted(ONSET))
 def test_rocking_starts_at_the_modified_criterion(reading):
-    """Seed 000 eq. 11: rocking starts when m a_g H > m g lever; a rectangular pulse just below
-    the onset acceleration never lifts the wall, just above lifts it at once."""
+    """Mordant et al. (SERIES), eq. 11: rocking starts when m a_g H > m g lever; a rectangular pulse
+    just below the onset acceleration never lifts the wall, just above lifts it at once."""
     mdl = RockingModel(SHORT, pivot=_pivot(reading))
     a = ONSET[reading]
     below = simulate(mdl, rectangular_pulse(a * (1 - 1e-7), 0.5), duration=0.6)
@@ -71,7 +71,7 @@ def test_rocking_starts_at_the_modified_criterion(reading):
 
 def test_housner_with_a_moving_pivot_is_the_momentum_balance():
     """Eq. 13: with the kern pivot the coefficient is (H^2 - b^2) / (H^2 + b^2), b = B/6 (mass
-    on top); on the corner it is cos 2 alpha (seed 000 eq. 10)."""
+    on top); on the corner it is cos 2 alpha (Mordant et al. (SERIES), eq. 10)."""
     for pivot, lever in ((Pivot(), B / 2), (Pivot("compressive-length", "kern"), B / 6)):
         r = simulate(RockingModel(SHORT, Housner(), pivot=pivot), theta0_over_alpha=0.5,
                      duration=4.0)
@@ -82,7 +82,7 @@ def test_housner_with_a_moving_pivot_is_the_momentum_balance():
 def test_momentum_restitution_with_a_moving_pivot():
     """e = (H^2 - b1 b2) / (H^2 + b2^2) for the mass on top; cos 2 alpha for b1 = b2 = B/2;
     the uniform block's Housner value 1 - 3/2 sin^2 alpha at its corners."""
-    from murus.rocking import seed002_block
+    from murus.rocking import restrained_wall_block
     from murus.rocking.restitution import momentum_restitution
 
     for b1, b2 in ((0.36, 0.36), (0.36, 0.12), (0.2, 0.3)):
@@ -90,7 +90,7 @@ def test_momentum_restitution_with_a_moving_pivot():
             (H**2 - b1 * b2) / (H**2 + b2**2), rel=1e-14)
     assert momentum_restitution(SHORT, B / 2, B / 2) == pytest.approx(
         math.cos(2 * SHORT.alpha), rel=1e-14)
-    blk = seed002_block("block1")
+    blk = restrained_wall_block("block1")
     hb = blk.width / 2
     assert momentum_restitution(blk, hb, hb) == pytest.approx(
         1 - 1.5 * math.sin(blk.alpha) ** 2, rel=1e-13)

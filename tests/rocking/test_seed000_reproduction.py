@@ -1,4 +1,5 @@
-"""Seed 000 §3.2-3.3.1: the rocking-onset statements for the tests S07-S09 of Table 1.
+"""Mordant et al. (SERIES), §3.2-3.3.1: the rocking-onset statements for the tests S07-S09 of Table
+1.
 
 The measured table signals are not available: one EN 1998-1 Type 1, ground B artificial record
 (fixed seed) is scaled to the measured PGA of each test, as in ``validation/seed000_model.py``.
@@ -17,7 +18,7 @@ import pytest
 
 from murus import G
 from murus.motion.artificial import generate_ec8
-from murus.rocking import Housner, Pivot, RockingModel, seed000_wall, simulate
+from murus.rocking import Housner, Pivot, RockingModel, series_clay_wall, simulate
 
 TABLE1 = Path(__file__).resolve().parents[1] / "data" / "rocking" / "seed000_table1_pga.csv"
 COLUMN = {"short": "short_no_rubber", "long": "long_no_rubber"}
@@ -50,12 +51,13 @@ def _pivot(reading: str) -> Pivot:
 
 def _onset(wall: str, reading: str) -> float:
     """Onset acceleration [m/s2]."""
-    b = seed000_wall(wall)
+    b = series_clay_wall(wall)
     return ONSET[reading] * G * b.width / b.z_G
 
 
 def test_table1_file():
-    """The data file holds the nine tests and the no-rubber PGAs used in seed 000 §3."""
+    """The data file holds the nine tests and the no-rubber PGAs used in Mordant et al. (SERIES),
+    §3."""
     t1 = _table1()
     assert list(t1) == [f"S{i:02d}" for i in range(1, 10)]
     assert [PGA[("long", t)] for t in ("S07", "S08", "S09")] == [0.4496, 0.5716, 0.6878]
@@ -69,17 +71,17 @@ def test_plain_criterion_peak_is_pga_over_corner_threshold(wall, test):
     """Eq. 9 on the corner: max RC(t) = PGA / (g B / 2H) for the exactly scaled record."""
     rec = _scaled(wall, test)
     assert rec.pga == pytest.approx(PGA[(wall, test)] * G, rel=1e-12)
-    res = simulate(RockingModel(seed000_wall(wall), Housner()), rec)
+    res = simulate(RockingModel(series_clay_wall(wall), Housner()), rec)
     expected = PGA[(wall, test)] * G / _onset(wall, "corner")
     assert res.rocking_criterion.max() == pytest.approx(expected, rel=1e-9)
 
 
 @pytest.mark.parametrize("wall", WALLS)
 def test_plain_model_rocks_at_s09_only(wall):
-    """Seed 000 §3.2, Figures 9-11: the plain model predicts no rocking for S07 and S08 and
-    rocking for S09, on both walls; uplift happens within one step of the first sample of the
-    record above the corner threshold."""
-    body = seed000_wall(wall)
+    """Mordant et al. (SERIES), §3.2, Figures 9-11: the plain model predicts no rocking for S07 and
+    S08 and rocking for S09, on both walls; uplift happens within one step of the first sample of
+    the record above the corner threshold."""
+    body = series_clay_wall(wall)
     for test, rocks in (("S07", False), ("S08", False), ("S09", True)):
         assert (PGA[(wall, test)] * G > _onset(wall, "corner")) is rocks
         rec = _scaled(wall, test)
@@ -94,9 +96,9 @@ def test_plain_model_rocks_at_s09_only(wall):
 @pytest.mark.parametrize("reading", ["effective-width", "kern", "neutral-axis"])
 @pytest.mark.parametrize("wall", WALLS)
 def test_modified_criterion_rocks_at_s07_to_s09(wall, reading):
-    """Seed 000 §3.3.1: with the pivot at the zero-stress point (eq. 11) rocking is predicted
-    for all of S07-S09 on both walls, with each reading of the compressive length."""
-    mdl = RockingModel(seed000_wall(wall), pivot=_pivot(reading))
+    """Mordant et al. (SERIES), §3.3.1: with the pivot at the zero-stress point (eq. 11) rocking is
+    predicted for all of S07-S09 on both walls, with each reading of the compressive length."""
+    mdl = RockingModel(series_clay_wall(wall), pivot=_pivot(reading))
     for test in ("S07", "S08", "S09"):
         assert PGA[(wall, test)] * G > _onset(wall, reading)
         res = simulate(mdl, _scaled(wall, test))
@@ -108,14 +110,14 @@ def test_modified_model_starts_rocking_earlier():
     """Short wall S07 (Figure 13): the plain model never lifts, the modified one does; at S09
     (both walls) the modified one lifts no later than the plain one (lower threshold, first
     crossing from rest)."""
-    body = seed000_wall("short")
+    body = series_clay_wall("short")
     rec = _scaled("short", "S07")
     plain = simulate(RockingModel(body), rec)
     modified = simulate(RockingModel(body, pivot=Pivot("compressive-length")), rec)
     assert plain.uplift_time is None
     assert modified.uplift_time is not None
     for wall in WALLS:
-        body = seed000_wall(wall)
+        body = series_clay_wall(wall)
         rec = _scaled(wall, "S09")
         t_plain = simulate(RockingModel(body), rec).uplift_time
         t_mod = simulate(RockingModel(body, pivot=Pivot("compressive-length")), rec).uplift_time

@@ -1,5 +1,5 @@
 """A rigid wall on a no-tension elastic (Winkler) layer: closed forms, conservation, convergence to
-the rigid rocking model (walls on acoustic rubber layers, seed 000 §2.1).
+the rigid rocking model (walls on acoustic rubber layers, Mordant et al. (SERIES), §2.1).
 
 Tolerances are set from measured values with a margin and explained next to each assertion."""
 
@@ -13,7 +13,7 @@ from murus import G
 from murus.rocking import (
     Record,
     rectangular_pulse,
-    seed000_wall,
+    series_clay_wall,
     simulate,
     sine_pulse,
 )
@@ -31,7 +31,8 @@ from murus.rocking.winkler import (
     vertical_frequency,
 )
 
-SHORT = seed000_wall("short")  # 0.72 x 1.80 m, 0.138 m thick, 5 t on top (self-weight neglected)
+# 0.72 x 1.80 m, 0.138 m thick, 5 t on top (self-weight neglected)
+SHORT = series_clay_wall("short")
 STIFFNESSES = (1e9, 1e10, 1e11, 1e12)
 
 
@@ -235,7 +236,7 @@ def test_centre_kinematics_tends_to_its_own_rigid_limit():
 
 
 def test_positive_ground_acceleration_drives_positive_rotation():
-    """Sign convention shared with the rigid engine (theta > 0 clockwise, seed 002 eq. 1)."""
+    """Sign convention shared with the rigid engine (theta > 0 clockwise, EURODYN (2020), eq. 1)."""
     a = 1.5 * G * math.tan(SHORT.alpha)
     for amp in (a, -a):
         res = simulate_winkler(SHORT, WinklerBase(1e10), rectangular_pulse(amp, 0.05),
@@ -261,7 +262,7 @@ def test_damping_dissipates_and_lowers_the_apparent_restitution():
     0.9826, 0.9629 for zeta = 0, 0.05, 0.2, 0.5 -- all above Housner's e = cos 2 alpha = 0.923:
     the elastic layer reverses the vertical velocity of the landing side instead of stopping the
     body on a corner, so at realistic damping an impact loses much less than Housner's rule
-    (seed 000 §2.1: 'the instantaneous energy dissipation ... is lower')."""
+    (Mordant et al. (SERIES), §2.1: 'the instantaneous energy dissipation ... is lower')."""
     es = []
     for z in (0.0, 0.05, 0.2, 0.5):
         res = simulate_winkler(SHORT, WinklerBase(1e9, damping_ratio=z),

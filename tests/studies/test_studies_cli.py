@@ -6,6 +6,7 @@ import shutil
 from pathlib import Path
 
 import pytest
+from studies_inputs import study_toml, write_study
 from typer.testing import CliRunner
 
 from murus.studies.cli import app
@@ -15,39 +16,13 @@ ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "studies" / "seed002_spectrum_block2.toml"
 runner = CliRunner()
 
-BASE = """\
-[study]
-name = "t"
-chunk_size = 8
+BASE = study_toml()
 
-[case.body]
-width = 0.3
-height = 3.0
-density = 2140.7
-
-[case.restraint]
-motion_sides = "one"
-
-[case.restraint.transverse_walls]
-stiffness = "eq11"
-
-[sweep]
-K_over_Kd = [0.0, 0.5, 1.0]
-
-[records]
-folder = "recs"
-units = "m/s2"
-"""
 
 
 @pytest.fixture
 def study_dir(tmp_path, records):
-    from murus.motion import write
-
-    (tmp_path / "recs").mkdir()
-    for m in records[:2]:
-        write(m, tmp_path / "recs" / f"{m.name}.csv")
-    (tmp_path / "s.toml").write_text(BASE)
+    write_study(tmp_path, records, BASE)
     return tmp_path
 
 
@@ -175,13 +150,13 @@ def test_block_sweep_and_bad_variant(study_dir):
                             "--serial", "-q"])
     assert r.exit_code == 0, r.output
     ds = open_result(study_dir / "o" / "result.nc")
-    from murus.rocking import seed002_block
+    from murus.rocking import restrained_wall_block
     from murus.rocking.design import tie_design
 
     K = ds["tie_stiffness"].values[:, 0]
-    assert K[0] == 0.5 * tie_design(seed002_block("block1")).K_d
-    assert K[1] == 0.5 * tie_design(seed002_block("block4")).K_d
-    assert ds["alpha"].values[1, 0] == seed002_block("block4").alpha
+    assert K[0] == 0.5 * tie_design(restrained_wall_block("block1")).K_d
+    assert K[1] == 0.5 * tie_design(restrained_wall_block("block4")).K_d
+    assert ds["alpha"].values[1, 0] == restrained_wall_block("block4").alpha
     r = bad(study_dir, "K_over_Kd = [0.0, 0.5, 1.0]", 'variant = ["x"]')
     assert r.exit_code == 2 and "[sweep.variant] no [variants.x] table" in r.output
 

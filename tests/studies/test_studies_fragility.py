@@ -146,11 +146,11 @@ def test_fragility_end_to_end(records):
     import matplotlib
 
     matplotlib.use("Agg")
-    from murus.rocking import RockingModel, seed002_block
-    from murus.studies.fragility import seed002_configs
+    from murus.rocking import RockingModel, restrained_wall_block
+    from murus.studies.fragility import restraint_configs
 
-    b = seed002_block("block1")
-    models = seed002_configs(b)
+    b = restrained_wall_block("block1")
+    models = restraint_configs(b)
     assert list(models)[0] == "free-standing" and isinstance(models["tied"], RockingModel)
     ds = fragility(models, records, im="PGA", levels=[0.1, 0.2, 0.35, 0.5], executor="serial",
                    n_boot=30)

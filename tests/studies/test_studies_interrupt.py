@@ -19,84 +19,25 @@ from pathlib import Path
 
 import pytest
 import xarray as xr
+from studies_inputs import SLOW_CHILD, SLOW_STUDY, alive, children, write_study
 from typer.testing import CliRunner
 
 from murus.studies.cli import app
 from murus.studies.sweep import open_result, study_status
 
-CHILD = """\
-import functools, sys
-import murus.studies.sweep as sweep
-from murus.studies.faults import Sleep
-sweep.run_plan = functools.partial(sweep.run_plan, hook=Sleep(float(sys.argv[1])))
-sys.argv = ["murus", *sys.argv[2:]]
-from murus.cli import app
-app()
-"""
-
-STUDY = """\
-[study]
-name = "slow"
-chunk_size = 2
-
-[case.body]
-width = 0.3
-height = 3.0
-density = 2140.7
-
-[case.restraint]
-motion_sides = "one"
-
-[case.restraint.transverse_walls]
-stiffness = "eq11"
-
-[sweep]
-K_over_Kd = { linspace = [0.0, 1.0, 12] }
-
-[records]
-folder = "recs"
-units = "m/s2"
-"""
-
 
 @pytest.fixture
 def study(tmp_path, records):
-    from murus.motion import write
-
-    (tmp_path / "recs").mkdir()
-    for m in records[:2]:
-        write(m, tmp_path / "recs" / f"{m.name}.csv")
-    (tmp_path / "s.toml").write_text(STUDY)
-    return tmp_path / "s.toml"
+    return write_study(tmp_path, records, SLOW_STUDY)
 
 
 def start(args, sleep: float, tmp_path: Path) -> subprocess.Popen:
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path), NUMBA_NUM_THREADS="1")
-    return subprocess.Popen([sys.executable, "-c", CHILD, str(sleep), *map(str, args)],
+    return subprocess.Popen([sys.executable, "-c", SLOW_CHILD, str(sleep), *map(str, args)],
                             cwd=tmp_path, env=env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)
 
 
-def children(pid: int) -> list[int]:
-    """The processes whose parent is ``pid`` (from /proc)."""
-    out = []
-    for d in Path("/proc").iterdir():
-        if d.name.isdigit():
-            try:
-                stat = (d / "stat").read_text()
-            except OSError:
-                continue
-            if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
-                out.append(int(d.name))
-    return out
-
-
-def alive(pid: int) -> bool:
-    try:
-        stat = Path(f"/proc/{pid}/stat").read_text()
-    except OSError:
-        return False
-    return stat.rsplit(")", 1)[1].split()[0] != "Z"
 
 
 def wait_for(cond, timeout: float, what: str) -> None:

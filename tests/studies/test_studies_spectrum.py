@@ -1,4 +1,4 @@
-"""Rocking spectra of seed 002 §4.1: the models built for each stiffness, the free-standing
+"""Rocking spectra of EURODYN (2020), §4.1: the models built for each stiffness, the free-standing
 reference, spectra against damping and pulse frequency, plots (issue 7, item 3)."""
 
 import math
@@ -7,7 +7,7 @@ import matplotlib
 import numpy as np
 import pytest
 
-from murus.rocking import Damper, RockingModel, SpringBed, Tie, seed002_block, simulate
+from murus.rocking import Damper, RockingModel, SpringBed, Tie, restrained_wall_block, simulate
 from murus.rocking.design import bed_stiffness_equal, reference_damping, tie_design
 from murus.studies.spectrum import plot_overturning_map, plot_rocking_spectrum, rocking_spectrum
 
@@ -16,12 +16,12 @@ matplotlib.use("Agg")
 
 @pytest.fixture(scope="module")
 def spec(records):
-    return rocking_spectrum(seed002_block("block1"), records[:3], np.linspace(0, 1, 5),
+    return rocking_spectrum(restrained_wall_block("block1"), records[:3], np.linspace(0, 1, 5),
                             executor="serial")
 
 
-def test_models_follow_seed002(spec):
-    b = seed002_block("block1")
+def test_models_follow_eurodyn2020(spec):
+    b = restrained_wall_block("block1")
     Kd = tie_design(b).K_d
     K = spec["tie_stiffness"].values
     assert np.allclose(K, np.linspace(0, 1, 5) * Kd, rtol=1e-15)
@@ -33,7 +33,7 @@ def test_models_follow_seed002(spec):
 
 def test_values_are_those_of_simulate(spec, records):
     """Node K = 0.75 K_d under the second record, rebuilt by hand and run alone."""
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     K = 0.75 * tie_design(b).K_d
     m = RockingModel(b, tie=Tie(K, b.height),
                      transverse_walls=SpringBed(bed_stiffness_equal(b, K), b.height),
@@ -47,7 +47,7 @@ def test_values_are_those_of_simulate(spec, records):
 
 
 def test_rigid_walls_and_damping_spectrum(records):
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     ds = rocking_spectrum(b, records[:2], 1.0, walls="rigid", c_over_cd=[0.0, 0.05, 0.2],
                           delta_t=10.0, executor="serial")
     assert ds["theta_max_over_alpha"].dims == ("restraint.damper.fraction", "record")
@@ -68,7 +68,7 @@ def test_rigid_walls_and_damping_spectrum(records):
 def test_pulse_frequency_spectrum():
     """Against omega_p / p for a one-cycle sine pulse (3 g tan alpha) on the free-standing
     block: long pulses overturn it, short ones barely rock it (Zhang and Makris 2001)."""
-    b = seed002_block("block1")
+    b = restrained_wall_block("block1")
     ratios = np.array([1.0, 2.0, 4.0, 8.0, 16.0])
     ds = rocking_spectrum(b, {"type": "sine-pulse", "amplitude_g": 0.3}, 0.0,
                           omega_p_over_p=ratios, free_standing=False, executor="serial")

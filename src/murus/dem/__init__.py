@@ -1,6 +1,6 @@
 """2D distinct elements (UDEC-like) for block masonry: rigid convex polygons, clumps and discs,
-Mohr-Coulomb joints with rounded corners, explicit central differences (seed 001 eqs. 2-4),
-local and mass-proportional damping, kinematic bases driven by ground motions, monitors,
+Mohr-Coulomb joints with rounded corners, explicit central differences (Savalle et al. (2022), eqs.
+2-4), local and mass-proportional damping, kinematic bases driven by ground motions, monitors,
 energy balance and checkpoints.
 
 Conventions (details in :mod:`murus.dem.model`, :mod:`murus.dem.kernels`,

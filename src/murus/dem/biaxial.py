@@ -1,9 +1,9 @@
 """2D biaxial test of a disc assembly and calibration of the rolling resistance (issue 6, 2a).
 
-The backfill of a dry-stone retaining wall is modelled with discs (seed 001 §2: granular
-backfill of friction angle 37.7 deg at full scale, 45 deg for the mock-ups). Round particles roll
-too easily: a disc assembly with a realistic interparticle friction alone gives a macroscopic
-friction angle well below the one of angular gravel, and the usual remedy is a rolling
+The backfill of a dry-stone retaining wall is modelled with discs (Savalle et al. (2022), §2:
+granular backfill of friction angle 37.7 deg at full scale, 45 deg for the mock-ups). Round
+particles roll too easily: a disc assembly with a realistic interparticle friction alone gives a
+macroscopic friction angle well below the one of angular gravel, and the usual remedy is a rolling
 resistance at the contacts (:class:`~murus.dem.materials.Joint` ``rolling`` = mu_r, rolling
 moment limited by ``mu_r r_eff Fn``). :func:`calibrate_rolling` finds the mu_r that gives a
 target peak friction angle in a numerical biaxial test (:func:`biaxial_test`).

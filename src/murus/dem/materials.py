@@ -1,4 +1,5 @@
-"""Joint materials of the distinct-element engine (UDEC "Coulomb slip" joint, seed 001 eqs. 3-4).
+"""Joint materials of the distinct-element engine (UDEC "Coulomb slip" joint, Savalle et al. (2022),
+eqs. 3-4).
 
 Stiffnesses are per unit area of the joint [Pa/m]; a sub-contact of tributary length L in a model
 of thickness t has the spring ``kn L t`` [N/m]. Strengths are stresses [Pa]; a sub-contact that
@@ -25,6 +26,8 @@ class JointError(ValueError):
 class Joint:
     """Mohr-Coulomb joint (elastic-perfectly plastic in shear, brittle in tension).
 
+    Parameters
+    ----------
     kn, ks : normal and shear stiffness per unit area [Pa/m];
     friction_deg : friction angle [deg], 0 <= phi < 90;
     cohesion, tension : initial cohesion c and tensile strength T [Pa];

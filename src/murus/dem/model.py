@@ -50,7 +50,18 @@ _KIN = {None: 0, "dynamic": 0, "fixed": 1, "base": 2, "prescribed": 3}
 
 def polygon_properties(v: np.ndarray) -> tuple[float, np.ndarray, float]:
     """Area [m²], centroid [m] and polar second moment of area about the centroid [m⁴] of a
-    simple polygon with counter-clockwise vertices ``v (k, 2)``."""
+    simple polygon with counter-clockwise vertices ``v (k, 2)``.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Vertices ``(k, 2)`` [m], counter-clockwise.
+
+    Returns
+    -------
+    tuple
+        Area [m²], centroid ``(2,)`` [m], polar second moment [m⁴].
+    """
     x = v[:, 0]
     y = v[:, 1]
     x1 = np.roll(x, -1)

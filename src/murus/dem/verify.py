@@ -348,7 +348,17 @@ CASES = {
 
 
 def run_verification(quick: bool = False) -> list[dict]:
-    """All verification cases: rows dict(case, expected, obtained, error, tolerance, passed)."""
+    """All verification cases: rows dict(case, expected, obtained, error, tolerance, passed).
+
+    Parameters
+    ----------
+    quick : bool
+        Run the short variants of the cases.
+
+    Returns
+    -------
+    list of dict
+    """
     rows = []
     for fn in CASES.values():
         rows.extend(fn(quick))

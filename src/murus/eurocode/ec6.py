@@ -1,10 +1,10 @@
 """EN 1996-1-1 (Eurocode 6): the compressed (contact) length of a wall section under an axial
-force and an in-plane moment, as used by seed 000 §2.2.1 to assess the walls of its shaking-table
-tests. Lengths in m, forces in N, moments in N m.
+force and an in-plane moment, as used by Mordant et al. (SERIES), §2.2.1 to assess the walls of its
+shaking-table tests. Lengths in m, forces in N, moments in N m.
 
 Two stress distributions over a no-tension section of length ``L`` with eccentricity
-``e = |M| / N`` (seed 000 §2.2.1, formulas (2,a) and (2,b), lost in the text extraction and
-reconstructed here from the standard):
+``e = |M| / N`` (Mordant et al. (SERIES), §2.2.1, formulas (2,a) and (2,b), lost in the text
+extraction and reconstructed here from the standard):
 
 - constant stress block (the effective width behind the capacity reduction factor
   ``Phi = 1 - 2 e / t`` of EN 1996-1-1 §6.1.2.2): ``Lc = L - 2 e`` for ``e < L/2``, else 0;
@@ -14,7 +14,7 @@ reconstructed here from the standard):
   ``Lc = 3 (L/2 - e)``, and 0 for ``e >= L/2``.
 
 The resultant leaves the section at ``e = L/2`` (overturning in static terms, rocking in dynamic
-terms, seed 000 §2.2.2).
+terms, Mordant et al. (SERIES), §2.2.2).
 """
 
 from __future__ import annotations
@@ -67,9 +67,9 @@ def kern_limit(L: float) -> float:
 
 @dataclass(frozen=True)
 class EquivalentStatic:
-    """The equivalent static load case of seed 000 Table 2: a mass ``m`` [kg] on top of a wall
-    at height ``H`` [m], loaded horizontally by ``factor * a * m g`` (factor 2.5, the plateau of
-    the EN 1998-1 spectrum) for an acceleration level ``a`` [g]."""
+    """The equivalent static load case of Mordant et al. (SERIES), Table 2: a mass ``m`` [kg] on top
+    of a wall at height ``H`` [m], loaded horizontally by ``factor * a * m g`` (factor 2.5, the
+    plateau of the EN 1998-1 spectrum) for an acceleration level ``a`` [g]."""
 
     mass: float = 5000.0
     height: float = 1.80

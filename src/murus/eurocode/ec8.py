@@ -31,7 +31,15 @@ __all__ = [
 
 @dataclass(frozen=True)
 class SpectrumParameters:
-    """Soil factor S and corner periods TB, TC, TD [s] (EN 1998-1 Tables 3.2 / 3.3)."""
+    """Soil factor S and corner periods TB, TC, TD [s] (EN 1998-1 Tables 3.2 / 3.3).
+
+    Parameters
+    ----------
+    S : float
+        Soil factor [-].
+    TB, TC, TD : float
+        Corner periods [s].
+    """
 
     S: float
     TB: float
@@ -65,7 +73,23 @@ IMPORTANCE_FACTORS = {"I": 0.8, "II": 1.0, "III": 1.2, "IV": 1.4}
 
 
 def parameters(ground: str, spectrum_type: int = 1) -> SpectrumParameters:
-    """S, TB, TC, TD for ground type 'A'-'E' and spectrum type 1 or 2 (Tables 3.2, 3.3)."""
+    """S, TB, TC, TD for ground type 'A'-'E' and spectrum type 1 or 2 (Tables 3.2, 3.3).
+
+    Parameters
+    ----------
+    ground : str
+        Ground type ``"A"`` ... ``"E"``.
+    spectrum_type : int
+        1 or 2.
+
+    Returns
+    -------
+    SpectrumParameters
+
+    References
+    ----------
+    EN 1998-1 §3.2.2.2, Tables 3.2 and 3.3 (recommended values).
+    """
     table = {1: TYPE1, 2: TYPE2}.get(int(spectrum_type))
     if table is None:
         raise ValueError(f"spectrum type must be 1 or 2, got {spectrum_type!r}")
@@ -82,6 +106,16 @@ def eta(damping: float = 0.05) -> float:
     """Damping correction factor eta = sqrt(10 / (5 + xi%)) >= 0.55, EN 1998-1 eq (3.6).
 
     ``damping`` is the viscous damping ratio as a fraction (0.05 = 5 %).
+
+    Parameters
+    ----------
+    damping : float
+        Viscous damping ratio [-] (0.05 = 5 %).
+
+    Returns
+    -------
+    float
+        [-].
     """
     if damping < 0:
         raise ValueError("damping ratio must be >= 0")
@@ -149,6 +183,28 @@ def vertical_spectrum(T, ag: float, spectrum_type: int = 1, damping: float = 0.0
 
     avg = avg_ratio ag (Table 3.4: 0.90 Type 1, 0.45 Type 2); corners (TB, TC, TD) default
     (0.05, 0.15, 1.0) s. No soil factor (S = 1). Sve in the unit of ag.
+
+    Parameters
+    ----------
+    T : float or array_like
+        Periods [s].
+    ag : float
+        Design ground acceleration on type A ground [m/s²] (times the importance factor).
+    spectrum_type : int
+        1 or 2.
+    damping : float
+        Viscous damping ratio [-].
+    importance : str or float, optional
+        Importance class ``"I"`` ... ``"IV"`` or the factor gamma_I.
+    avg_ratio : float, optional
+        ``avg / ag`` [-] (default Table 3.4).
+    corners : tuple of float, optional
+        ``(TB, TC, TD)`` [s] (default Table 3.4).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Sve [in the unit of ``ag``].
     """
     r, TB, TC, TD = VERTICAL[int(spectrum_type)] if int(spectrum_type) in VERTICAL else (
         None, None, None, None)
@@ -174,6 +230,30 @@ def design_spectrum(T, ag: float, q: float, ground: str = "A", spectrum_type: in
     0 <= T <= TB: ag S [2/3 + T/TB (2.5/q - 2/3)];  TB-TC: ag S 2.5/q;
     TC-TD: max(ag S 2.5/q TC/T, beta ag);  T >= TD: max(ag S 2.5/q TC TD/T², beta ag).
     q is the behaviour factor (>= 1 here; q = 1 still gives 2/3 ag S at T = 0 as in the code).
+
+    Parameters
+    ----------
+    T : float or array_like
+        Periods [s].
+    ag : float
+        Design ground acceleration on type A ground [m/s²] (times the importance factor).
+    q : float
+        Behaviour factor [-] (>= 1).
+    ground : str
+        Ground type ``"A"`` ... ``"E"``.
+    spectrum_type : int
+        1 or 2.
+    importance : str or float, optional
+        Importance class or factor.
+    beta : float
+        Lower bound factor [-].
+    params : SpectrumParameters, optional
+        Overrides the recommended S, TB, TC, TD.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Sd [in the unit of ``ag``].
     """
     if q <= 0:
         raise ValueError("behaviour factor q must be positive")
@@ -199,7 +279,28 @@ def design_spectrum(T, ag: float, q: float, ground: str = "A", spectrum_type: in
 def design_spectrum_vertical(T, ag: float, q: float = 1.5, spectrum_type: int = 1,
                              importance=None, beta: float = 0.2):
     """Vertical design spectrum, EN 1998-1 §3.2.2.5(6): eqs (3.13)-(3.16) with avg in place of
-    ag S (S = 1) and the corner periods of Table 3.4; q up to 1.5 for all materials."""
+    ag S (S = 1) and the corner periods of Table 3.4; q up to 1.5 for all materials.
+
+    Parameters
+    ----------
+    T : float or array_like
+        Periods [s].
+    ag : float
+        Design ground acceleration on type A ground [m/s²] (times the importance factor).
+    q : float
+        Behaviour factor [-] (up to 1.5).
+    spectrum_type : int
+        1 or 2.
+    importance : str or float, optional
+        Importance class or factor.
+    beta : float
+        Lower bound factor [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Sd,v [in the unit of ``ag``].
+    """
     r, TB, TC, TD = VERTICAL[int(spectrum_type)]
     return design_spectrum(T, r * ag, q, importance=importance, beta=beta,
                            params=SpectrumParameters(1.0, TB, TC, TD))

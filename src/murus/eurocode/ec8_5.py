@@ -79,6 +79,18 @@ def seismic_angle(kh: float, kv: float = 0.0) -> float:
     ``kh >= 0``; ``kv < 1`` positive upwards (module docstring): the standard's
     ``kh / (1 -+ kv)`` with one signed ``kv``. For a tilting table at angle ``t``
     (``kh = sin t``, ``kv = 1 - cos t``) this gives ``theta = t``.
+
+    Parameters
+    ----------
+    kh : float
+        Horizontal seismic coefficient [-] (>= 0).
+    kv : float
+        Vertical seismic coefficient [-], positive upward (< 1).
+
+    Returns
+    -------
+    float
+        theta [rad].
     """
     kh, kv = _finite("kh", kh), _finite("kv", kv)
     if kh < 0:
@@ -130,6 +142,24 @@ def active_coefficient(phi: float, beta: float = 0.0, delta: float = 0.0,
     for the conventions). With ``theta = 0`` this is Coulomb's coefficient
     (:func:`coulomb_coefficient`). The thrust ``1/2 gamma (1 - kv) K H²`` uses the vertical
     height H of the back face and is inclined by ``delta`` to its normal.
+
+    Parameters
+    ----------
+    phi : float
+        Friction angle of the backfill [rad].
+    beta : float
+        Inclination of the backfill surface [rad].
+    delta : float
+        Wall friction angle [rad].
+    psi : float
+        Inclination of the back face to the horizontal [rad] (pi/2: vertical).
+    theta : float
+        Seismic angle [rad] (:func:`seismic_angle`).
+
+    Returns
+    -------
+    float
+        K [-].
     """
     phi, beta, delta, psi, theta = _check_angles(phi, beta, delta, psi, theta)
     num = math.sin(psi + phi - theta) ** 2
@@ -146,6 +176,22 @@ def coulomb_coefficient(phi: float, beta: float = 0.0, delta: float = 0.0,
     """Static (Coulomb) active coefficient: EN 1998-5 (E.2) with ``theta = 0``.
 
     ``beta > phi`` has no static active state (the slope itself is unstable): an error.
+
+    Parameters
+    ----------
+    phi : float
+        Friction angle of the backfill [rad].
+    beta : float
+        Inclination of the backfill surface [rad].
+    delta : float
+        Wall friction angle [rad].
+    psi : float
+        Inclination of the back face to the horizontal [rad] (pi/2: vertical).
+
+    Returns
+    -------
+    float
+        K_A [-].
     """
     if _finite("beta", beta) > _finite("phi", phi):
         raise EC85Error(f"the backfill slope beta = {beta!r} rad exceeds phi = {phi!r} rad: "
@@ -154,7 +200,18 @@ def coulomb_coefficient(phi: float, beta: float = 0.0, delta: float = 0.0,
 
 
 def rankine_coefficient(phi: float) -> float:
-    """Rankine's ``tan²(pi/4 - phi/2)``: vertical smooth back, level backfill [-]."""
+    """Rankine's ``tan²(pi/4 - phi/2)``: vertical smooth back, level backfill [-].
+
+    Parameters
+    ----------
+    phi : float
+        Friction angle [rad].
+
+    Returns
+    -------
+    float
+        K_A [-].
+    """
     phi = _finite("phi", phi)
     if not 0.0 < phi < 0.5 * math.pi:
         raise EC85Error(f"phi must be in (0, pi/2) rad, got {phi!r}")
@@ -168,6 +225,22 @@ def total_thrust(gamma: float, H: float, K: float, kv: float = 0.0) -> float:
     (``E_ws = 0``, ``E_wd = 0`` (E.7)). ``gamma`` [N/m³] the unit weight of the backfill, ``H``
     [m] the vertical height of the back face, ``K`` from :func:`active_coefficient` with the
     same ``kv`` (positive upwards) in its ``theta``.
+
+    Parameters
+    ----------
+    gamma : float
+        Unit weight of the backfill [N/m³].
+    H : float
+        Vertical height of the back face [m].
+    K : float
+        Earth pressure coefficient [-].
+    kv : float
+        Vertical seismic coefficient [-], positive upward.
+
+    Returns
+    -------
+    float
+        E_d [N/m].
     """
     gamma, H, K, kv = (_finite("gamma", gamma), _finite("H", H), _finite("K", K),
                        _finite("kv", kv))
@@ -191,6 +264,24 @@ def thrust_components(gamma: float, H: float, phi: float, kh: float, kv: float =
     ``dE = E_d - E_static`` with ``E_d`` of eq (E.1) for ``theta`` of eq (E.6) (§7.3.2.3(3):
     the design force is the resultant of the static and dynamic pressures). ``dE`` may be
     negative for a large upward ``kv``.
+
+    Parameters
+    ----------
+    gamma : float
+        Unit weight of the backfill [N/m³].
+    H : float
+        Vertical height of the back face [m].
+    phi : float
+        Friction angle of the backfill [rad].
+    kh, kv : float
+        Seismic coefficients [-] (``kv`` positive upward).
+    beta, delta, psi : float
+        Backfill slope, wall friction and back-face inclination [rad].
+
+    Returns
+    -------
+    tuple of float
+        ``(E_static, dE)`` [N/m].
     """
     K_s = coulomb_coefficient(phi, beta, delta, psi)
     K_d = active_coefficient(phi, beta, delta, psi, seismic_angle(kh, kv))
@@ -205,6 +296,18 @@ def application_heights(H: float, dynamic: str = "mid-height") -> tuple[float, f
     due to the dynamic earth pressure acts at mid-height in the absence of a more detailed
     study (``dynamic="mid-height"``); §7.3.2.3(5): for walls free to rotate about their toe it
     may act at the same point as the static force (``dynamic="static"``, ``H/3``).
+
+    Parameters
+    ----------
+    H : float
+        Vertical height of the back face [m].
+    dynamic : str
+        ``"mid-height"`` or ``"static"``.
+
+    Returns
+    -------
+    tuple of float
+        Heights of the static thrust and of the dynamic increment [m].
     """
     H = _finite("H", H)
     if H < 0:
@@ -218,7 +321,22 @@ def application_heights(H: float, dynamic: str = "mid-height") -> tuple[float, f
 
 
 def horizontal_coefficient(alpha: float, S: float = 1.0, r: float = 1.0) -> float:
-    """``kh = alpha S / r``, EN 1998-5 eq (7.1); ``alpha = ag / g``, ``r`` of Table 7.1."""
+    """``kh = alpha S / r``, EN 1998-5 eq (7.1); ``alpha = ag / g``, ``r`` of Table 7.1.
+
+    Parameters
+    ----------
+    alpha : float
+        ``ag / g`` [-].
+    S : float
+        Soil factor [-].
+    r : float
+        Factor of EN 1998-5 Table 7.1 [-].
+
+    Returns
+    -------
+    float
+        kh [-].
+    """
     alpha, S, r = _finite("alpha", alpha), _finite("S", S), _finite("r", r)
     if alpha < 0 or S <= 0 or r <= 0:
         raise EC85Error("alpha must be >= 0, S and r positive (EN 1998-5 (7.1))")
@@ -229,6 +347,18 @@ def vertical_coefficient(kh: float, avg_over_ag: float = 0.9) -> float:
     """``|kv| = 0.5 kh`` if ``avg / ag > 0.6`` (7.2), else ``0.33 kh`` (7.3), EN 1998-5 §7.3.2.2.
 
     The standard writes ``kv = +-0.5 kh``: the sign is the user's, check both.
+
+    Parameters
+    ----------
+    kh : float
+        Horizontal seismic coefficient [-].
+    avg_over_ag : float
+        Ratio of the vertical to the horizontal design ground acceleration [-].
+
+    Returns
+    -------
+    float
+        ``|kv|`` [-].
     """
     kh, ratio = _finite("kh", kh), _finite("avg_over_ag", avg_over_ag)
     if kh < 0 or ratio < 0:

@@ -1,5 +1,5 @@
-"""Shaking-table test processing (seed 000 §2, issue 8): the test file format and sequences
-(:mod:`~murus.identify.testdata`), white-noise modal identification
+"""Shaking-table test processing (Mordant et al. (SERIES), §2, issue 8): the test file format and
+sequences (:mod:`~murus.identify.testdata`), white-noise modal identification
 (:mod:`~murus.identify.modal`), compressive length from base transducers
 (:mod:`~murus.identify.compressive`), cantilever / hybrid / rocking classification
 (:mod:`~murus.identify.classify`), virtual test sequences (:mod:`~murus.identify.synth`), the

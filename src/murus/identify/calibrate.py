@@ -1,13 +1,13 @@
 """Calibration of the modified rocking model against measured rotations (issue 8, item 6).
 
-Seed 000 §3.3 tunes its modified rocking model (the pivot at the zero-stress point and the
-restitution laws of eqs. 14-18) by comparing simulated and measured rotation histories of the
-tested walls, step by step (Figures 12 and 15-18), without stating an objective. This module
+Mordant et al. (SERIES), §3.3 tunes its modified rocking model (the pivot at the zero-stress point
+and the restitution laws of eqs. 14-18) by comparing simulated and measured rotation histories of
+the tested walls, step by step (Figures 12 and 15-18), without stating an objective. This module
 makes that a least-squares problem:
 
 - parameters: any of ``k0, k1, k0_free, k1_free, A0`` of
-  :class:`murus.rocking.restitution.AmplitudeDependent` (seed 000 eqs. 14-18), each with bounds;
-  the pivot law and the rest of the model are those of the model passed in;
+  :class:`murus.rocking.restitution.AmplitudeDependent` (Mordant et al. (SERIES), eqs. 14-18), each
+  with bounds; the pivot law and the rest of the model are those of the model passed in;
 - data: one or several measured rotation histories, each with the base motion that produced
   it (and an initial state for free-vibration tests);
 - objective (stated): over a time window (the strong-motion window of the input, Arias
@@ -118,9 +118,9 @@ class CalibrationResult:
 
 
 def with_params(model, params: dict):
-    """``model`` with its restitution law replaced by the AmplitudeDependent law (seed 000
-    eqs. 14-18) of ``params``; the other parameters are kept from the model's law if it is
-    one, else they take the law's defaults."""
+    """``model`` with its restitution law replaced by the AmplitudeDependent law
+    (Mordant et al. (SERIES) eqs. 14-18) of ``params``; the other parameters are kept from the
+    model's law if it is one, else they take the law's defaults."""
     from murus.rocking.restitution import AmplitudeDependent
 
     law = model.restitution if isinstance(model.restitution, AmplitudeDependent) \

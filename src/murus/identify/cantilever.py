@@ -1,9 +1,9 @@
 """A cantilever model of a wall for the low-amplitude regime (issue 8, item 5).
 
-Before it rocks, a wall of seed 000 vibrates as a cantilever clamped at the table with the 5 t
-mass on top (its white-noise tests, seed 000 §2.1 and Figure 3). This module models it as a
-Timoshenko beam (bending and shear deformation, rotary inertia of the section) with a tip mass
-and a tip rotary inertia, discretised by finite elements, and gives
+Before it rocks, a wall of Mordant et al. (SERIES) vibrates as a cantilever clamped at the table
+with the 5 t mass on top (its white-noise tests, Mordant et al. (SERIES), §2.1 and Figure 3). This
+module models it as a Timoshenko beam (bending and shear deformation, rotary inertia of the section)
+with a tip mass and a tip rotary inertia, discretised by finite elements, and gives
 
 - its natural frequencies and modes (:meth:`Cantilever.modes`), to compare with the
   frequencies identified from white-noise tests (:mod:`murus.identify`);
@@ -23,7 +23,8 @@ the static tip flexibility H^3/(3 E I) + H/(kappa G A) is reproduced with any nu
 elements; the frequencies converge from above as the mesh is refined, as h^2 for the
 Timoshenko beam and h^4 in the Euler-Bernoulli limit (measured against the exact solution of
 the Timoshenko equations with tip mass and inertia in ``tests/identify/test_cantilever.py``:
-with the default 40 elements the first two frequencies of the seed 000 walls are within 0.05 %).
+with the default 40 elements the first two frequencies of the Mordant et al. (SERIES) walls are
+within 0.05 %).
 
 Conventions and units: in-plane bending of a wall of length ``length`` (the bending depth) and
 thickness ``thickness``, height ``height`` [m]; A = length x thickness, I = thickness length^3/12;

@@ -1,10 +1,11 @@
 """Classification of seismic tests as cantilever, hybrid or rocking responses (issue 8, item 4;
-seed 000 §2.3, Figures 6, 7, 19 and 20).
+Mordant et al. (SERIES), §2.3, Figures 6, 7, 19 and 20).
 
-Seed 000 §2.3 sorts its tests by comparing the rotations measured at the bottom and at the top
-of the wall: a "significant difference" (low levels, S01-S03: the wall bends as a cantilever),
-"quasi-equal rotations" (high levels, S07-S09: the wall rocks as a rigid body on its base
-joint), and a hybrid in between (S04-S06). The seed gives no number; the criterion here is
+Mordant et al. (SERIES), §2.3 sorts its tests by comparing the rotations measured at the bottom and
+at the top of the wall: a "significant difference" (low levels, S01-S03: the wall bends as a
+cantilever), "quasi-equal rotations" (high levels, S07-S09: the wall rocks as a rigid body on its
+base joint), and a hybrid in between (S04-S06). Mordant et al. (SERIES) give no number; the
+criterion here is
 
     ratio = max |rot_bottom| / max |rot_top|
 
@@ -18,11 +19,11 @@ relative to the table, :mod:`murus.identify.testdata`) with
   giving at least 80 % of the top rotation, the deformation of the wall at most 20 %);
 - ``hybrid`` otherwise.
 
-The defaults are a reading of the seed's words, not values from it; they are parameters of
-:class:`Criterion`. Both peaks are taken after a centred moving average of ``smooth`` samples
-(default 1: none) so that isolated noise spikes can be filtered out.
+The defaults are a reading of the text of Mordant et al. (SERIES), not values from it; they are
+parameters of :class:`Criterion`. Both peaks are taken after a centred moving average of ``smooth``
+samples (default 1: none) so that isolated noise spikes can be filtered out.
 
-The lifted-length history ``L - Lc(t)`` (seed 000 Figures 19-20) comes from the base
+The lifted-length history ``L - Lc(t)`` (Mordant et al. (SERIES), Figures 19-20) comes from the base
 transducers by :mod:`murus.identify.compressive`.
 
 Units: rad, s, m.
@@ -48,7 +49,19 @@ class ClassifyError(ValueError):
 
 @dataclass(frozen=True)
 class Criterion:
-    """Thresholds of the classification (module docstring)."""
+    """Thresholds of the classification (module docstring).
+
+    Parameters
+    ----------
+    cantilever_below : float
+        Ratio below which the wall bends as a cantilever [-].
+    rocking_above : float
+        Ratio above which it rocks [-].
+    min_rotation : float
+        Smallest top rotation classified [rad].
+    smooth : int
+        Samples of the centred moving average.
+    """
 
     cantilever_below: float = 0.3
     rocking_above: float = 0.8
@@ -68,7 +81,19 @@ class Criterion:
 @dataclass
 class Classification:
     """Result: ``label`` (one of ``CLASSES``), ``ratio`` of the peaks, ``peak_bottom`` and
-    ``peak_top`` [rad]."""
+    ``peak_top`` [rad].
+
+    Attributes
+    ----------
+    name : str
+        The test.
+    label : str
+        One of ``CLASSES``.
+    ratio : float
+        ``max |rot_bottom| / max |rot_top|`` [-].
+    peak_bottom, peak_top : float
+        [rad].
+    """
 
     name: str
     label: str
@@ -111,7 +136,19 @@ def classify(rot_bottom, rot_top, criterion: Criterion | None = None,
 
 def classify_test(test, criterion: Criterion | None = None) -> Classification:
     """Classify a :class:`~murus.identify.testdata.ShakingTableTest` (needs ``rot_bottom`` and
-    ``rot_top``)."""
+    ``rot_top``).
+
+    Parameters
+    ----------
+    test : ShakingTableTest
+        The test.
+    criterion : Criterion, optional
+        The thresholds (default :class:`Criterion`).
+
+    Returns
+    -------
+    Classification
+    """
     if not test.has_rotations:
         raise ClassifyError(f"{test.source or test.name}: needs the rot_bottom and rot_top "
                             "channels")
@@ -119,13 +156,39 @@ def classify_test(test, criterion: Criterion | None = None) -> Classification:
 
 
 def classify_sequence(sequence, criterion: Criterion | None = None) -> list[Classification]:
-    """Classify every seismic test of a sequence that has both rotations."""
+    """Classify every seismic test of a sequence that has both rotations.
+
+    Parameters
+    ----------
+    sequence : TestSequence
+        The tests of a specimen.
+    criterion : Criterion, optional
+        The thresholds (default :class:`Criterion`).
+
+    Returns
+    -------
+    list of Classification
+    """
     return [classify(e.test.rot_bottom, e.test.rot_top, criterion, name=e.label)
             for e in sequence.seismic if e.test.has_rotations]
 
 
 def lifted_length(test, closure: float = 0.0):
-    """``(t [s], L - Lc(t) [m])`` of a test with base transducers (seed 000 Figures 19-20)."""
+    """``(t [s], L - Lc(t) [m])`` of a test with base transducers (Mordant et al. (SERIES), Figures
+    19-20).
+
+    Parameters
+    ----------
+    test : ShakingTableTest
+        A test with base transducers.
+    closure : float
+        Elastic closure of the base joint [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Times [s] and lifted length [m].
+    """
     from murus.identify.compressive import test_contact
 
     tc = test_contact(test, closure)
@@ -133,7 +196,7 @@ def lifted_length(test, closure: float = 0.0):
 
 
 def plot_rotations(test, ax=None, classification: Classification | None = None):
-    """Bottom and top rotations against time (seed 000 Figures 6 and 7), in mrad."""
+    """Bottom and top rotations against time (Mordant et al. (SERIES), Figures 6 and 7), in mrad."""
     import matplotlib.pyplot as plt
 
     if ax is None:
@@ -152,8 +215,8 @@ def plot_rotations(test, ax=None, classification: Classification | None = None):
 
 
 def plot_lifted_length(test, ax=None, closure: float = 0.0, model=None):
-    """Lifted length ``L - Lc`` [mm] against time (seed 000 Figures 19-20); ``model`` an
-    optional ``(t, lifted [m])`` to compare with."""
+    """Lifted length ``L - Lc`` [mm] against time (Mordant et al. (SERIES), Figures 19-20);
+    ``model`` an optional ``(t, lifted [m])`` to compare with."""
     import matplotlib.pyplot as plt
 
     if ax is None:

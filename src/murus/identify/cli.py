@@ -20,7 +20,8 @@ from murus.cliutil import dumps, fail, json_safe
 app = typer.Typer(
     rich_markup_mode=None,
     name="lab",
-    help="Shaking-table tests (seed 000 §2): white-noise FRF and modal parameters, evolution "
+    help="Shaking-table tests (Mordant et al. (SERIES), §2): white-noise FRF and modal "
+         "parameters, evolution "
          "along a sequence, response classification, compressive length; virtual sequences.",
     no_args_is_help=True,
     add_completion=False,
@@ -160,15 +161,16 @@ def sequence(
     f_max: float | None = _FMAX,
     modulus: float = typer.Option(5.6e9, "--modulus", help="Cantilever model: Young's modulus "
                                   "E [Pa] (default 1000 fk, EN 1996-1-1 §3.7.2, with the "
-                                  "seed 000 measured fk = 5.6 MPa, printed '6.5' by the "
+                                  "Mordant et al. (SERIES) measured fk = 5.6 MPa, printed '6.5' "
+                                  "by the "
                                   "extraction); G = 0.4 E."),
     density: float = typer.Option(1800.0, "--density", help="Cantilever model: masonry "
                                   "density [kg/m3]."),
     thickness: float = typer.Option(0.138, "--thickness", help="Cantilever model: wall "
                                     "thickness [m]."),
 ) -> None:
-    """Frequency and damping evolution (seed 000 Figures 3-4), classification (§2.3) with the
-    rotations (Figures 6-7), compressive lengths (Table 2, Figure 5), lifted lengths
+    """Frequency and damping evolution (Mordant et al. (SERIES), Figures 3-4), classification (§2.3)
+    with the rotations (Figures 6-7), compressive lengths (Table 2, Figure 5), lifted lengths
     (Figures 19-20), the Timoshenko cantilever model against the identified frequencies, and
     one Markdown report."""
     from murus.identify.classify import Criterion, classify_sequence
@@ -292,17 +294,19 @@ def _cantilever_report(cant: dict | None) -> str:
 def _report(seq, evo, classes, comp, crit, closure, figs) -> str:
     lines = [f"# Shaking-table sequence: {seq.name}", "",
              f"Folder `{seq.folder}`, {len(seq)} tests ({len(seq.seismic)} seismic, "
-             f"{len(seq.white_noise)} white noise).", "", "## Seismic tests (seed 000 Table 1)",
+             f"{len(seq.white_noise)} white noise).", "", "## Seismic tests (Mordant et al. "
+                                                          "(SERIES), Table 1)",
              "", "| No | Test | PGA nominal [g] | PGA measured [g] |", "|---|---|---|---|"]
     for r in seq.table1():
         nom = "/" if r["pga_nominal_g"] is None else f"{r['pga_nominal_g']:.4f}"
         lines.append(f"| {r['no']} | {r['test']} | {nom} | {r['pga_measured_g']:.4f} |")
-    lines += ["", "## Natural frequencies and damping (white-noise tests, seed 000 Figures 3-4)",
+    lines += ["", "## Natural frequencies and damping (white-noise tests, Mordant et al. "
+                  "(SERIES), Figures 3-4)",
               "", "H1 FRF of top over table acceleration; frequency and damping from a modal "
               "fit of the base-excitation transmissibility near each peak; (?) marks an "
               "unreliable estimate (see summary.json for the reasons).", "", evo.table(), "",
               "![frequency](frequency.png)", "", "![damping](damping.png)", "",
-              "## Classification (seed 000 §2.3)", "",
+              "## Classification (Mordant et al. (SERIES), §2.3)", "",
               f"ratio = max|rot_bottom| / max|rot_top|: cantilever below "
               f"{crit.cantilever_below}, rocking at or above {crit.rocking_above}, hybrid in "
               f"between; cantilever when max|rot_top| < {crit.min_rotation:g} rad.", ""]
@@ -315,13 +319,13 @@ def _report(seq, evo, classes, comp, crit, closure, figs) -> str:
                          f"{1e3 * c.peak_top:.4f} |")
     else:
         lines.append("No seismic test has both rotation channels.")
-    lines += ["", "## Compressive length (seed 000 Table 2, Figure 5)", ""]
+    lines += ["", "## Compressive length (Mordant et al. (SERIES), Table 2, Figure 5)", ""]
     if comp is not None:
         lines += [f"Plane base section fitted to the base transducers; contact where the "
                   f"opening is at most {closure:g} m. Eurocode 6 assessments: equivalent "
                   "static load 2.5 x level x m g at the top (murus.eurocode.ec6).", "",
                   comp.to_markdown(), "", "![compressive length](compressive_length.png)", "",
-                  "Lifted length L - Lc against time (seed 000 Figures 19-20): "
+                  "Lifted length L - Lc against time (Mordant et al. (SERIES), Figures 19-20): "
                   "`lifted_<test>.png`; bottom and top rotations (Figures 6-7): "
                   "`rotations_<test>.png`."]
     else:
@@ -381,13 +385,14 @@ def calibrate(
                                             "murus.identify.testdata format) with a rotation "
                                             "channel."),
     params: str = typer.Option("k0,k1", "--params", help="Parameters to fit, comma-separated, "
-                               "among k0, k1, k0_free, k1_free, A0 (seed 000 eqs. 14-18)."),
+                               "among k0, k1, k0_free, k1_free, A0 (Mordant et al. (SERIES), eqs. "
+                               "14-18)."),
     start: list[str] = typer.Option([], "--start", help="Initial value NAME=VALUE (repeat); "
                                     "default 1 (A0: 2)."),
     bounds: list[str] = typer.Option([], "--bounds", help="NAME=LOW:HIGH (repeat); defaults "
                                      "in murus.identify.calibrate.PARAMETERS."),
     pivot: str = typer.Option("corner", "--pivot", help="'corner' (Housner) or "
-                              "'compressive-length' (seed 000 eq. 11)."),
+                              "'compressive-length' (Mordant et al. (SERIES), eq. 11)."),
     channel: str = typer.Option("rot_bottom", "--channel", help="Rotation channel compared."),
     objective: str = typer.Option("peaks", "--objective", help="'peaks' or 'envelope'."),
     window: float = typer.Option(0.25, "--window", help="Time resolution of the comparison "
@@ -396,14 +401,15 @@ def calibrate(
     thickness: float = typer.Option(0.138, "--thickness", help="Wall thickness [m] (only with "
                                     "--density)."),
     density: float = typer.Option(0.0, "--density", help="Masonry density [kg/m3]; 0: the "
-                                  "self-weight is neglected beside the top mass (seed 000 "
+                                  "self-weight is neglected beside the top mass (Mordant et al. "
+                                  "(SERIES) "
                                   "§3.1)."),
     out: Path | None = typer.Option(None, "--out", help="Folder for calibration.md, "
                                     "calibration.json and calibration.png/.svg."),
 ) -> None:
-    """Fit the restitution laws of the modified rocking model (seed 000 §3.3) to measured
-    rotation histories (murus.identify.calibrate): a rigid wall of the test file's length and
-    height with its top mass, least squares on the rotation peaks, with bounds and several
+    """Fit the restitution laws of the modified rocking model (Mordant et al. (SERIES), §3.3) to
+    measured rotation histories (murus.identify.calibrate): a rigid wall of the test file's length
+    and height with its top mass, least squares on the rotation peaks, with bounds and several
     starts; prints the fitted values, their standard errors and sensitivities."""
     from murus.identify.calibrate import PARAMETERS, CalibrationError, measurement_from_test
     from murus.identify.calibrate import calibrate as fit

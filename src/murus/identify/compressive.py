@@ -1,8 +1,8 @@
 """Compressive (contact) length of the wall base from the base vertical transducers (issue 8,
-item 3; seed 000 §2.2.2, Table 2 and Figure 5).
+item 3; Mordant et al. (SERIES), §2.2.2, Table 2 and Figure 5).
 
-Plane base section (seed 000 §2.2.2, after its reference [2]): at each instant the readings
-``d_i`` of the transducers at positions ``x_i`` (conventions of
+Plane base section (Mordant et al. (SERIES), §2.2.2, after its reference [2]): at each instant the
+readings ``d_i`` of the transducers at positions ``x_i`` (conventions of
 :mod:`murus.identify.testdata`: ``x`` from the left end, ``d > 0`` opening, zeroed at rest
 under the static load) are fitted by the least-squares line ``d(x) = a + b x``; the base is in
 contact where ``d(x) <= closure`` on ``0 <= x <= L``, so the contact (compressive) length is
@@ -13,16 +13,17 @@ contact where ``d(x) <= closure`` on ``0 <= x <= L``, so the contact (compressiv
 
 ``closure`` [m] is the elastic closure of the base joint under the static load, the
 transducers being zeroed under it: the joint opens only when the reading exceeds it. It is 0 by
-default (a rigid base: any opening is a loss of contact, seed 000's plane-section assumption);
-a positive value (for instance three times the transducer noise, or the closure of a rubber
-layer) stops noise from being read as uplift. With a linear elastic (Winkler) bed the line
-reaches ``closure`` exactly where the no-tension stress vanishes, so the measured length is the
-Eurocode 6 linear stress-block length for the same eccentricity (verified in the tests).
+default (a rigid base: any opening is a loss of contact, the plane-section assumption of
+Mordant et al. (SERIES)); a positive value (for instance three times the transducer noise, or the
+closure of a rubber layer) stops noise from being read as uplift. With a linear elastic (Winkler)
+bed the line reaches ``closure`` exactly where the no-tension stress vanishes, so the measured
+length is the Eurocode 6 linear stress-block length for the same eccentricity (verified in the
+tests).
 
 The lifted length is ``L - Lc``. The minimum contact length of a test is reported in mm and in
-% of ``L``, and compared with :mod:`murus.eurocode.ec6` in the layout of seed 000 Table 2: the
-equivalent static load case ``2.5 a m g`` at the top (``EquivalentStatic``), constant and
-linear stress blocks, with ``a`` the measured PGA of the test [g] (``level="measured"``, the
+% of ``L``, and compared with :mod:`murus.eurocode.ec6` in the layout of Mordant et al. (SERIES),
+Table 2: the equivalent static load case ``2.5 a m g`` at the top (``EquivalentStatic``), constant
+and linear stress blocks, with ``a`` the measured PGA of the test [g] (``level="measured"``, the
 "acceleration level" of Table 2) or its nominal PGA (``level="nominal"``).
 
 Units: m (mm in the table), s, g.
@@ -67,7 +68,24 @@ def fit_plane(positions, displacements):
 
 
 def contact_length(positions, displacements, length: float, closure: float = 0.0):
-    """Contact length [m] at each instant (module docstring). Shapes as :func:`fit_plane`."""
+    """Contact length [m] at each instant (module docstring). Shapes as :func:`fit_plane`.
+
+    Parameters
+    ----------
+    positions : array_like
+        Transducer positions along the wall [m].
+    displacements : array_like
+        Their readings [m], one row per instant.
+    length : float
+        Wall length [m].
+    closure : float
+        Elastic closure of the base joint [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        [m].
+    """
     if not (math.isfinite(length) and length > 0):
         raise CompressiveError(f"the wall length must be positive, got {length!r}")
     if not (math.isfinite(closure) and closure >= 0):
@@ -114,12 +132,24 @@ class TestContact:
 
     @property
     def lifted(self) -> np.ndarray:
-        """Lifted length ``L - Lc`` [m] (seed 000 Figures 19-20)."""
+        """Lifted length ``L - Lc`` [m] (Mordant et al. (SERIES), Figures 19-20)."""
         return self.length - self.lc
 
 
 def test_contact(test, closure: float = 0.0) -> TestContact:
-    """Contact-length history of a :class:`~murus.identify.testdata.ShakingTableTest`."""
+    """Contact-length history of a :class:`~murus.identify.testdata.ShakingTableTest`.
+
+    Parameters
+    ----------
+    test : ShakingTableTest
+        A test with base transducers.
+    closure : float
+        Elastic closure of the base joint [m].
+
+    Returns
+    -------
+    TestContact
+    """
     if not test.has_lvdt:
         raise CompressiveError(f"{test.source or test.name}: no base transducers "
                                "(lvdt_1, lvdt_2 ... columns)")
@@ -132,9 +162,9 @@ test_contact.__test__ = False
 
 @dataclass
 class CompressiveTable:
-    """Rows in the layout of seed 000 Table 2 (one per seismic test of a sequence): specimen,
-    acceleration level [g], measured minimum compressive length [%, mm], EN 1996-1-1 linear and
-    constant assessments [%, mm] (NaN when the top mass is unknown)."""
+    """Rows in the layout of Mordant et al. (SERIES), Table 2 (one per seismic test of a sequence):
+    specimen, acceleration level [g], measured minimum compressive length [%, mm], EN 1996-1-1
+    linear and constant assessments [%, mm] (NaN when the top mass is unknown)."""
 
     specimen: str
     rows: list[dict]
@@ -167,11 +197,32 @@ class CompressiveTable:
 
 def compressive_table(sequence, closure: float = 0.0, level: str = "measured",
                       factor: float = 2.5) -> CompressiveTable:
-    """Seed 000 Table 2 for every seismic test with base transducers in ``sequence``.
+    """Mordant et al. (SERIES), Table 2 for every seismic test with base transducers in
+    ``sequence``.
 
     The Eurocode 6 columns use :class:`murus.eurocode.ec6.EquivalentStatic` with the top mass
     of the test file (``top_mass_kg``), the wall height and ``factor`` (2.5: the plateau of the
-    EN 1998-1 spectrum, as in seed 000 Table 2)."""
+    EN 1998-1 spectrum, as in Mordant et al. (SERIES), Table 2).
+
+    Parameters
+    ----------
+    sequence : TestSequence
+        The tests of a specimen.
+    closure : float
+        Elastic closure of the base joint [m].
+    level : str
+        ``"measured"`` or ``"nominal"`` PGA.
+    factor : float
+        Spectral amplification of the equivalent static load [-].
+
+    Returns
+    -------
+    CompressiveTable
+
+    References
+    ----------
+    Mordant et al. (SERIES), Table 2; EN 1996-1-1.
+    """
     from murus.eurocode.ec6 import EquivalentStatic
 
     if level not in ("measured", "nominal"):
@@ -201,8 +252,8 @@ def compressive_table(sequence, closure: float = 0.0, level: str = "measured",
 
 
 def plot_contact_length(table: CompressiveTable, ax=None):
-    """Minimum compressive length [%] against the acceleration level (seed 000 Figure 5),
-    with the Eurocode 6 assessments."""
+    """Minimum compressive length [%] against the acceleration level (Mordant et al. (SERIES),
+    Figure 5), with the Eurocode 6 assessments."""
     import matplotlib.pyplot as plt
 
     if ax is None:

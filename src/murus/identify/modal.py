@@ -1,5 +1,5 @@
-"""Modal identification from white-noise shaking-table tests (issue 8, item 2; seed 000 §2.1,
-Figures 3 and 4).
+"""Modal identification from white-noise shaking-table tests (issue 8, item 2;
+Mordant et al. (SERIES), §2.1, Figures 3 and 4).
 
 Frequency response function
     H1 estimator ``H(f) = G_xy(f) / G_xx(f)`` with ``x`` the table acceleration and ``y`` the
@@ -35,7 +35,8 @@ Peak picking
     estimate slightly biased (its peak is at ``f_n (sqrt(1 + 8 zeta^2) - 1)^(1/2) / (2 zeta)``,
     0.25 % below ``f_n`` for 5 %); the fitted values are the reported ones.
 
-Reliability (seed 000 §2.1 reports damping ratios "as high as 100 %", "questionable")
+Reliability (Mordant et al. (SERIES), §2.1 reports damping ratios "as high as 100 %",
+"questionable")
     Each mode carries the list ``warnings``; it is ``reliable`` when the list is empty:
     coherence at the peak below ``min_coherence_reliable`` (0.8); a half-power point not found
     before the neighbouring minimum; damping above ``max_damping`` (20 %); the half-power and the
@@ -67,7 +68,23 @@ class ModalError(ValueError):
 class FRF:
     """H1 estimate: frequency ``f`` [Hz], complex ``H`` [-], ``coherence`` [-], auto spectral
     densities ``Gxx``, ``Gyy`` [(m/s2)^2/Hz], segment length ``nperseg`` and sampling rate
-    ``fs`` [Hz]; ``n_averages`` Welch segments."""
+    ``fs`` [Hz]; ``n_averages`` Welch segments.
+
+    Attributes
+    ----------
+    f : numpy.ndarray
+        [Hz].
+    H : numpy.ndarray
+        Complex FRF [-].
+    coherence : numpy.ndarray
+        [-].
+    Gxx, Gyy : numpy.ndarray
+        [(m/s²)²/Hz].
+    nperseg : int
+    fs : float
+        [Hz].
+    n_averages : int
+    """
 
     f: np.ndarray
     H: np.ndarray
@@ -129,7 +146,14 @@ def _clean(v):
 
 @dataclass
 class ModalResult:
-    """Identified modes (by increasing frequency) and the FRF they come from."""
+    """Identified modes (by increasing frequency) and the FRF they come from.
+
+    Attributes
+    ----------
+    frf : FRF
+    modes : list of Mode
+    name : str
+    """
 
     frf: FRF
     modes: list[Mode]
@@ -155,7 +179,20 @@ class ModalResult:
 
 def transmissibility(f, modes) -> np.ndarray:
     """Transmissibility ``1 + sum r_k w^2 / (w_k^2 - w^2 + 2 i zeta_k w_k w)`` at frequencies
-    ``f`` [Hz] for ``modes = [(f_k [Hz], zeta_k, r_k), ...]`` (module docstring)."""
+    ``f`` [Hz] for ``modes = [(f_k [Hz], zeta_k, r_k), ...]`` (module docstring).
+
+    Parameters
+    ----------
+    f : array_like
+        [Hz].
+    modes : sequence of tuple
+        ``(f_k [Hz], zeta_k [-], r_k [-])``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex [-].
+    """
     w = 2 * np.pi * np.asarray(f, dtype=float)
     H = np.ones_like(w, dtype=complex)
     for fk, zk, rk in modes:
@@ -179,7 +216,23 @@ def frf(data, fs: float | None = None, nperseg: int | None = None,
     """H1 FRF and coherence of a test (``ShakingTableTest``) or of ``(x, y)`` sampled at ``fs``
     [Hz]. Segment length: ``nperseg`` samples, or the power of two giving a resolution at most
     ``df`` [Hz], or by default the power of two nearest to an eighth of the record (about 15
-    averages with 50 % overlap)."""
+    averages with 50 % overlap).
+
+    Parameters
+    ----------
+    data : ShakingTableTest or tuple
+        A test, or ``(x, y)`` [m/s²].
+    fs : float, optional
+        Sampling rate of ``(x, y)`` [Hz].
+    nperseg : int, optional
+        Segment length [samples].
+    df : float, optional
+        Largest frequency resolution [Hz].
+
+    Returns
+    -------
+    FRF
+    """
     from scipy import signal
 
     x, y, fs = _xy(data, fs)
@@ -364,10 +417,10 @@ def identify(data, fs: float | None = None, *, nperseg: int | None = None,
 
 @dataclass
 class Evolution:
-    """Frequencies and damping ratios of the white-noise tests of a sequence (seed 000
-    Figures 3 and 4). ``number``: position of the test in the sequence; ``after_pga_g``: the
-    nominal PGA [g] of the last seismic test before it (0 before the first); arrays
-    ``frequency``, ``damping``, ``damping_half_power`` [Hz, -] and ``reliable`` have shape
+    """Frequencies and damping ratios of the white-noise tests of a sequence
+    (Mordant et al. (SERIES) Figures 3 and 4). ``number``: position of the test in the sequence;
+    ``after_pga_g``: the nominal PGA [g] of the last seismic test before it (0 before the first);
+    arrays ``frequency``, ``damping``, ``damping_half_power`` [Hz, -] and ``reliable`` have shape
     (n_tests, n_modes), NaN/False where a mode was not found."""
 
     name: str
@@ -412,7 +465,21 @@ class Evolution:
 def evolution(sequence, n_modes: int = 1, **kwargs) -> Evolution:
     """Identify every white-noise test of ``sequence`` (a
     :class:`~murus.identify.testdata.TestSequence`) with :func:`identify` (``kwargs`` passed
-    on) and tabulate the first ``n_modes`` modes along the sequence."""
+    on) and tabulate the first ``n_modes`` modes along the sequence.
+
+    Parameters
+    ----------
+    sequence : TestSequence
+        The tests of a specimen.
+    n_modes : int
+        Modes tabulated.
+    **kwargs
+        Keywords of :func:`identify`.
+
+    Returns
+    -------
+    Evolution
+    """
     labels, number, after, results = [], [], [], []
     last_pga = 0.0
     for e in sequence.entries:
@@ -486,7 +553,7 @@ def _x(evo: Evolution, x: str):
 
 
 def plot_frequency_evolution(evo: Evolution, ax=None, x: str = "test", label: str | None = None):
-    """Natural frequencies along the sequence (seed 000 Figure 3)."""
+    """Natural frequencies along the sequence (Mordant et al. (SERIES), Figure 3)."""
     import matplotlib.pyplot as plt
 
     if ax is None:
@@ -502,8 +569,8 @@ def plot_frequency_evolution(evo: Evolution, ax=None, x: str = "test", label: st
 
 
 def plot_damping_evolution(evo: Evolution, ax=None, x: str = "test", label: str | None = None):
-    """Damping ratios along the sequence (seed 000 Figure 4); unreliable estimates drawn as
-    open markers."""
+    """Damping ratios along the sequence (Mordant et al. (SERIES), Figure 4); unreliable estimates
+    drawn as open markers."""
     import matplotlib.pyplot as plt
 
     if ax is None:

@@ -1,8 +1,8 @@
 """A virtual shaking-table test sequence in the documented format (issue 8, item 8).
 
 No shaking-table data ships with murus, so :func:`synthesize_sequence` writes a complete
-sequence like seed 000's (§2: white-noise tests alternating with seismic tests of increasing
-level, Table 1) for a wall with a mass on top. The files follow
+sequence like that of Mordant et al. (SERIES) (§2: white-noise tests alternating with seismic tests
+of increasing level, Table 1) for a wall with a mass on top. The files follow
 :mod:`murus.identify.testdata`, so everything that reads them works unchanged on laboratory
 files. The wall model is deliberately simple and stated here, not calibrated on any test:
 
@@ -22,7 +22,7 @@ files. The wall model is deliberately simple and stated here, not calibrated on 
   read ``-closure`` at rest and the plane-section contact length with ``closure = 0``
   (:mod:`murus.identify.compressive`) is exactly the one of the model.
 - **Rigid rocking (seismic tests above the onset).** :func:`murus.rocking.simulate` of the
-  wall as a rigid block with the top mass (``seed000_wall``-like geometry, Housner restitution)
+  wall as a rigid block with the top mass (``series_clay_wall``-like geometry, Housner restitution)
   under the table motion gives ``theta(t)``; it is zero below the uplift acceleration
   ``g L / (2 H)`` and is added to both rotations, to the transducers (a rigid rotation about
   the corner: ``(L - x) sin theta`` for ``theta > 0``) and to the top acceleration
@@ -31,12 +31,12 @@ files. The wall model is deliberately simple and stated here, not calibrated on 
   the top towards ``+x`` like a positive cantilever displacement.
 - **Damage.** After each seismic test of PGA ``a`` [g] the frequency is multiplied by
   ``1 - frequency_drop_per_g * a`` and ``damping_increase_per_g * a`` is added to the damping
-  ratio, so the white-noise tests see a frequency dropping along the sequence (seed 000
-  Figures 3-4).
+  ratio, so the white-noise tests see a frequency dropping along the sequence
+  (Mordant et al. (SERIES) Figures 3-4).
 - **Inputs.** White-noise tests: Gaussian noise band-limited to ``wn_band`` [Hz], RMS
   ``wn_rms_g``. Seismic tests: one band-limited noise record (1-15 Hz) with a trapezoidal
   envelope (rise 15 %, strong part 55 %, decay 30 % of the duration), scaled to each PGA level,
-  as seed 000 scales one artificial record step by step.
+  as Mordant et al. (SERIES) scales one artificial record step by step.
 - **Sensors.** Independent Gaussian noise on every channel: ``noise_acc`` [m/s2],
   ``noise_lvdt`` [m], ``noise_rot`` [rad].
 
@@ -59,7 +59,8 @@ from murus.identify.testdata import ShakingTableTest, write_sequence
 __all__ = ["modal_response", "SynthWall", "synthesize_tests", "synthesize_sequence",
            "DEFAULT_LEVELS"]
 
-#: Nominal PGA levels [g] of the seismic tests (close to seed 000 Table 1, long wall).
+#: Nominal PGA levels [g] of the seismic tests (close to Mordant et al. (SERIES), Table 1, long
+#: wall).
 DEFAULT_LEVELS = (0.04, 0.08, 0.08, 0.16, 0.24, 0.32, 0.45)
 
 
@@ -74,7 +75,22 @@ def modal_response(acc, dt: float, modes):
     filter) and filtered. Returns
     ``(absolute acceleration [m/s2], relative displacement [m])`` at the output point:
     ``a_g + sum r_k q_k''`` and ``sum r_k q_k``; the transfer function of the first is
-    :func:`murus.identify.modal.transmissibility`."""
+    :func:`murus.identify.modal.transmissibility`.
+
+    Parameters
+    ----------
+    acc : array_like
+        Table acceleration [m/s²].
+    dt : float
+        [s].
+    modes : sequence of tuple
+        ``(f_k [Hz], zeta_k [-], r_k [-])``.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Absolute acceleration [m/s²] and relative displacement [m].
+    """
     from scipy import signal
     from scipy.linalg import expm
 
@@ -126,7 +142,25 @@ class SynthWall:
     """The virtual specimen (module docstring): length ``L``, height ``H`` [m], top mass
     [kg], initial frequency [Hz] and damping ratio, base closure [m], number of transducers
     (evenly from 2 % to 98 % of ``L``), smallest contact length of the elastic base as a
-    fraction of ``L``."""
+    fraction of ``L``.
+
+    Parameters
+    ----------
+    length, height, thickness : float
+        [m].
+    top_mass : float
+        [kg].
+    frequency : float
+        Initial frequency [Hz].
+    damping : float
+        Initial damping ratio [-].
+    closure : float
+        Base closure [m].
+    n_lvdt : int
+        Number of base transducers.
+    min_contact : float
+        Smallest contact length over ``length`` [-].
+    """
 
     length: float = 0.72
     height: float = 1.80
@@ -276,7 +310,23 @@ def synthesize_tests(*, seed: int = 0, wall: SynthWall | None = None,
 def synthesize_sequence(folder, *, seed: int = 0, name: str = "virtual wall", **kwargs) -> Path:
     """Write a virtual test sequence into ``folder`` (created; files ``NN_<test>.csv``,
     ``sequence.toml`` and ``truth.json``); ``kwargs`` as :func:`synthesize_tests`. Returns
-    the folder. Deterministic for a given ``seed``."""
+    the folder. Deterministic for a given ``seed``.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        Created.
+    seed : int
+        Seed of the noise.
+    name : str
+        Name of the specimen.
+    **kwargs
+        Keywords of :func:`synthesize_tests`.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     tests, truth = synthesize_tests(seed=seed, **kwargs)
     folder = Path(folder)
     write_sequence(folder, tests, name=name)

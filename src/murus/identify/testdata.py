@@ -1,5 +1,5 @@
 """Shaking-table test data: the file format, a reader with clear errors, a writer, and the
-ordered test sequence of a specimen (issue 8, item 1; seed 000 §2 and Table 1).
+ordered test sequence of a specimen (issue 8, item 1; Mordant et al. (SERIES), §2 and Table 1).
 
 File format (one test per file, CSV, UTF-8)
 -------------------------------------------
@@ -51,14 +51,14 @@ Conventions (checked in ``tests/identify``): positions ``x`` run along the wall 
 end (``x = 0``) to its right end (``x = L``); a transducer reading is positive when the joint
 *opens* (uplift of the wall base) and negative when it closes (compression), zeroed at rest
 under the static load; rotations are positive clockwise, as ``theta`` in :mod:`murus.rocking`
-(seed 000 §3.1.1), so that a positive rotation lifts the left end: a rigid rotation ``theta``
-about the right corner gives ``lvdt(x) = (L - x) sin(theta)``. Accelerations are positive
+(Mordant et al. (SERIES), §3.1.1), so that a positive rotation lifts the left end: a rigid rotation
+``theta`` about the right corner gives ``lvdt(x) = (L - x) sin(theta)``. Accelerations are positive
 towards ``+x``. Everything is converted to SI on reading (m, m/s2, rad, s).
 
 HDF5 is not supported: CSV is readable by every laboratory tool and the test files are small
 (tens of thousands of lines); :func:`write_test` writes the same format back.
 
-Test sequence (seed 000 Table 1)
+Test sequence (Mordant et al. (SERIES), Table 1)
 --------------------------------
 A sequence is a folder of test files. The order and the nominal PGA come from a
 ``sequence.toml`` in the folder when there is one::
@@ -76,7 +76,7 @@ A sequence is a folder of test files. The order and the nominal PGA come from a
 Without ``sequence.toml`` the naming convention applies: every ``*.csv`` file of the folder,
 in natural order of the names (``2_x`` before ``10_x``), kind and PGA from each header; a file
 without a ``kind`` key whose name contains ``WN`` (upper case, e.g. ``03_WN02.csv``) is a
-white-noise test. Seismic tests are numbered S01, S02 ... in order, as in seed 000.
+white-noise test. Seismic tests are numbered S01, S02 ... in order, as in Mordant et al. (SERIES).
 """
 
 from __future__ import annotations
@@ -254,7 +254,17 @@ def read_test(path) -> ShakingTableTest:
 
     Raises :class:`TestDataError` with a one-line message naming the file, line and column for
     a malformed header, a missing channel, an unknown unit, a non-numeric or NaN value, or a
-    non-uniform time column."""
+    non-uniform time column.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The test file.
+
+    Returns
+    -------
+    ShakingTableTest
+    """
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -403,7 +413,21 @@ _ORDER = ("table_acc", "top_acc")
 
 
 def write_test(test: ShakingTableTest, path, with_time: bool = True) -> Path:
-    """Write ``test`` in the documented format (SI units, ``%.9g``); returns the path."""
+    """Write ``test`` in the documented format (SI units, ``%.9g``); returns the path.
+
+    Parameters
+    ----------
+    test : ShakingTableTest
+        The test.
+    path : str or pathlib.Path
+        The file.
+    with_time : bool
+        Write the time column.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     path = Path(path)
     head = ["# murus shaking-table test", f"# name: {test.name}", f"# kind: {test.kind}",
             f"# sampling_rate_hz: {test.sampling_rate:.12g}"]
@@ -438,7 +462,20 @@ def write_test(test: ShakingTableTest, path, with_time: bool = True) -> Path:
 @dataclass
 class SequenceEntry:
     """One test of a sequence: its position (1-based), file, kind, nominal PGA [g] and the
-    loaded data."""
+    loaded data.
+
+    Attributes
+    ----------
+    number : int
+        Position in the sequence (1-based).
+    file : str
+    kind : str
+        ``"seismic"`` or ``"white_noise"``.
+    pga_g : float or None
+        Nominal PGA [g].
+    test : ShakingTableTest
+    label : str
+    """
 
     number: int
     file: str
@@ -450,8 +487,15 @@ class SequenceEntry:
 
 @dataclass
 class TestSequence:
-    """The ordered tests of one specimen (seed 000 Table 1 and §2: white-noise tests between
-    seismic tests of increasing level)."""
+    """The ordered tests of one specimen (Mordant et al. (SERIES), Table 1 and §2: white-noise tests
+    between seismic tests of increasing level).
+
+    Attributes
+    ----------
+    name : str
+    entries : list of SequenceEntry
+    folder : str or None
+    """
 
     __test__ = False
 
@@ -474,7 +518,8 @@ class TestSequence:
         return [e for e in self.entries if e.kind == "white_noise"]
 
     def table1(self) -> list[dict]:
-        """Rows like seed 000 Table 1: seismic test number, label, nominal and measured PGA."""
+        """Rows like Mordant et al. (SERIES), Table 1: seismic test number, label, nominal and
+        measured PGA."""
         return [{"no": k + 1, "test": e.label, "pga_nominal_g": e.pga_g,
                  "pga_measured_g": e.test.measured_pga_g} for k, e in enumerate(self.seismic)]
 
@@ -484,7 +529,17 @@ def _natural_key(s: str):
 
 
 def read_sequence(folder) -> TestSequence:
-    """Read a sequence folder (``sequence.toml`` or the naming convention, module docstring)."""
+    """Read a sequence folder (``sequence.toml`` or the naming convention, module docstring).
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        The sequence folder.
+
+    Returns
+    -------
+    TestSequence
+    """
     import tomllib
 
     folder = Path(folder)
@@ -544,7 +599,21 @@ def read_sequence(folder) -> TestSequence:
 
 
 def write_sequence(folder, tests: list[ShakingTableTest], name: str = "sequence") -> Path:
-    """Write ``tests`` as ``NN_<name>.csv`` files and a ``sequence.toml`` in ``folder``."""
+    """Write ``tests`` as ``NN_<name>.csv`` files and a ``sequence.toml`` in ``folder``.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        Created if needed.
+    tests : list of ShakingTableTest
+        In order.
+    name : str
+        Name of the specimen.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     lines = [f"name = {_toml_str(name)}", ""]

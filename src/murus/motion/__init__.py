@@ -15,7 +15,25 @@ __all__ = ["GroundMotion", "read", "write", "MotionFormatError", "suite", "Recor
 
 def suite(name: str = "farfield", components: str = "both", normalized: bool = False):
     """FEMA P695 record set (needs ``pip install murus[records]``); see
-    :func:`murus.motion.records.suite`."""
+    :func:`murus.motion.records.suite`.
+
+    Parameters
+    ----------
+    name : str
+        ``"farfield"``, ``"nearfield_pulse"`` or ``"nearfield_no_pulse"``.
+    components : str
+        Which horizontal components (see :func:`murus.motion.records.suite`).
+    normalized : bool
+        Multiply by the FEMA P695 normalisation factor.
+
+    Returns
+    -------
+    list of GroundMotion
+
+    References
+    ----------
+    FEMA P695 (2009), Appendix A.
+    """
     from murus.motion.records import suite as _suite
 
     return _suite(name, components, normalized)

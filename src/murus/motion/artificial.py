@@ -1,6 +1,6 @@
 """Artificial accelerograms compatible with an elastic response spectrum (EN 1998-1 §3.2.3.1.2).
 
-Generation (:func:`spectrum_compatible`), as for the shaking-table input of seed 000:
+Generation (:func:`spectrum_compatible`), as for the shaking-table input of Mordant et al. (SERIES):
 
 1. a stationary Gaussian white noise (reproducible with ``seed``) is multiplied by an envelope:
    trapezoidal (linear rise ``rise``, stationary part ``stationary`` >= 10 s, linear decay
@@ -42,7 +42,26 @@ __all__ = ["envelope", "spectrum_compatible", "generate_ec8", "check_ec8", "Crit
 
 def envelope(t: np.ndarray, rise: float, stationary: float, decay: float,
              kind: str = "trapezoidal") -> np.ndarray:
-    """Envelope (0 to 1) at times t [s]: rise, stationary and decay durations [s]."""
+    """Envelope (0 to 1) at times t [s]: rise, stationary and decay durations [s].
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times [s].
+    rise, stationary, decay : float
+        Durations [s].
+    kind : str
+        ``"trapezoidal"`` or ``"jennings"``.
+
+    Returns
+    -------
+    numpy.ndarray
+        [-].
+
+    References
+    ----------
+    Jennings, Housner and Tsai (1968).
+    """
     t = np.asarray(t, float)
     t1, t2 = rise, rise + stationary
     if kind == "trapezoidal":
@@ -77,6 +96,39 @@ def spectrum_compatible(target, periods, dt: float = 0.01, rise: float = 2.0,
     target : array of PSA [m/s²] at ``periods`` [s] (or a callable T -> PSA).
     pga_min : the record is scaled up if its PGA is below this value [m/s²] (EC8: ag S).
     The result carries meta['stationary_duration'], meta['seed'], meta['v_end'], meta['d_end'].
+
+    Parameters
+    ----------
+    target : array_like or callable
+        PSA [m/s²] at ``periods``, or ``T -> PSA``.
+    periods : array_like
+        Matching periods [s].
+    dt : float
+        Time step [s].
+    rise, stationary, decay : float
+        Envelope durations [s].
+    envelope_kind : str
+        ``"trapezoidal"`` or ``"jennings"``.
+    damping : float
+        [-].
+    iterations : int
+        Spectral corrections.
+    f_min : float
+        Lowest frequency kept [Hz].
+    pga_min : float, optional
+        Smallest PGA [m/s²].
+    seed : int, optional
+        Seed of the noise.
+    name : str
+        Label.
+
+    Returns
+    -------
+    GroundMotion
+
+    References
+    ----------
+    Gasparini and Vanmarcke (1976); EN 1998-1 §3.2.3.1.2.
     """
     periods = np.asarray(periods, float)
     tgt = np.asarray(target(periods) if callable(target) else target, float)
@@ -123,6 +175,37 @@ def generate_ec8(ag: float, ground: str = "B", spectrum_type: int = 1, n: int = 
     ag [m/s²] reference PGA on rock; records are reproducible for a given ``seed`` (record k
     uses the seed sequence spawned from ``seed``). Default matching periods: 80 log-spaced
     periods from 0.03 to 4 s.
+
+    Parameters
+    ----------
+    ag : float
+        Reference PGA on rock [m/s²].
+    ground : str
+        Ground type ``"A"`` ... ``"E"``.
+    spectrum_type : int
+        1 or 2.
+    n : int
+        Number of records.
+    seed : int
+        Seed.
+    damping : float
+        [-].
+    importance : str or float, optional
+        Importance class or factor.
+    dt : float
+        Time step [s].
+    stationary, rise, decay : float
+        Envelope durations [s].
+    envelope_kind : str
+        ``"trapezoidal"`` or ``"jennings"``.
+    periods : array_like, optional
+        Matching periods [s].
+    iterations : int
+        Spectral corrections.
+
+    Returns
+    -------
+    list of GroundMotion
     """
     from murus.eurocode.ec8 import elastic_spectrum, parameters
 
@@ -148,7 +231,21 @@ def generate_ec8(ag: float, ground: str = "B", spectrum_type: int = 1, n: int = 
 
 @dataclass
 class Criterion:
-    """One EN 1998-1 §3.2.3.1.2 condition: ``ratio`` = value / required (>= 1 passes)."""
+    """One EN 1998-1 §3.2.3.1.2 condition: ``ratio`` = value / required (>= 1 passes).
+
+    Attributes
+    ----------
+    name : str
+        The condition.
+    passed : bool
+    value, required : float
+        Obtained and required values.
+    ratio : float
+        ``value / required``.
+    period : float, optional
+        Period of the worst ratio [s].
+    note : str
+    """
 
     name: str
     passed: bool
@@ -161,7 +258,20 @@ class Criterion:
 
 @dataclass
 class CompatibilityReport:
-    """Result of :func:`check_ec8`: criteria, the mean spectrum and the target."""
+    """Result of :func:`check_ec8`: criteria, the mean spectrum and the target.
+
+    Attributes
+    ----------
+    criteria : list of Criterion
+    periods : numpy.ndarray
+        [s].
+    mean_psa, target : numpy.ndarray
+        [m/s²].
+    period_range : tuple of float
+        [s].
+    spectra : list of numpy.ndarray
+        PSA of each record [m/s²].
+    """
 
     criteria: list[Criterion]
     periods: np.ndarray
@@ -203,6 +313,33 @@ def check_ec8(records: list[GroundMotion], ag: float, ground: str = "B",
 
     ag [m/s²]; the period range is ``period_range`` (s) or [0.2 T1, 2 T1]. Each criterion has
     pass/fail, the worst ratio and, for the spectrum, the period where it occurs.
+
+    Parameters
+    ----------
+    records : list of GroundMotion
+        The records.
+    ag : float
+        Reference PGA on rock [m/s²].
+    ground : str
+        Ground type.
+    spectrum_type : int
+        1 or 2.
+    T1 : float, optional
+        Fundamental period [s].
+    period_range : tuple of float, optional
+        [s], instead of ``[0.2 T1, 2 T1]``.
+    damping : float
+        [-].
+    importance : str or float, optional
+        Importance class or factor.
+    min_stationary : float
+        Shortest stationary part [s].
+    n_periods : int
+        Periods of the check.
+
+    Returns
+    -------
+    CompatibilityReport
     """
     from murus.eurocode.ec8 import _importance, elastic_spectrum, parameters
 

@@ -199,7 +199,8 @@ def ramp(
     dt: float = typer.Option(0.005, help="Time step [s]."),
     vertical: str = typer.Option(None, help="Vertical component: in_phase or opposition."),
 ) -> None:
-    """Harmonic ramp S(t) = A t sin(2 pi f t) of seed 001 (eq. 5), written as CSV or AT2."""
+    """Harmonic ramp S(t) = A t sin(2 pi f t) of Savalle et al. (2022) (eq. 5), written as CSV or
+    AT2."""
     with _guard():
         from murus.motion.io import write
         from murus.motion.synthetic import harmonic_ramp

@@ -31,6 +31,20 @@ def integrate(acc: np.ndarray, dt: float, v0: float = 0.0, d0: float = 0.0):
 
     Parameters: acc in m/s², dt in s, initial velocity v0 in m/s and displacement d0 in m.
     Returns (velocity [m/s], displacement [m]) arrays of the same length as ``acc``.
+
+    Parameters
+    ----------
+    acc : numpy.ndarray
+        Acceleration [m/s²].
+    dt : float
+        Time step [s].
+    v0, d0 : float
+        Initial velocity [m/s] and displacement [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Velocity [m/s] and displacement [m].
     """
     a = np.asarray(acc, dtype=np.float64)
     n = a.size
@@ -50,6 +64,20 @@ def uniform_from_samples(t: np.ndarray, a: np.ndarray, dt: float | None = None):
     """Resample (t, a) samples onto a uniform grid starting at t[0] (linear interpolation).
 
     ``dt`` defaults to the median step. Returns (dt, acc). Time must be strictly increasing.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times [s], strictly increasing.
+    a : numpy.ndarray
+        Accelerations [m/s²].
+    dt : float, optional
+        Step [s] (default the median step).
+
+    Returns
+    -------
+    tuple
+        ``(dt, acc)``.
     """
     t = np.asarray(t, dtype=np.float64)
     a = np.asarray(a, dtype=np.float64)

@@ -155,7 +155,19 @@ _ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.\-()]*):(.*)$")
 
 
 def detect_format(path, text: str | None = None) -> str:
-    """Format name ('at2', 'esm', 'cosmos' or 'csv') from the content, then the extension."""
+    """Format name ('at2', 'esm', 'cosmos' or 'csv') from the content, then the extension.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    text : str, optional
+        Its content, if already read.
+
+    Returns
+    -------
+    str
+    """
     path = Path(path)
     if text is None:
         text = _read_text(path)
@@ -692,6 +704,21 @@ def write(motion: GroundMotion, path, format: str | None = None, units: str = "m
 
     The format follows ``format`` or the extension (.at2 -> AT2, anything else -> CSV). The
     file is written to a temporary name and renamed, so nothing is left half-written.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record.
+    path : str or pathlib.Path
+        The file.
+    format : str, optional
+        ``"csv"`` or ``"at2"``; default from the extension.
+    units : str
+        Units of the CSV values: ``"m/s2"``, ``"g"`` or ``"cm/s2"``.
+
+    Returns
+    -------
+    pathlib.Path
     """
     path = Path(path)
     fmt = (format or ("at2" if path.suffix.lower() == ".at2" else "csv")).lower()

@@ -32,17 +32,50 @@ BASELINE = ("end correction: a linear acceleration c0 + c1 t subtracted so that 
 
 
 def pga(motion: GroundMotion) -> float:
-    """Peak ground acceleration [m/s²]."""
+    """Peak ground acceleration [m/s²].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    float
+        [m/s²].
+    """
     return motion.pga
 
 
 def pgv(motion: GroundMotion) -> float:
-    """Peak ground velocity [m/s] (trapezoidal integration from rest)."""
+    """Peak ground velocity [m/s] (trapezoidal integration from rest).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    float
+        [m/s].
+    """
     return float(np.max(np.abs(motion.velocity())))
 
 
 def pgd(motion: GroundMotion) -> float:
-    """Peak ground displacement [m] (exact double integration from rest, no baseline fix)."""
+    """Peak ground displacement [m] (exact double integration from rest, no baseline fix).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    float
+        [m].
+    """
     return float(np.max(np.abs(motion.displacement())))
 
 
@@ -58,12 +91,38 @@ def _cum_sq(acc: np.ndarray, dt: float) -> np.ndarray:
 
 
 def arias(motion: GroundMotion) -> float:
-    """Arias intensity I_A = pi/(2 g) * integral a² dt [m/s] (Arias 1970), g = murus.G."""
+    """Arias intensity I_A = pi/(2 g) * integral a² dt [m/s] (Arias 1970), g = murus.G.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    float
+        [m/s].
+
+    References
+    ----------
+    Arias (1970).
+    """
     return float(np.pi / (2.0 * G) * _cum_sq(motion.acc, motion.dt)[-1])
 
 
 def husid(motion: GroundMotion) -> np.ndarray:
-    """Normalised cumulative Arias intensity at each sample (0 to 1)."""
+    """Normalised cumulative Arias intensity at each sample (0 to 1).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    numpy.ndarray
+        [-], one value per sample.
+    """
     c = _cum_sq(motion.acc, motion.dt)
     if c[-1] <= 0:
         return np.zeros_like(c)
@@ -83,7 +142,24 @@ def _crossing_time(h: np.ndarray, dt: float, level: float) -> float:
 
 
 def significant_duration(motion: GroundMotion, start: float = 0.05, end: float = 0.95) -> float:
-    """Time [s] between the instants where the Husid curve reaches ``start`` and ``end``."""
+    """Time [s] between the instants where the Husid curve reaches ``start`` and ``end``.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    start, end : float
+        Fractions of the Arias intensity [-].
+
+    Returns
+    -------
+    float
+        [s].
+
+    References
+    ----------
+    Trifunac and Brady (1975); Bommer and Martínez-Pereira (1999).
+    """
     if not 0.0 <= start < end <= 1.0:
         raise ValueError("need 0 <= start < end <= 1")
     h = husid(motion)
@@ -93,18 +169,59 @@ def significant_duration(motion: GroundMotion, start: float = 0.05, end: float =
 
 
 def d5_75(motion: GroundMotion) -> float:
-    """Significant duration D5-75 [s]."""
+    """Significant duration D5-75 [s].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    float
+        [s].
+
+    References
+    ----------
+    Trifunac and Brady (1975); Bommer and Martínez-Pereira (1999).
+    """
     return significant_duration(motion, 0.05, 0.75)
 
 
 def d5_95(motion: GroundMotion) -> float:
-    """Significant duration D5-95 [s]."""
+    """Significant duration D5-95 [s].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    float
+        [s].
+
+    References
+    ----------
+    Trifunac and Brady (1975); Bommer and Martínez-Pereira (1999).
+    """
     return significant_duration(motion, 0.05, 0.95)
 
 
 def cav(motion: GroundMotion) -> float:
     """Cumulative absolute velocity integral |a| dt [m/s], exact for piecewise-linear a
-    (zero crossings inside a step are located)."""
+    (zero crossings inside a step are located).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    float
+        [m/s].
+    """
     a0 = motion.acc[:-1]
     a1 = motion.acc[1:]
     s0, s1 = np.abs(a0), np.abs(a1)
@@ -115,7 +232,24 @@ def cav(motion: GroundMotion) -> float:
 
 
 def mean_period(motion: GroundMotion, fmin: float = 0.25, fmax: float = 20.0) -> float:
-    """Mean period Tm [s] of Rathje et al. (1998): sum(C²/f)/sum(C²), fmin <= f <= fmax [Hz]."""
+    """Mean period Tm [s] of Rathje et al. (1998): sum(C²/f)/sum(C²), fmin <= f <= fmax [Hz].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    fmin, fmax : float
+        Frequency band of the Fourier amplitudes [Hz].
+
+    Returns
+    -------
+    float
+        [s].
+
+    References
+    ----------
+    Rathje, Abrahamson and Bray (1998).
+    """
     n = motion.npts
     c = np.abs(np.fft.rfft(motion.acc)) * motion.dt
     f = np.fft.rfftfreq(n, motion.dt)
@@ -142,6 +276,16 @@ def corrected_peaks(motion: GroundMotion) -> dict:
     dict
         ``pgv``, ``pgd`` after the correction, ``pgv_raw``, ``pgd_raw`` before it, and
         ``baseline`` (the text of :data:`BASELINE`).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    dict
+        ``pgv`` [m/s] and ``pgd`` [m].
     """
     from murus.motion.processing import end_correction
 
@@ -151,7 +295,18 @@ def corrected_peaks(motion: GroundMotion) -> dict:
 
 
 def summary(motion: GroundMotion) -> dict:
-    """The usual intensity measures as a dict of floats (SI units: see module docstring)."""
+    """The usual intensity measures as a dict of floats (SI units: see module docstring).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    dict
+        Name -> value (SI units).
+    """
     out = {
         "npts": motion.npts,
         "dt": motion.dt,

@@ -32,6 +32,20 @@ def baseline_correct(motion: GroundMotion, order: int = 2, fit: str = "velocity"
     derivative (p, p' or p'') is subtracted from the acceleration. ``fit="acceleration",
     order=0`` removes the mean; ``fit="velocity", order=1`` removes a constant acceleration
     offset. An acceleration that is itself such a polynomial is removed exactly.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    order : int
+        Degree of the polynomial.
+    fit : str
+        ``"acceleration"``, ``"velocity"`` or ``"displacement"``.
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
     """
     if order < 0:
         raise ValueError("order must be >= 0")
@@ -111,24 +125,92 @@ def _filter(motion: GroundMotion, btype: str, freq, order: int) -> GroundMotion:
 
 
 def highpass(motion: GroundMotion, fc: float, order: int = 4) -> GroundMotion:
-    """Zero-phase Butterworth high-pass at ``fc`` [Hz] (baseline correction by filtering)."""
+    """Zero-phase Butterworth high-pass at ``fc`` [Hz] (baseline correction by filtering).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    fc : float
+        Corner frequency [Hz].
+    order : int
+        Order of the Butterworth filter.
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
+
+    References
+    ----------
+    Boore (2005).
+    """
     return _filter(motion, "highpass", fc, order)
 
 
 def lowpass(motion: GroundMotion, fc: float, order: int = 4) -> GroundMotion:
-    """Zero-phase Butterworth low-pass at ``fc`` [Hz]."""
+    """Zero-phase Butterworth low-pass at ``fc`` [Hz].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    fc : float
+        Corner frequency [Hz].
+    order : int
+        Order of the Butterworth filter.
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
+    """
     return _filter(motion, "lowpass", fc, order)
 
 
 def bandpass(motion: GroundMotion, f_lo: float, f_hi: float, order: int = 4) -> GroundMotion:
-    """Zero-phase Butterworth band-pass between ``f_lo`` and ``f_hi`` [Hz]."""
+    """Zero-phase Butterworth band-pass between ``f_lo`` and ``f_hi`` [Hz].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    f_lo, f_hi : float
+        Corner frequencies [Hz].
+    order : int
+        Order of the Butterworth filter.
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
+
+    References
+    ----------
+    Boore (2005).
+    """
     if not f_lo < f_hi:
         raise ValueError("need f_lo < f_hi")
     return _filter(motion, "bandpass", [f_lo, f_hi], order)
 
 
 def taper(motion: GroundMotion, fraction: float = 0.05, side: str = "both") -> GroundMotion:
-    """Cosine (Tukey) taper over ``fraction`` of the duration at the start, end or both."""
+    """Cosine (Tukey) taper over ``fraction`` of the duration at the start, end or both.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    fraction : float
+        Fraction of the duration tapered [-].
+    side : str
+        ``"start"``, ``"end"`` or ``"both"``.
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
+    """
     if not 0 <= fraction <= 0.5:
         raise ValueError("fraction must be in [0, 0.5]")
     n = motion.npts
@@ -147,7 +229,22 @@ def taper(motion: GroundMotion, fraction: float = 0.05, side: str = "both") -> G
 def trim_arias(motion: GroundMotion, start: float = 0.001, end: float = 0.999,
                pad: float = 0.0) -> GroundMotion:
     """Keep the part between the times where the Husid curve reaches ``start`` and ``end``
-    (fractions of the Arias intensity), widened by ``pad`` seconds on each side."""
+    (fractions of the Arias intensity), widened by ``pad`` seconds on each side.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    start, end : float
+        Fractions of the Arias intensity [-].
+    pad : float
+        Time kept on each side [s].
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
+    """
     from murus.motion.measures import husid
 
     h = husid(motion)
@@ -159,7 +256,20 @@ def trim_arias(motion: GroundMotion, start: float = 0.001, end: float = 0.999,
 
 
 def scale_to_pga(motion: GroundMotion, target: float) -> GroundMotion:
-    """Scale so that PGA = ``target`` [m/s²]."""
+    """Scale so that PGA = ``target`` [m/s²].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    target : float
+        PGA [m/s²].
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
+    """
     if motion.pga == 0:
         raise ValueError("cannot scale a record of zero PGA")
     return motion.scaled(target / motion.pga)
@@ -167,7 +277,24 @@ def scale_to_pga(motion: GroundMotion, target: float) -> GroundMotion:
 
 def scale_to_sa(motion: GroundMotion, period: float, target: float,
                 damping: float = 0.05) -> GroundMotion:
-    """Scale so that the pseudo-spectral acceleration at ``period`` [s] is ``target`` [m/s²]."""
+    """Scale so that the pseudo-spectral acceleration at ``period`` [s] is ``target`` [m/s²].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    period : float
+        Period [s].
+    target : float
+        Pseudo-spectral acceleration [m/s²].
+    damping : float
+        Damping ratio [-].
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
+    """
     from murus.motion.spectra import psa
 
     s = psa(motion, period, damping)

@@ -28,7 +28,19 @@ POINTS_PER_PERIOD = 10
 
 
 def default_periods(n: int = 100, t_min: float = 0.01, t_max: float = 10.0) -> np.ndarray:
-    """``n`` log-spaced periods [s] from ``t_min`` to ``t_max``."""
+    """``n`` log-spaced periods [s] from ``t_min`` to ``t_max``.
+
+    Parameters
+    ----------
+    n : int
+        Number of periods.
+    t_min, t_max : float
+        [s].
+
+    Returns
+    -------
+    numpy.ndarray
+    """
     return np.geomspace(t_min, t_max, n)
 
 
@@ -39,6 +51,19 @@ class ResponseSpectrum:
     period [s], sd [m], sv [m/s], sa [m/s²] (absolute), psv [m/s], psa [m/s²]; damping ratio;
     ``substeps`` the number of sub-steps per record step used at each period. Also readable as a
     mapping: ``spec["psa"]``.
+
+    Attributes
+    ----------
+    period : numpy.ndarray
+        [s].
+    sd, sv, sa : numpy.ndarray
+        [m], [m/s], [m/s²] (``sa`` absolute).
+    psv, psa : numpy.ndarray
+        [m/s], [m/s²].
+    damping : float
+        [-].
+    substeps : numpy.ndarray
+        Sub-steps per record step at each period.
     """
 
     period: np.ndarray
@@ -150,6 +175,28 @@ def pseudo_spectrum(motion: GroundMotion, periods=None, damping: float = 0.05,
     a record step is sub-stepped only when a rigorous bound says that it may hold a new peak
     (see :func:`murus.motion._kernels.sdof_sd_peaks`). Use it for PSA-only work (scaling,
     spectrum matching, sweeps).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (m/s²).
+    periods : array_like, optional
+        [s] (default :func:`default_periods`).
+    damping : float
+        [-].
+    oversample : int or str
+        Sub-steps per record step, or ``"auto"``.
+    refine : bool
+        Refine the peaks between samples.
+
+    Returns
+    -------
+    numpy.ndarray
+        PSA [m/s²].
+
+    References
+    ----------
+    Nigam and Jennings (1969).
     """
     xi = float(damping)
     if not (0.0 <= xi < 1.0):
@@ -163,5 +210,20 @@ def pseudo_spectrum(motion: GroundMotion, periods=None, damping: float = 0.05,
 
 
 def psa(motion: GroundMotion, period: float, damping: float = 0.05) -> float:
-    """Pseudo-spectral acceleration [m/s²] at one period [s]."""
+    """Pseudo-spectral acceleration [m/s²] at one period [s].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (m/s²).
+    period : float
+        [s].
+    damping : float
+        [-].
+
+    Returns
+    -------
+    float
+        [m/s²].
+    """
     return float(pseudo_spectrum(motion, [period], damping)[0])

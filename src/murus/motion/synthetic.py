@@ -1,6 +1,6 @@
 """Synthetic ground motions: harmonic ramps, pulses, band-limited white noise.
 
-Harmonic ramps (seed 001, eq. 5 and Fig. 12):
+Harmonic ramps (Savalle et al. (2022), eq. 5 and Fig. 12):
 
 - S(t) = A t sin(2 pi f t), A the amplitude rate [m/s³] (:func:`harmonic_ramp`);
 - S1(t): the ramp up to the peak acceleration A_peak at t_p = A_peak / A, then an envelope that
@@ -9,9 +9,9 @@ Harmonic ramps (seed 001, eq. 5 and Fig. 12):
 - S2(t): the ramp truncated when its envelope A t reaches a given acceleration
   (:func:`truncated_ramp`).
 
-Each accepts a vertical component of the same shape and ``vertical_ratio`` (default 0.5, seed 001
-after EN 1998-1) times the amplitude, ``vertical="in_phase"`` (positive peaks together) or
-``"opposition"`` (sign reversed). Vertical acceleration is positive upwards.
+Each accepts a vertical component of the same shape and ``vertical_ratio`` (default 0.5,
+Savalle et al. (2022) after EN 1998-1) times the amplitude, ``vertical="in_phase"`` (positive peaks
+together) or ``"opposition"`` (sign reversed). Vertical acceleration is positive upwards.
 
 Closed forms of the ramp (from rest at t = 0, omega = 2 pi f):
 v(t) = A [sin(omega t) / omega² - t cos(omega t) / omega],
@@ -54,14 +54,44 @@ def _vertical(acc: np.ndarray, vertical: str | None, ratio: float) -> np.ndarray
 
 
 def ramp_velocity(A: float, f: float, t) -> np.ndarray:
-    """Closed-form velocity [m/s] of S(t) = A t sin(2 pi f t) from rest."""
+    """Closed-form velocity [m/s] of S(t) = A t sin(2 pi f t) from rest.
+
+    Parameters
+    ----------
+    A : float
+        Amplitude rate [m/s³].
+    f : float
+        Frequency [Hz].
+    t : array_like
+        Times [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        [m/s].
+    """
     w = 2 * np.pi * f
     t = np.asarray(t, float)
     return A * (np.sin(w * t) / w**2 - t * np.cos(w * t) / w)
 
 
 def ramp_displacement(A: float, f: float, t) -> np.ndarray:
-    """Closed-form displacement [m] of S(t) = A t sin(2 pi f t) from rest."""
+    """Closed-form displacement [m] of S(t) = A t sin(2 pi f t) from rest.
+
+    Parameters
+    ----------
+    A : float
+        Amplitude rate [m/s³].
+    f : float
+        Frequency [Hz].
+    t : array_like
+        Times [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        [m].
+    """
     w = 2 * np.pi * f
     t = np.asarray(t, float)
     return A * (2 * (1 - np.cos(w * t)) / w**3 - t * np.sin(w * t) / w**2)
@@ -69,9 +99,32 @@ def ramp_displacement(A: float, f: float, t) -> np.ndarray:
 
 def harmonic_ramp(A: float, f: float, duration: float, dt: float = 0.005,
                   vertical: str | None = None, vertical_ratio: float = 0.5) -> GroundMotion:
-    """S(t) = A t sin(2 pi f t) (seed 001, eq. 5) for 0 <= t <= duration.
+    """S(t) = A t sin(2 pi f t) (Savalle et al. (2022), eq. 5) for 0 <= t <= duration.
 
     A: amplitude rate [m/s³]; f: frequency [Hz]; duration, dt [s].
+
+    Parameters
+    ----------
+    A : float
+        Amplitude rate [m/s³].
+    f : float
+        Frequency [Hz].
+    duration : float
+        Duration [s].
+    dt : float
+        Time step [s].
+    vertical : str, optional
+        Vertical component: ``None``, ``"in-phase"`` or ``"opposition"``.
+    vertical_ratio : float
+        Its amplitude over the horizontal one [-].
+
+    Returns
+    -------
+    GroundMotion
+
+    References
+    ----------
+    Savalle et al. (2022), eq. 5.
     """
     t = _grid(duration, dt)
     acc = A * t * np.sin(2 * np.pi * f * t)
@@ -82,8 +135,33 @@ def harmonic_ramp(A: float, f: float, duration: float, dt: float = 0.005,
 
 def two_ramp(A: float, f: float, a_peak: float, dt: float = 0.005,
              vertical: str | None = None, vertical_ratio: float = 0.5) -> GroundMotion:
-    """Signal S1 of seed 001 (Fig. 12a): envelope A t up to a_peak [m/s²] at t_p = a_peak / A,
-    then linear decrease to zero over 2 t_p; carrier sin(2 pi f t). Duration 3 t_p [s]."""
+    """Signal S1 of Savalle et al. (2022) (Fig. 12a): envelope A t up to a_peak [m/s²] at t_p =
+    a_peak / A, then linear decrease to zero over 2 t_p; carrier sin(2 pi f t). Duration 3 t_p
+    [s].
+
+    Parameters
+    ----------
+    A : float
+        Amplitude rate [m/s³].
+    f : float
+        Frequency [Hz].
+    a_peak : float
+        Peak of the envelope [m/s²].
+    dt : float
+        Time step [s].
+    vertical : str, optional
+        Vertical component: ``None``, ``"in-phase"`` or ``"opposition"``.
+    vertical_ratio : float
+        Its amplitude over the horizontal one [-].
+
+    Returns
+    -------
+    GroundMotion
+
+    References
+    ----------
+    Savalle et al. (2022), Figure 12a.
+    """
     if A <= 0 or a_peak <= 0:
         raise ValueError("A and a_peak must be positive")
     tp = a_peak / A
@@ -98,8 +176,32 @@ def two_ramp(A: float, f: float, a_peak: float, dt: float = 0.005,
 
 def truncated_ramp(A: float, f: float, a_max: float, dt: float = 0.005,
                    vertical: str | None = None, vertical_ratio: float = 0.5) -> GroundMotion:
-    """Signal S2 of seed 001 (Fig. 12b): S(t) = A t sin(2 pi f t) until the envelope A t
-    reaches a_max [m/s²], i.e. for 0 <= t <= a_max / A."""
+    """Signal S2 of Savalle et al. (2022) (Fig. 12b): S(t) = A t sin(2 pi f t) until the envelope A
+    t reaches a_max [m/s²], i.e. for 0 <= t <= a_max / A.
+
+    Parameters
+    ----------
+    A : float
+        Amplitude rate [m/s³].
+    f : float
+        Frequency [Hz].
+    a_max : float
+        Largest envelope [m/s²].
+    dt : float
+        Time step [s].
+    vertical : str, optional
+        Vertical component: ``None``, ``"in-phase"`` or ``"opposition"``.
+    vertical_ratio : float
+        Its amplitude over the horizontal one [-].
+
+    Returns
+    -------
+    GroundMotion
+
+    References
+    ----------
+    Savalle et al. (2022), Figure 12b.
+    """
     if A <= 0 or a_max <= 0:
         raise ValueError("A and a_max must be positive")
     gm = harmonic_ramp(A, f, a_max / A, dt, vertical, vertical_ratio)
@@ -110,6 +212,25 @@ def sine_pulse(amplitude: float, frequency: float, cycles: float = 1.0, dt: floa
                kind: str = "sine", duration: float | None = None) -> GroundMotion:
     """One-sine (a = A sin(2 pi f t)) or one-cosine (a = A cos(2 pi f t)) pulse of ``cycles``
     periods, followed by zeros up to ``duration`` [s] if given. amplitude [m/s²], frequency [Hz].
+
+    Parameters
+    ----------
+    amplitude : float
+        [m/s²].
+    frequency : float
+        [Hz].
+    cycles : float
+        Number of periods.
+    dt : float
+        Time step [s].
+    kind : str
+        ``"sine"`` or ``"cosine"``.
+    duration : float, optional
+        Total duration [s].
+
+    Returns
+    -------
+    GroundMotion
     """
     if frequency <= 0 or cycles <= 0:
         raise ValueError("frequency and cycles must be positive")
@@ -135,6 +256,21 @@ def rectangular_pulse(amplitude: float, duration: float, dt: float = 0.001,
     With the piecewise-linear interpretation of samples the drop is spread over one step; the
     sample at t = duration is amplitude/2 so that the velocity change is exactly
     amplitude * duration (``duration`` is rounded to a whole number of steps).
+
+    Parameters
+    ----------
+    amplitude : float
+        [m/s²].
+    duration : float
+        Duration of the pulse [s].
+    dt : float
+        Time step [s].
+    total : float, optional
+        Total duration [s].
+
+    Returns
+    -------
+    GroundMotion
     """
     k = int(round(duration / dt))
     if k < 1:
@@ -154,6 +290,23 @@ def ricker(peak: float, frequency: float, dt: float = 0.001, duration: float | N
 
     peak [m/s²] at t0 (default 1.5 / f, where the wavelet is below 1e-8 of its peak);
     frequency f [Hz] is the peak frequency of its Fourier spectrum; duration default 2 t0.
+
+    Parameters
+    ----------
+    peak : float
+        Peak acceleration [m/s²].
+    frequency : float
+        Peak frequency of the Fourier spectrum [Hz].
+    dt : float
+        Time step [s].
+    duration : float, optional
+        Total duration [s].
+    t0 : float, optional
+        Time of the peak [s].
+
+    Returns
+    -------
+    GroundMotion
     """
     if frequency <= 0:
         raise ValueError("frequency must be positive")
@@ -168,11 +321,28 @@ def ricker(peak: float, frequency: float, dt: float = 0.001, duration: float | N
 def white_noise(duration: float, dt: float = 0.005, rms: float = 1.0,
                 band: tuple[float, float] | None = (0.5, 25.0), seed: int | None = 0
                 ) -> GroundMotion:
-    """Band-limited Gaussian white noise (identification tests, seed 000).
+    """Band-limited Gaussian white noise (identification tests, Mordant et al. (SERIES)).
 
     Gaussian samples are filtered in the frequency domain: Fourier coefficients outside
     ``band`` = (f_lo, f_hi) [Hz] are set to zero (an ideal band-pass), then the record is scaled
     to the root-mean-square ``rms`` [m/s²] exactly. Reproducible for a given ``seed``.
+
+    Parameters
+    ----------
+    duration : float
+        [s].
+    dt : float
+        Time step [s].
+    rms : float
+        Root mean square acceleration [m/s²].
+    band : tuple of float, optional
+        ``(f_lo, f_hi)`` [Hz]; ``None``: unfiltered.
+    seed : int, optional
+        Seed of the generator.
+
+    Returns
+    -------
+    GroundMotion
     """
     t = _grid(duration, dt)
     rng = np.random.default_rng(seed)

@@ -1,8 +1,9 @@
 """``murus retaining`` commands: pseudo-static resistance and geometry of dry-stone retaining walls.
 
-Thin layer over :mod:`murus.retaining` (seed 001 §4.4). The wall is a preset (``DSRW1`` ...
-``DSRW4``, ``C3s`` of seed 001 Table 5, or ``mockup-<H/B>`` for the scaled-down walls of its
-§3). Every open assumption of the seed's analytical tool is an option with the default of
+Thin layer over :mod:`murus.retaining` (Savalle et al. (2022), §4.4). The wall is a preset
+(``DSRW1`` ... ``DSRW4``, ``C3s`` of Savalle et al. (2022), Table 5, or ``mockup-<H/B>`` for the
+scaled-down walls of its §3). Every open assumption of the analytical tool of the paper is an option
+with the default of
 :class:`murus.retaining.pseudostatic.Assumptions`. Bad input exits with code 2 and a one-line
 ``error:`` message on stderr. The library is imported inside the commands (no numba, no
 matplotlib), so that ``murus --help`` stays fast.
@@ -22,15 +23,17 @@ from murus.outputs import OutputError
 app = typer.Typer(
     rich_markup_mode=None,
     name="retaining",
-    help="Dry-stone retaining walls (seed 001): geometry, pseudo-static resistance A_pseudo, "
+    help="Dry-stone retaining walls (Savalle et al. (2022)): geometry, pseudo-static resistance "
+         "A_pseudo, "
          "dynamic collapse A_col, behaviour factor r, backfill calibration, several sections.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
 )
 
-_PRESET = typer.Option(..., "--preset", help="DSRW1..DSRW4, C3s (seed 001 Table 5) or "
-                       "mockup-<H/B> (seed 001 §3), e.g. mockup-2.7.")
+_PRESET = typer.Option(..., "--preset", help="DSRW1..DSRW4, C3s (Savalle et al. (2022), Table 5) "
+                                             "or "
+                       "mockup-<H/B> (Savalle et al. (2022), §3), e.g. mockup-2.7.")
 _BASE = typer.Option(None, "--base", help="Base joint: 'inclined' (parallel to the beds, "
                      "default) or 'horizontal'.")
 _JSON = typer.Option(False, "--json", help="Print JSON instead of text.")
@@ -65,7 +68,7 @@ def pseudo_static(
                                              "phi (default 2/3)."),
     interface_delta: bool = typer.Option(False, "--interface-delta", help="delta = the "
                                          "wall-backfill interface friction of the preset "
-                                         "(37.7 deg in seed 001 Table 6)."),
+                                         "(37.7 deg in Savalle et al. (2022), Table 6)."),
     dynamic_point: float = typer.Option(1.0 / 3.0, "--dynamic-point", help="Height of the "
                                         "dynamic increment / back face height: 1/3 (EN 1998-5 "
                                         "§7.3.2.3(5), default) or 0.5 (§7.3.2.3(4))."),
@@ -79,8 +82,8 @@ def pseudo_static(
     base: str | None = _BASE,
     as_json: bool = _JSON,
 ) -> None:
-    """Pseudo-static resistance A_pseudo = kh g (seed 001 §4.4, Table 8): the smallest kh at
-    which the wall above some bed joint slides or overturns."""
+    """Pseudo-static resistance A_pseudo = kh g (Savalle et al. (2022), §4.4, Table 8): the smallest
+    kh at which the wall above some bed joint slides or overturns."""
     from murus import G
     from murus.retaining.pseudostatic import Assumptions, critical_acceleration
 
@@ -193,12 +196,13 @@ _BIAXIAL_FILES = ["biaxial.png", "biaxial.svg", "biaxial.csv", "biaxial.json"]
 
 
 _STONE_H = typer.Option(None, "--stone-height", help="Course height [m] (needed for the "
-                        "mock-ups, whose courses seed 001 does not give).")
+                        "mock-ups, whose courses Savalle et al. (2022) does not give).")
 _STIFF = typer.Option(1e-3, "--stiffness-scale", help="Multiplies the joint stiffness of "
-                      "seed 001 Table 6 (2.8e12 Pa/m); the time step grows as its inverse "
+                      "Savalle et al. (2022), Table 6 (2.8e12 Pa/m); the time step grows as its "
+                      "inverse "
                       "square root.")
 _XI = typer.Option(0.10, "--xi", help="Mass-proportional damping ratio at the input "
-                   "frequency (seed 001 Table 6: 10 %).")
+                   "frequency (Savalle et al. (2022), Table 6: 10 %).")
 _THR = typer.Option(None, "--threshold", help="Collapse when d_top exceeds this fraction of H "
                     "(default 0.2; 0.05 for mock-ups).")
 _TMAX = typer.Option(None, "--t-max", help="End of an S2 run without collapse [s] (default "
@@ -213,7 +217,7 @@ def collapse(
                                  "in_phase or opposition (half the horizontal amplitude)."),
     out: str = typer.Option(..., "--out", help="Output directory."),
     check_peak: bool = typer.Option(False, "--check-peak", help="Also run S1 at 0.6 and 0.7 "
-                                    "A_col (seed 001 Figure 14)."),
+                                    "A_col (Savalle et al. (2022), Figure 14)."),
     stone_height: float | None = _STONE_H,
     stiffness_scale: float = _STIFF,
     xi: float = _XI,
@@ -226,10 +230,10 @@ def collapse(
                                  "says when to use which)."),
     width: float | None = typer.Option(None, "--width", help="With --backfill discrete: "
                                        "backfill width W [m] (default 2 H: 5 m for the "
-                                       "seed 001 walls)."),
+                                       "Savalle et al. (2022) walls)."),
     boundary: str | None = typer.Option(None, "--boundary", help="With --backfill discrete: "
                                         "lateral boundary, 'absorbing' (viscous; default "
-                                        "at full scale, the seed's free field) or 'container' "
+                                        "at full scale, the paper's free field) or 'container' "
                                         "(a rigid plate moving with the base; default for the "
                                         "mock-ups, tested in a box)."),
     radius: float | None = typer.Option(None, "--radius", help="With --backfill discrete: "
@@ -401,9 +405,9 @@ def behaviour_factor_cmd(
                                        "S2 run without collapse [s]."),
     base: str | None = _BASE,
 ) -> None:
-    """Behaviour factor r = 0.6 A_col / A_pseudo (seed 001 Tables 7 and 8): S2 collapse runs
-    for each frequency and vertical mode, then S1 checks at 0.6 and 0.7 A_col, as stored,
-    resumable tasks on a process pool or a Dask cluster (as `murus study run`: running the
+    """Behaviour factor r = 0.6 A_col / A_pseudo (Savalle et al. (2022), Tables 7 and 8): S2
+    collapse runs for each frequency and vertical mode, then S1 checks at 0.6 and 0.7 A_col, as
+    stored, resumable tasks on a process pool or a Dask cluster (as `murus study run`: running the
     same command again computes only the missing cases; a folder of another study is refused).
     Writes OUT/behaviour_factor.csv and .md, OUT/cases/*.json (summaries), *.csv (d_top
     histories) and *.png (the blocks at collapse); `murus study status OUT` shows progress."""
@@ -488,7 +492,8 @@ def behaviour_factor_cmd(
 @app.command("calibrate-backfill")
 def calibrate_backfill(
     target: float | None = typer.Option(None, "--target", help="Target peak friction angle "
-                                        "[deg] (seed 001: 37.7 full scale, 45 mock-ups): finds "
+                                        "[deg] (Savalle et al. (2022): 37.7 full scale, 45 "
+                                        "mock-ups): finds "
                                         "the rolling resistance; without it, one test at "
                                         "--rolling."),
     rolling: float = typer.Option(0.167, "--rolling", help="Rolling resistance coefficient "
@@ -505,8 +510,8 @@ def calibrate_backfill(
 ) -> None:
     """Biaxial test of the disc backfill (murus.dem.biaxial): peak and critical-state friction
     angles, with a stress-strain figure; with --target, the rolling resistance that gives it
-    (seed 001 §2: 37.7 deg), averaged over --seeds assemblies, with the scatter over them.
-    A calibration that does not converge writes its outputs with status not ok and exits 1."""
+    (Savalle et al. (2022), §2: 37.7 deg), averaged over --seeds assemblies, with the scatter over
+    them. A calibration that does not converge writes its outputs with status not ok and exits 1."""
     from dataclasses import replace
     from pathlib import Path
 
@@ -621,13 +626,13 @@ def weighted_response_cmd(
                                           "CSV files with columns t_s and d_top_m (as written "
                                           "by 'murus retaining collapse')."),
     weights: str = typer.Option(..., "--weights", help="Proportion of each section along the "
-                                "wall, comma-separated (seed 001 Table 2: 7,7,7,2)."),
+                                "wall, comma-separated (Savalle et al. (2022), Table 2: 7,7,7,2)."),
     levels: int = typer.Option(200, "--levels", min=2, help="Displacement levels."),
     out: str | None = typer.Option(None, "--out", help="CSV file of the global response "
                                    "(t_s, d_top_m and the time of each section)."),
 ) -> None:
-    """Global response of a wall from several cross-sections (seed 001 §3.2, Table 2): for
-    each d_top level, the times at which the sections reach it, weighted by their proportions
+    """Global response of a wall from several cross-sections (Savalle et al. (2022), §3.2, Table 2):
+    for each d_top level, the times at which the sections reach it, weighted by their proportions
     along the wall."""
     from pathlib import Path
 

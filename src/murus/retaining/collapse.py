@@ -1,11 +1,12 @@
-"""Collapse protocol and seismic behaviour factor of a dry-stone retaining wall (seed 001 §4.2-4.4,
-Tables 7 and 8; issue 6 item 4), on the DEM wall with the equivalent thrust
-(:mod:`murus.retaining.dem_wall`).
+"""Collapse protocol and seismic behaviour factor of a dry-stone retaining wall
+(Savalle et al. (2022), §4.2-4.4, Tables 7 and 8; issue 6 item 4), on the DEM wall with the
+equivalent thrust (:mod:`murus.retaining.dem_wall`).
 
-Protocol (seed 001 §4.2-4.3):
+Protocol (Savalle et al. (2022), §4.2-4.3):
 
-- input S2: the harmonic ramp ``S(t) = A t sin(2 pi f t)`` (seed 001 eq. 5) whose envelope
-  reaches the pseudo-static resistance ``A_pseudo`` at ``t_pseudo = 2.5 s``: ``A = A_pseudo /
+- input S2: the harmonic ramp ``S(t) = A t sin(2 pi f t)`` (Savalle et al. (2022), eq. 5) whose
+  envelope reaches the pseudo-static resistance ``A_pseudo`` at ``t_pseudo = 2.5 s``: ``A = A_pseudo
+  /
   2.5`` [m/s³] ("the slope is defined so that its pseudo-static resistance is always reached at
   2.5 s"); ``A_pseudo`` from :func:`murus.retaining.pseudostatic.critical_acceleration` (with
   ``kv_ratio = 0.5`` when a vertical component is applied: "the slope of S2 is recomputed,
@@ -28,8 +29,8 @@ Protocol (seed 001 §4.2-4.3):
 Sign of the horizontal input: ``a_x > 0`` is a base acceleration into the backfill, whose
 inertia on the wall acts out of the slope (``kh = a_x / g``); S(t) starts with that sign.
 
-Numerics (documented choices): mass-proportional damping ``xi = 10 %`` (seed 001 Table 6: 5 %
-doubled because only the mass-proportional part is used) at the input frequency, on the
+Numerics (documented choices): mass-proportional damping ``xi = 10 %`` (Savalle et al. (2022), Table
+6: 5 % doubled because only the mass-proportional part is used) at the input frequency, on the
 velocity relative to the base (``damping_frame="base"``; ``"absolute"`` damps the velocity in
 the fixed frame, as UDEC does, so that it also resists the motion of the wall with the
 ground); joint stiffness of Table 6 times ``stiffness_scale`` (default
@@ -62,10 +63,10 @@ __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES"
            "pseudo_static_resistance", "ramp_rate", "collapse_run", "peak_ratio_check",
            "failure_mode", "plot_collapse", "behaviour_factor", "SEED_TABLE7"]
 
-#: Vertical components: none, in phase, in opposition (seed 001 §4.3, ratio 0.5).
+#: Vertical components: none, in phase, in opposition (Savalle et al. (2022), §4.3, ratio 0.5).
 VERTICAL_MODES = ("none", "in_phase", "opposition")
 
-#: Seed 001 Table 7 / Table 8 for DSRW1: (frequency [Hz], vertical) -> (t_col [s],
+#: Savalle et al. (2022), Table 7 / Table 8 for DSRW1: (frequency [Hz], vertical) -> (t_col [s],
 #: A_col [m/s²], A_pseudo [m/s²], r).
 SEED_TABLE7 = {
     (3.0, "none"): (7.6, 4.83, 1.58, 1.83),
@@ -93,7 +94,7 @@ def _vertical(kv_mode: str) -> str:
 def pseudo_static_resistance(wall: RetainingWall, kv_mode: str = "none",
                              assumptions=None, vertical_ratio: float = 0.5) -> float:
     """``A_pseudo`` [m/s²] of ``wall`` (horizontal component), with ``kv = +-0.5 kh`` when a
-    vertical component is applied (both signs, the worse: the seed prints one value)."""
+    vertical component is applied (both signs, the worse: the paper prints one value)."""
     from murus.retaining.pseudostatic import critical_acceleration
 
     r = 0.0 if _vertical(kv_mode) == "none" else vertical_ratio
@@ -372,8 +373,8 @@ def plot_collapse(polygons, displacement, discs=None, disc_displacement=None, ti
 
 
 def failure_mode(d_top: float, rotation: float, z_top: float, share: float = 0.5) -> str:
-    """``"T"`` (toppling) or ``"S"`` (sliding), the mechanism labels of seed 001 Table 3,
-    from the top stone's displacement ``d_top`` [m] (out of the slope positive), its rotation
+    """``"T"`` (toppling) or ``"S"`` (sliding), the mechanism labels of Savalle et al. (2022), Table
+    3, from the top stone's displacement ``d_top`` [m] (out of the slope positive), its rotation
     [rad] (counter-clockwise positive, i.e. tipping out of the slope) and the height of its
     centroid above the toe ``z_top`` [m]: toppling when the rotation accounts for at least
     ``share`` of d_top (``rotation z_top >= share d_top``; a rigid toppling about a joint at
@@ -387,8 +388,31 @@ def failure_mode(d_top: float, rotation: float, z_top: float, share: float = 0.5
 def peak_ratio_check(wall: RetainingWall, frequency: float, A_col: float,
                      ratios: Sequence[float] = (0.6, 0.7), vertical: str = "none",
                      executor: Executor | None = None, **kw) -> dict[float, CollapseResult]:
-    """S1 runs with ``A_peak = ratio A_col`` and the S2 slope (seed 001 §4.2, Figure 14: stable
-    at 0.6, collapsed at 0.7). Returns ``{ratio: CollapseResult}`` (``.stable``)."""
+    """S1 runs with ``A_peak = ratio A_col`` and the S2 slope (Savalle et al. (2022), §4.2, Figure
+    14: stable at 0.6, collapsed at 0.7). Returns ``{ratio: CollapseResult}`` (``.stable``).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    frequency : float
+        [Hz].
+    A_col : float
+        [m/s²].
+    ratios : sequence of float
+        ``A_peak / A_col`` [-].
+    vertical : str
+        Vertical component.
+    executor : concurrent.futures.Executor, optional
+        Where the runs go.
+    **kw
+        Keywords of :func:`collapse_run`.
+
+    Returns
+    -------
+    dict
+        ``{ratio: CollapseResult}``.
+    """
     if not (A_col > 0 and math.isfinite(A_col)):
         raise CollapseError(f"A_col must be positive, got {A_col!r}")
     jobs = [(wall, frequency, vertical, dict(kw, signal="S1", a_peak=r * A_col))
@@ -411,9 +435,17 @@ def _map(executor: Executor | None, jobs):
 
 @dataclass
 class BehaviourTable:
-    """Seed 001 Tables 7 and 8 layout: one row per case (wall, frequency, vertical) with
-    ``t_col`` [s], ``A_col``, ``A_peak = ratio A_col``, ``A_pseudo`` [m/s²], ``r`` and the run
-    time; ``results`` the runs; ``peak_checks`` optional S1 checks per case."""
+    """Savalle et al. (2022), Tables 7 and 8 layout: one row per case (wall, frequency, vertical)
+    with ``t_col`` [s], ``A_col``, ``A_peak = ratio A_col``, ``A_pseudo`` [m/s²], ``r`` and the run
+    time; ``results`` the runs; ``peak_checks`` optional S1 checks per case.
+
+    Attributes
+    ----------
+    rows : list of dict
+    results : list of CollapseResult
+    peak_ratio : float
+        [-].
+    """
 
     rows: list[dict]
     results: list[CollapseResult] = field(default_factory=list, repr=False)
@@ -460,7 +492,31 @@ def behaviour_factor(wall: RetainingWall, freqs: Sequence[float] = (3.0, 5.0, 10
                      peak_ratio: float = 0.6, **kw) -> BehaviourTable:
     """S2 collapse runs of ``wall`` for every frequency and vertical mode (through
     ``executor``, default serial) and the behaviour factor ``r = peak_ratio A_col / A_pseudo``
-    (seed 001 Tables 7-8). ``kw`` go to :func:`collapse_run`."""
+    (Savalle et al. (2022), Tables 7-8). ``kw`` go to :func:`collapse_run`.
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    freqs : sequence of float
+        Frequencies [Hz].
+    kv_modes : sequence of str
+        ``"none"``, ``"in_phase"``, ``"opposition"``.
+    executor : concurrent.futures.Executor, optional
+        Where the runs go (default serial).
+    peak_ratio : float
+        ``A_peak / A_col`` [-].
+    **kw
+        Keywords of :func:`collapse_run`.
+
+    Returns
+    -------
+    BehaviourTable
+
+    References
+    ----------
+    Savalle et al. (2022), §4.2-4.4, Tables 7 and 8.
+    """
     freqs = [float(f) for f in freqs]
     modes = [_vertical(v) for v in kv_modes]
     if not freqs or not modes:

@@ -1,7 +1,7 @@
 """Distinct-element model of a dry-stone retaining wall cross-section, with the backfill replaced
-by an equivalent earth thrust (seed 001 §4, Tables 5-6; issue 6 items 1 and 2b).
+by an equivalent earth thrust (Savalle et al. (2022), §4, Tables 5-6; issue 6 items 1 and 2b).
 
-Seed 001 (Savalle et al. 2022) models the wall block by block in UDEC with a continuum
+Savalle et al. (2022) models the wall block by block in UDEC with a continuum
 backfill. Here the wall is built block by block in :mod:`murus.dem` and the backfill is
 replaced by the EN 1998-5 Annex E (Mononobe-Okabe) active thrust on the back face, updated with
 the instantaneous base acceleration: the "equivalent thrust" model.
@@ -9,26 +9,26 @@ the instantaneous base acceleration: the "equivalent thrust" model.
 Wall (:func:`build_wall`). The frame of :mod:`murus.retaining.geometry` (x into the backfill,
 the model's y = z upwards, toe at the origin). The courses are the bands between successive bed
 joints of :attr:`RetainingWall.joints` (inclined by ``alpha``, one stone height apart measured
-perpendicular to the beds, 0.1 m in seed 001 §4.1); the top course is the band between the
-last joint and the horizontal crest. Each course is cut into stones of length ``L`` (0.35 m,
-seed 001 §4.1) by head joints perpendicular to the beds, in running bond: the cuts of odd
-courses are offset by ``L/2`` from the front face, so that odd courses start with a half stone
+perpendicular to the beds, 0.1 m in Savalle et al. (2022), §4.1); the top course is the band between
+the last joint and the horizontal crest. Each course is cut into stones of length ``L`` (0.35 m,
+Savalle et al. (2022), §4.1) by head joints perpendicular to the beds, in running bond: the cuts of
+odd courses are offset by ``L/2`` from the front face, so that odd courses start with a half stone
 at the front; the end pieces at the faces are whatever fits the batters, and an end piece
 shorter than ``min_piece L`` is merged with its neighbour (no slivers). ``bond_phase = 1``
 shifts the even courses instead (the other stretcher section of the same wall), and the
-courses listed in ``headers`` are single through-stones from face to face (seed 001 §3.2,
-Figure 3: the cross-sections of one wall differ by the position of their headers). Every
+courses listed in ``headers`` are single through-stones from face to face (Savalle et al. (2022),
+§3.2, Figure 3: the cross-sections of one wall differ by the position of their headers). Every
 stone is the course polygon clipped by two half-planes: a convex polygon, and the stones tile
 the section exactly (their total weight is :attr:`RetainingWall.weight`). The wall stands on a
 kinematic foundation slab (``kinematic="base"``, moved by the base motion) below the base
 joint, whose top face is the base joint line extended in front of the toe and behind the heel;
 the base joint is then a stone-foundation joint with the stone-stone properties.
 
-Materials: seed 001 Table 6 (full-scale walls): units 20.0 kN/m³ (density ``20e3 / g``
+Materials: Savalle et al. (2022), Table 6 (full-scale walls): units 20.0 kN/m³ (density ``20e3 / g``
 kg/m³, taken from ``wall.wall_unit_weight``), unit-unit interface kn = ks = 2.8e12 Pa/m and
 friction 25.0 deg (from ``wall.joint_friction_deg``); Table 1 for the mock-ups (2.6e12 Pa/m,
 32 deg). ``stiffness_scale`` scales kn and ks (the time step grows as its inverse square
-root; the seed's "perfect stones" make the walls nearly rigid, so a softer joint changes the
+root; the "perfect stones" of the paper make the walls nearly rigid, so a softer joint changes the
 collapse acceleration little while making the run cheaper: used by the tests and stated in the
 results).
 
@@ -53,8 +53,8 @@ of that pressure, inclined by ``delta`` to the normal of the back face (downward
 needs ``theta >= 0``; the soil does not pull the wall), with ``kv`` kept; ``kh`` is capped
 just below the value at which (E.2) breaks (``psi - theta - delta = 0``). The force keeps its
 direction and the application points move with the stones (the backfill follows the wall,
-seed 001 Figure 11); it is sampled every ``update_dt`` seconds (default 1 ms) through the
-engine's external-force hook (``Model.bext``).
+Savalle et al. (2022), Figure 11); it is sampled every ``update_dt`` seconds (default 1 ms) through
+the engine's external-force hook (``Model.bext``).
 
 Units: SI (m, kg, s, N, rad; ``*_deg`` in degrees).
 """
@@ -73,10 +73,11 @@ from murus.retaining.geometry import RetainingWall, clip_above, polygon_area_cen
 __all__ = ["DemWallError", "DemWall", "BackSegment", "build_wall", "stones_of_wall",
            "EquivalentThrust", "pressure_weights", "TABLE6_JOINT", "TABLE1_JOINT"]
 
-#: Seed 001 Table 6, unit-unit interface of the full-scale walls: kn = ks = 2.8e12 Pa/m
-#: (the friction angle, 25.0 deg, is the wall's ``joint_friction_deg``).
+#: Savalle et al. (2022), Table 6, unit-unit interface of the full-scale walls: kn = ks = 2.8e12
+#: Pa/m (the friction angle, 25.0 deg, is the wall's ``joint_friction_deg``).
 TABLE6_JOINT = {"kn": 2.8e12, "ks": 2.8e12}
-#: Seed 001 Table 1, unit-unit interface of the mock-ups: kn = ks = 2.6e12 Pa/m (32 deg).
+#: Savalle et al. (2022), Table 1, unit-unit interface of the mock-ups: kn = ks = 2.6e12 Pa/m (32
+#: deg).
 TABLE1_JOINT = {"kn": 2.6e12, "ks": 2.6e12}
 
 
@@ -106,6 +107,21 @@ class DemWall:
     kinematic base body, ``top`` the stone whose horizontal displacement relative to the base
     is d_top (the front stone of the top course), ``back`` the back-face segments,
     ``back_height`` the vertical height of the back face [m], ``joint`` the stone joint used.
+
+    Attributes
+    ----------
+    model : murus.dem.Model
+    wall : RetainingWall
+    stones : list of int
+    courses : list of list of int
+    polygons : list of numpy.ndarray
+        [m].
+    foundation, top : int
+    back : list
+    back_height : float
+        [m].
+    joint : murus.dem.Joint
+    options : dict
     """
 
     model: object
@@ -129,7 +145,8 @@ class DemWall:
 
     def d_top(self) -> float:
         """Horizontal displacement of the top stone relative to the base [m], positive out of
-        the slope (towards the front face, ``-x``): the collapse indicator of seed 001 §4.2."""
+        the slope (towards the front face, ``-x``): the collapse indicator of Savalle et al. (2022),
+        §4.2."""
         m = self.model
         return -float((m.bpos[self.top, 0] - m.bref[self.top, 0])
                       - (m.bpos[self.foundation, 0] - m.bref[self.foundation, 0]))
@@ -220,8 +237,10 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
                bond_phase: int = 0) -> DemWall:
     """The DEM model of the cross-section of ``wall`` (module docstring), one metre thick.
 
-    kn, ks : stone-stone joint stiffness [Pa/m] (default: seed 001 Table 6, 2.8e12, or Table 1
-        for a mock-up, 2.6e12), both multiplied by ``stiffness_scale``;
+    Parameters
+    ----------
+    kn, ks : stone-stone joint stiffness [Pa/m] (default: Savalle et al. (2022), Table 6, 2.8e12, or
+        Table 1 for a mock-up, 2.6e12), both multiplied by ``stiffness_scale``;
     foundation_depth : thickness of the kinematic foundation slab [m] (default one stone
         height); foundation_front : its extension in front of the toe [m] (default H / 2, where
         the falling stones land);
@@ -231,10 +250,11 @@ def build_wall(wall: RetainingWall, *, stone_length: float | None = None,
     backstop : a kinematic plate moving with the base along the back face, from the heel to
         above the crest (the backfill cannot be entered: without it the stones slide down the
         inclined beds into the slope during the half cycles whose inertia points into the
-        slope, seed 001 has a continuum backfill there); its joint is the wall-backfill
-        interface of seed 001 Table 6 (kn = ks = 2.9e10 Pa/m times ``stiffness_scale``,
-        friction ``wall.interface_friction_deg``) unless ``backstop_joint`` (Joint keyword
-        arguments) is given. It only pushes: the active thrust stays the applied force.
+        slope, Savalle et al. (2022) has a continuum backfill there); its joint is the wall-backfill
+        interface of Savalle et al. (2022), Table 6 (kn = ks = 2.9e10 Pa/m times
+        ``stiffness_scale``, friction ``wall.interface_friction_deg``) unless ``backstop_joint``
+        (Joint keyword arguments) is given. It only pushes: the active thrust stays the applied
+        force.
     add_bodies : ``add_bodies(model)`` called after the stones and before the model is built,
         to add more bodies and joints (the discrete backfill of
         :mod:`murus.retaining.backfill`); the stones keep their body indices.
@@ -347,6 +367,21 @@ class EquivalentThrust:
     or scalar); ``assumptions`` those of the pseudo-static resistance (default
     :class:`~murus.retaining.pseudostatic.Assumptions`); ``scale`` multiplies the thrust (0:
     no backfill). ``last`` keeps the latest ``(t, kh, kv, E_s, dE)``.
+
+    Parameters
+    ----------
+    dw : DemWall
+        The wall.
+    acc : callable, optional
+        ``acc(t) -> (a_x, a_y)`` [m/s²].
+    assumptions : Assumptions, optional
+        Those of the pseudo-static resistance.
+    scale : float
+        Factor on the thrust [-].
+
+    References
+    ----------
+    EN 1998-5 Annex E; Savalle et al. (2022), §4.
     """
 
     def __init__(self, dw: DemWall, acc: Callable | None = None, assumptions=None,

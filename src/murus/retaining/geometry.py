@@ -1,6 +1,7 @@
-"""Cross-section of a dry-stone retaining wall (DSRW), its bed joints, and the walls of seed 001.
+"""Cross-section of a dry-stone retaining wall (DSRW), its bed joints, and the walls of
+Savalle et al. (2022).
 
-Seed 001: Savalle, Vincens, Hans, Lourenço, "Dynamic numerical simulations of dry-stone
+Savalle et al. (2022): Savalle, Vincens, Hans, Lourenço, "Dynamic numerical simulations of dry-stone
 retaining walls: identification of the seismic behaviour factor", Geosciences 12 (2022) 252.
 Table 5 (geometry of DSRW1-4 and of the original "C3s" wall of Colas et al. [16]), Table 6
 (materials of the full-scale walls), §3.1 and Table 1 (the scaled-down mock-ups of [33]).
@@ -20,11 +21,11 @@ edge of the base) at the origin. Then
 - the beds (course joints) are inclined by ``alpha`` (``bed_inclination_deg``) towards the
   backfill: they go down into the slope, ``z = z_f - tan(alpha) (x - x_f)`` from a point
   ``(x_f, z_f)`` of the front face. Successive joints are one stone height apart measured
-  perpendicular to the beds (0.1 m in seed 001 §4.1);
+  perpendicular to the beds (0.1 m in Savalle et al. (2022), §4.1);
 - the base is a bed joint through the toe (``base="inclined"``: the wall is founded on a
   surface with the counter-slope of its beds, so that the heel is ``B tan(alpha)`` below the
-  toe) or horizontal (``base="horizontal"``). Seed 001 does not say which (Figure 9 is not in
-  the text); the inclined base is the default, the other is a documented option.
+  toe) or horizontal (``base="horizontal"``). Savalle et al. (2022) does not say which (Figure 9 is
+  not in the text); the inclined base is the default, the other is a documented option.
 
 Units: lengths in m, unit weights in N/m³, weights in N per metre of wall, angles ``*_deg``
 in degrees (properties in radians).
@@ -103,6 +104,15 @@ class BedJoint:
     where the joint leaves the section (on the back face, or on the base for a horizontal
     base). ``angle`` [rad] is the inclination towards the backfill (the joint goes down into
     the slope). ``index`` 0 is the base.
+
+    Attributes
+    ----------
+    index : int
+        0 for the base.
+    front, back : tuple of float
+        Ends ``(x, z)`` [m].
+    angle : float
+        Inclination towards the backfill [rad].
     """
 
     index: int
@@ -133,6 +143,20 @@ class WallPart:
     ``polygon`` vertices (counter-clockwise), ``area`` [m²], ``centroid`` (x, z) [m],
     ``weight`` [N/m]; ``back_bottom`` and ``back_top`` the ends of its back face in contact
     with the backfill, ``back_height`` their vertical distance [m].
+
+    Attributes
+    ----------
+    joint : BedJoint
+    polygon : tuple
+        Vertices ``(x, z)`` [m], counter-clockwise.
+    area : float
+        [m²].
+    centroid : tuple of float
+        [m].
+    weight : float
+        [N/m].
+    back_bottom, back_top : tuple of float
+        Ends of the back face in contact with the backfill [m].
     """
 
     joint: BedJoint
@@ -182,8 +206,8 @@ class RetainingWall:
     external_batter, internal_batter : ``lambda_v``, ``lambda_m`` [-] (0.06 = 6 %).
     bed_inclination_deg : ``alpha`` [deg], beds inclined towards the backfill.
     backfill_slope_deg : ``beta`` [deg], planar backfill rising from the crest.
-    stone_height, stone_length : [m] (0.1 and 0.35 in seed 001 §4.1); ``stone_height=None``
-        when the courses are unknown: only the base joint is then checked.
+    stone_height, stone_length : [m] (0.1 and 0.35 in Savalle et al. (2022), §4.1);
+        ``stone_height=None`` when the courses are unknown: only the base joint is then checked.
     wall_unit_weight, backfill_unit_weight : [N/m³].
     backfill_friction_deg : ``phi`` of the backfill [deg].
     joint_friction_deg : friction angle of the stone-stone bed joints [deg].
@@ -411,15 +435,15 @@ class RetainingWall:
         }
 
 
-# -- seed 001 walls ------------------------------------------------------------------------------
-#: Seed 001 Table 6 (full-scale walls): units 20.0 kN/m³; backfill 14.9 kN/m³, phi = 37.7 deg;
-#: friction of the unit-unit interfaces 25.0 deg, of the wall-backfill interface 37.7 deg.
+# -- Savalle et al. (2022) walls -------------------------------------------------------------------
+#: Savalle et al. (2022), Table 6 (full-scale walls): units 20.0 kN/m³; backfill 14.9 kN/m³, phi =
+#: 37.7 deg; friction of the unit-unit interfaces 25.0 deg, of the wall-backfill interface 37.7 deg.
 _TABLE6 = dict(wall_unit_weight=20.0e3, backfill_unit_weight=14.9e3, backfill_friction_deg=37.7,
                joint_friction_deg=25.0, interface_friction_deg=37.7, stone_height=0.1,
                stone_length=0.35)
 
-#: Seed 001 Table 5: H, B, b [m], internal batter lambda_m, external batter lambda_v [-],
-#: bed inclination alpha and backfill slope beta [deg]. "C3s" (Colas et al. [16]) is DSRW2
+#: Savalle et al. (2022), Table 5: H, B, b [m], internal batter lambda_m, external batter lambda_v
+#: [-], bed inclination alpha and backfill slope beta [deg]. "C3s" (Colas et al. [16]) is DSRW2
 #: (Figure 9 caption). Stones 0.1 m high and 0.35 m long (§4.1).
 _TABLE5 = {
     "C3s": (2.5, 0.7, 0.55, 0.0, 0.06, 9.1, 32.6),
@@ -429,22 +453,23 @@ _TABLE5 = {
     "DSRW4": (2.5, 0.7, 0.70, 0.0, 0.00, 0.0, 0.0),
 }
 
-#: Seed 001 §3.1, Table 3: slenderness H/B of the scaled-down mock-ups of [33].
+#: Savalle et al. (2022), §3.1, Table 3: slenderness H/B of the scaled-down mock-ups of [33].
 MOCKUP_SLENDERNESS = (1.3, 1.7, 2.3, 2.7, 3.0, 3.3)
 
-#: Seed 001 §3.1: "400 mm long, 34 mm wide" [m].
+#: Savalle et al. (2022), §3.1: "400 mm long, 34 mm wide" [m].
 MOCKUP_WIDTH = 0.034
 
-#: Seed 001 Table 1 (mock-ups): units 14.4 kN/m³; sand 15.4 kN/m³, phi = 45 deg; friction
-#: unit-unit and wall-backfill 32 deg.
+#: Savalle et al. (2022), Table 1 (mock-ups): units 14.4 kN/m³; sand 15.4 kN/m³, phi = 45 deg;
+#: friction unit-unit and wall-backfill 32 deg.
 _TABLE1 = dict(wall_unit_weight=14.4e3, backfill_unit_weight=15.4e3, backfill_friction_deg=45.0,
                joint_friction_deg=32.0, interface_friction_deg=32.0)
 
 
 def mockup(slenderness: float, width: float = MOCKUP_WIDTH, **overrides) -> RetainingWall:
-    """A scaled-down mock-up of seed 001 §3 (experiments of [33]) with ``H = slenderness B``.
+    """A scaled-down mock-up of Savalle et al. (2022), §3 (experiments of [33]) with ``H =
+    slenderness B``.
 
-    What the seed gives: vertical walls of constant width (34 mm printed) and heights giving
+    What the paper gives: vertical walls of constant width (34 mm printed) and heights giving
     H/B = 1.3-3.3, H the height free to move above the fixed first course, level sand
     backfill, the materials of Table 1. What it does not give: the brick (course) height and
     length, hence the positions of the bed joints (``stone_height=None``: only the base joint
@@ -452,6 +477,23 @@ def mockup(slenderness: float, width: float = MOCKUP_WIDTH, **overrides) -> Reta
     as h² and the weight as h), and any batter or bed inclination (taken as zero). Note that
     "between 50 mm and 140 mm high" with H/B = 1.3-3.3 implies B = 38-42 mm rather than 34 mm
     (the printed heights may include the fixed course): pass ``width`` to test it.
+
+    Parameters
+    ----------
+    slenderness : float
+        ``H / B`` [-].
+    width : float
+        ``B`` [m].
+    **overrides
+        Any parameter of :class:`RetainingWall`.
+
+    Returns
+    -------
+    RetainingWall
+
+    References
+    ----------
+    Savalle et al. (2022), §3.1, Tables 1 and 3.
     """
     r = _num("slenderness", slenderness, 0.0, True)
     w = _num("width", width, 0.0, True)
@@ -462,8 +504,25 @@ def mockup(slenderness: float, width: float = MOCKUP_WIDTH, **overrides) -> Reta
 
 
 def preset(name: str, **overrides) -> RetainingWall:
-    """Seed 001 walls: ``DSRW1``-``DSRW4`` and ``C3s`` (Tables 5 and 6), or ``mockup-<H/B>``
-    for the scaled-down walls of §3 (``mockup-2.7``). ``overrides`` change any parameter."""
+    """Savalle et al. (2022) walls: ``DSRW1``-``DSRW4`` and ``C3s`` (Tables 5 and 6), or
+    ``mockup-<H/B>`` for the scaled-down walls of §3 (``mockup-2.7``). ``overrides`` change any
+    parameter.
+
+    Parameters
+    ----------
+    name : str
+        ``"DSRW1"`` ... ``"DSRW4"``, ``"C3s"`` or ``"mockup-<H/B>"`` (case-insensitive).
+    **overrides
+        Any parameter of :class:`RetainingWall`.
+
+    Returns
+    -------
+    RetainingWall
+
+    References
+    ----------
+    Savalle et al. (2022), Tables 1, 5 and 6.
+    """
     key = str(name).strip()
     up = key.upper()
     if up.startswith("MOCKUP-"):

@@ -1,10 +1,11 @@
-"""Pseudo-static limit equilibrium of a dry-stone retaining wall, joint by joint (seed 001 §4.4).
+"""Pseudo-static limit equilibrium of a dry-stone retaining wall, joint by joint
+(Savalle et al. (2022), §4.4).
 
-Seed 001 (Savalle et al. 2022) §4.4 computes the pseudo-static resistance ``A_pseudo`` of each
+Savalle et al. (2022) §4.4 computes the pseudo-static resistance ``A_pseudo`` of each
 wall "using an analytical approach based on the limit-equilibrium of a Coulomb's wedge of soil
 [18, 27]" with the properties of Tables 5 and 6 and perfect stones ("no internal rotation of
 the stones"); Table 8 gives 1.58 m/s² for DSRW1 under horizontal action and 1.50 m/s² with a
-vertical component of half the horizontal one. The seed gives no equations; this module is a
+vertical component of half the horizontal one. The paper gives no equations; this module is a
 reconstruction from EN 1998-5 and the usual DSRW limit analysis, every open choice being an
 explicit :class:`Assumptions` field (documented, with their effect, in VALIDATION.md).
 
@@ -34,14 +35,14 @@ safety factor over joints and mechanisms reaches 1 (:func:`critical_acceleration
 
 Defaults. ``delta = 2/3 phi`` and the whole thrust at ``h/3`` (EN 1998-5 §7.3.2.3(5)), the
 base parallel to the beds, the worse sign of ``kv``: DSRW1 gives 1.588 m/s² (Table 8: 1.58)
-and 1.469 m/s² with ``kv = 0.5 kh`` (1.50), and the walls whose values the seed does not
+and 1.469 m/s² with ``kv = 0.5 kh`` (1.50), and the walls whose values the paper does not
 print give behaviour factors consistent with the mean and minimum it states. The literal
 reading of Table 6 (``delta = phi = 37.7 deg``) with the EN mid-height increment is 13 % high.
 VALIDATION.md has the sensitivity to each choice.
 
-Tilting table (seed 001 refs [18, 33]): tilting the wall and its backfill by ``t`` turns
-gravity into ``g (sin t, -cos t)`` in the wall's frame, i.e. ``kh = sin t``, ``kv = 1 - cos t``
-(:func:`tilt_coefficients`, :func:`critical_tilt`).
+Tilting table (Savalle et al. (2022), refs [18, 33]): tilting the wall and its backfill by ``t``
+turns gravity into ``g (sin t, -cos t)`` in the wall's frame, i.e. ``kh = sin t``, ``kv = 1 - cos
+t`` (:func:`tilt_coefficients`, :func:`critical_tilt`).
 
 Frame and units: those of :mod:`murus.retaining.geometry` (x into the backfill, z up, toe at
 the origin); forces in N and moments in N m per metre of wall, accelerations in m/s².
@@ -74,11 +75,14 @@ class PseudoStaticError(ValueError):
 
 @dataclass(frozen=True)
 class Assumptions:
-    """The choices seed 001 leaves open, with their defaults (VALIDATION.md shows their effect).
+    """The choices Savalle et al. (2022) leaves open, with their defaults (VALIDATION.md shows their
+    effect).
 
+    Parameters
+    ----------
     delta_ratio : wall friction ``delta = delta_ratio phi`` (default 2/3, the customary value
         for a gravity wall); ``None`` takes the wall-backfill interface friction of the wall
-        (37.7 deg = phi in seed 001 Table 6).
+        (37.7 deg = phi in Savalle et al. (2022), Table 6).
     delta_deg : wall friction [deg], overrides ``delta_ratio`` when given.
     static_point : height of the static thrust above the bottom of the back face, as a
         fraction of its height (1/3: triangular pressure).
@@ -98,8 +102,8 @@ class Assumptions:
         height ``H - z_front``, as if the joint were horizontal).
     modes : mechanisms checked, among ``"sliding"`` and ``"overturning"``.
     joints : ``"all"``, ``"base"`` (only the base joint) or ``"above-base"`` (all but the
-        base: the bottom course fixed to the foundation, as the DEM models of seed 001 fix the
-        bottom wall units).
+        base: the bottom course fixed to the foundation, as the DEM models of Savalle et al. (2022)
+        fix the bottom wall units).
     """
 
     delta_ratio: float | None = 2.0 / 3.0
@@ -166,6 +170,21 @@ class JointCheck:
     normal ``N`` (compression positive) and the tangential ``T`` (out of the slope positive);
     moments about the front edge [N m/m]: ``M_stab``, ``M_over``. ``back_height`` [m] is the
     height the thrust acts on.
+
+    Attributes
+    ----------
+    joint : int
+        Index (0 the base).
+    height, back_height : float
+        [m].
+    kh, kv : float
+        [-].
+    weight, E_static, dE, N, T : float
+        [N/m].
+    fs_sliding, fs_overturning : float
+        Safety factors [-].
+    M_stab, M_over : float
+        [N m/m].
     """
 
     joint: int
@@ -262,7 +281,23 @@ def _forces(wall: RetainingWall, part: WallPart, kh: float, kv: float, asm: Assu
 
 def check_joint(wall: RetainingWall, joint: BedJoint | int, kh: float, kv: float = 0.0,
                 assumptions: Assumptions | None = None) -> JointCheck:
-    """Sliding and overturning of the wall above ``joint`` under ``kh``, ``kv``."""
+    """Sliding and overturning of the wall above ``joint`` under ``kh``, ``kv``.
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    joint : BedJoint or int
+        The joint (or its index, 0 the base).
+    kh, kv : float
+        Seismic coefficients [-] (``kv`` positive upward).
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+
+    Returns
+    -------
+    JointCheck
+    """
     asm = assumptions or Assumptions()
     if isinstance(joint, int):
         try:
@@ -308,7 +343,21 @@ def _joints(wall: RetainingWall, asm: Assumptions) -> tuple[BedJoint, ...]:
 
 def check_joints(wall: RetainingWall, kh: float, kv: float = 0.0,
                  assumptions: Assumptions | None = None) -> list[JointCheck]:
-    """:func:`check_joint` for every joint (base first)."""
+    """:func:`check_joint` for every joint (base first).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    kh, kv : float
+        Seismic coefficients [-] (``kv`` positive upward).
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+
+    Returns
+    -------
+    list of JointCheck
+    """
     asm = assumptions or Assumptions()
     return [check_joint(wall, j, kh, kv, asm) for j in _joints(wall, asm)]
 
@@ -332,6 +381,22 @@ class PseudoStaticResult:
     edge above the toe) and ``mode`` of the governing mechanism; ``fs_static`` the smallest
     static safety factor; ``by_sign`` the limits for each sign of ``kv`` ({+1: upwards,
     -1: downwards}: (kh, joint, mode)).
+
+    Attributes
+    ----------
+    wall : str
+    A_pseudo : float
+        [m/s²].
+    kh, kv, kv_ratio : float
+        [-].
+    joint : int
+    joint_height : float
+        [m].
+    mode : str
+    fs_static : float
+        [-].
+    by_sign : dict
+    assumptions : Assumptions
     """
 
     wall: str
@@ -396,12 +461,32 @@ def _kh_max(wall: RetainingWall, asm: Assumptions, kv_ratio: float) -> float:
 def critical_acceleration(wall: RetainingWall, kv_ratio: float = 0.0,
                           assumptions: Assumptions | None = None,
                           signs: tuple[int, ...] | None = None) -> PseudoStaticResult:
-    """Pseudo-static resistance ``A_pseudo = kh g`` of ``wall`` (seed 001 §4.4, Table 8).
+    """Pseudo-static resistance ``A_pseudo = kh g`` of ``wall`` (Savalle et al. (2022), §4.4, Table
+    8).
 
     ``kv = s kv_ratio kh`` for ``s`` in ``signs`` (default both, +1 upwards first); the
     smallest ``kh`` at which the smallest safety factor over joints and mechanisms is 1.
     Raises :class:`PseudoStaticError` if the wall is not statically stable or no limit is
     found below the largest seismic angle EN 1998-5 (E.2) admits.
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    kv_ratio : float
+        ``|kv| / kh`` [-].
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+    signs : tuple of int, optional
+        Signs of ``kv`` tried (+1 upward).
+
+    Returns
+    -------
+    PseudoStaticResult
+
+    References
+    ----------
+    Savalle et al. (2022), §4.4, Table 8; EN 1998-5 Annex E.
     """
     asm = assumptions or Assumptions()
     r = float(kv_ratio)
@@ -437,7 +522,25 @@ def critical_acceleration(wall: RetainingWall, kv_ratio: float = 0.0,
 def safety_curves(wall: RetainingWall, kh, kv_ratio: float = 0.0, sign: int = 1,
                   assumptions: Assumptions | None = None) -> dict[str, np.ndarray]:
     """Safety factors on a grid of ``kh``: arrays ``[joint, kh]`` for each mechanism, and the
-    joint heights. For plots (VALIDATION.md)."""
+    joint heights. For plots (VALIDATION.md).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    kh : array_like
+        Horizontal coefficients [-].
+    kv_ratio : float
+        ``|kv| / kh`` [-].
+    sign : int
+        Sign of ``kv`` (+1 upward).
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+
+    Returns
+    -------
+    dict of numpy.ndarray
+    """
     asm = assumptions or Assumptions()
     kh = np.asarray(kh, dtype=float)
     joints = _joints(wall, asm)
@@ -456,7 +559,18 @@ def tilt_coefficients(tilt: float) -> tuple[float, float]:
     """``(kh, kv) = (sin t, 1 - cos t)`` for a tilt ``t`` [rad] of the wall and its backfill.
 
     In the tilted frame gravity is ``g (sin t, -cos t)``: a horizontal coefficient ``sin t``
-    out of the slope and a vertical one ``1 - cos t`` upwards (seed 001 refs [18, 33]).
+    out of the slope and a vertical one ``1 - cos t`` upwards (Savalle et al. (2022), refs [18,
+    33]).
+
+    Parameters
+    ----------
+    tilt : float
+        Tilt of the table [rad].
+
+    Returns
+    -------
+    tuple of float
+        ``(kh, kv)`` [-].
     """
     t = float(tilt)
     if not (math.isfinite(t) and 0.0 <= t < 0.5 * math.pi):
@@ -465,7 +579,18 @@ def tilt_coefficients(tilt: float) -> tuple[float, float]:
 
 
 def tilt_from_coefficients(kh: float, kv: float) -> float:
-    """The tilt [rad] equivalent to ``(kh, kv)`` when ``kh² + (1 - kv)² = 1`` (else an error)."""
+    """The tilt [rad] equivalent to ``(kh, kv)`` when ``kh² + (1 - kv)² = 1`` (else an error).
+
+    Parameters
+    ----------
+    kh, kv : float
+        Seismic coefficients [-] (``kv`` positive upward).
+
+    Returns
+    -------
+    float
+        Tilt [rad].
+    """
     if abs(kh * kh + (1.0 - kv) ** 2 - 1.0) > 1e-9:
         raise PseudoStaticError(f"(kh, kv) = ({kh!r}, {kv!r}) is not a tilt: kh² + (1 - kv)² "
                                 "must be 1")
@@ -475,7 +600,20 @@ def tilt_from_coefficients(kh: float, kv: float) -> float:
 def critical_tilt(wall: RetainingWall, assumptions: Assumptions | None = None) -> tuple[
         float, int, str]:
     """Tilt [rad] of a tilting table at which the smallest safety factor is 1, its joint and
-    mechanism (``kh = sin t``, ``kv = 1 - cos t``)."""
+    mechanism (``kh = sin t``, ``kv = 1 - cos t``).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    assumptions : Assumptions, optional
+        The open choices (default :class:`Assumptions`).
+
+    Returns
+    -------
+    tuple
+        Tilt [rad], joint index, mechanism (``"sliding"`` or ``"overturning"``).
+    """
     from scipy.optimize import brentq
 
     asm = assumptions or Assumptions()

@@ -1,12 +1,13 @@
-"""Global response of a wall from several cross-sections (seed 001 §3.2, Figure 4, Table 2).
+"""Global response of a wall from several cross-sections (Savalle et al. (2022), §3.2, Figure 4,
+Table 2).
 
 A 2D model has one cross-section, but a real dry-stone wall is an assemblage whose sections
-differ along its length (headers at different heights, seed 001 Figure 3). Seed 001 runs each
-section and combines their crest displacements into a global response "weighting the individual
-responses according to the proportions [of each section along the wall]. For each d_top, one
-finds the corresponding times in each response and then weights them to obtain the global
-response time" (Table 2: for d_top = 5 mm, times 18.4, 21.5, 19.9 and 21.5 s with proportions
-7/23, 7/23, 7/23 and 2/23 give 20.1 s).
+differ along its length (headers at different heights, Savalle et al. (2022), Figure 3).
+Savalle et al. (2022) runs each section and combines their crest displacements into a global
+response "weighting the individual responses according to the proportions [of each section along the
+wall]. For each d_top, one finds the corresponding times in each response and then weights them to
+obtain the global response time" (Table 2: for d_top = 5 mm, times 18.4, 21.5, 19.9 and 21.5 s with
+proportions 7/23, 7/23, 7/23 and 2/23 give 20.1 s).
 
 :func:`weighted_response` does this for a whole range of displacement levels: the time at which
 each section first reaches a level (linear interpolation between samples, on the running
@@ -66,12 +67,12 @@ def first_passage_times(t, d, levels) -> np.ndarray:
 
 
 def weighted_response(histories, weights, levels=None, n_levels: int = 200) -> WeightedResponse:
-    """Weighted global response of several cross-sections (seed 001 Table 2).
+    """Weighted global response of several cross-sections (Savalle et al. (2022), Table 2).
 
     ``histories``: a list of (t [s], d_top [m]) per section; ``weights``: the proportion of each
-    section along the wall (normalised here; seed 001: 7/23, 7/23, 7/23, 2/23); ``levels``:
-    the displacement levels [m] (default ``n_levels`` levels from 0 to the smallest of the
-    sections' largest |d_top|, so that every section reaches them)."""
+    section along the wall (normalised here; Savalle et al. (2022): 7/23, 7/23, 7/23, 2/23);
+    ``levels``: the displacement levels [m] (default ``n_levels`` levels from 0 to the smallest of
+    the sections' largest |d_top|, so that every section reaches them)."""
     if len(histories) == 0:
         raise SectionsError("no section history given")
     w = np.asarray(weights, dtype=float)

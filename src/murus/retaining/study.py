@@ -1,11 +1,11 @@
-"""The behaviour-factor study of a dry-stone retaining wall (seed 001 §4.2-4.4, Tables 7 and 8;
-issue 6 item 4) as stored, resumable tasks on the executors of :mod:`murus.studies`.
+"""The behaviour-factor study of a dry-stone retaining wall (Savalle et al. (2022), §4.2-4.4, Tables
+7 and 8; issue 6 item 4) as stored, resumable tasks on the executors of :mod:`murus.studies`.
 
 Two stages of DEM runs (:func:`murus.retaining.collapse.collapse_run`):
 
 1. S2 (harmonic ramp) for every (frequency, vertical mode): ``t_col``, ``A_col``;
-2. S1 checks at ``ratio A_col`` for every ratio of ``check_ratios`` (seed 001 Figure 14:
-   stable at 0.6, collapsed at 0.7), with the slope of the S2 run; queued as soon as their S2
+2. S1 checks at ``ratio A_col`` for every ratio of ``check_ratios`` (Savalle et al. (2022), Figure
+   14: stable at 0.6, collapsed at 0.7), with the slope of the S2 run; queued as soon as their S2
    run is done (no barrier between the stages). A case whose S2 run does not collapse has no
    ``A_col``: its checks are recorded as skipped.
 
@@ -23,7 +23,8 @@ Study folder (``out``)::
       cases/S1_5Hz_none_0.6.json     of the run (snapshot data; PNGs by write_snapshots)
       ...
       failures.json                  cases that failed after their retries
-      behaviour_factor.csv, .md      the table (seed 001 Tables 7-8 layout), when the run ends
+      behaviour_factor.csv, .md      the table (Savalle et al. (2022), Tables 7-8 layout), when the
+      run ends
 
 Re-running the same study with the same ``out`` computes only the cases without valid files
 (missing, truncated or corrupt, or of other inputs) and gives the same table, byte for byte
@@ -617,8 +618,8 @@ def _load_case(folder: Path, case: Case, digest: str) -> dict | None:
 # ----------------------------------------------------------------------------- runner ----
 @dataclass
 class BehaviourStudyResult:
-    """The outcome of a study: ``table`` (seed 001 Tables 7-8 layout, one row per S2 case),
-    ``checks`` ``{(frequency, vertical): {ratio: "stable" | "collapsed" | "skipped" |
+    """The outcome of a study: ``table`` (Savalle et al. (2022), Tables 7-8 layout, one row per S2
+    case), ``checks`` ``{(frequency, vertical): {ratio: "stable" | "collapsed" | "skipped" |
     "failed" | "missing"}}``, ``records`` (the stored record of every task, None if missing),
     ``failures`` ``{task index: {"error", "attempts", "case"}}``, ``digest``, ``out``."""
 
@@ -792,7 +793,7 @@ def _num(v) -> float:
 
 
 def _row(study: BehaviourStudy, c: Case, s: dict, state: str | None) -> dict:
-    """One row of seed 001 Tables 7-8 (the row of :func:`murus.retaining.collapse.
+    """One row of Savalle et al. (2022), Tables 7-8 (the row of :func:`murus.retaining.collapse.
     behaviour_factor`) from a stored summary."""
     collapsed = bool(s.get("collapsed"))
     A_col = _num(s.get("A_col"))

@@ -8,7 +8,7 @@ wedge) and the reaction of the soil below the failure plane (inclined by ``phi``
 normal). The active thrust is the maximum over the inclination ``rho`` of the failure plane.
 For a planar backfill it equals the Mononobe-Okabe value of EN 1998-5 (E.1)-(E.2) (Coulomb's
 for ``kh = kv = 0``); a broken backfill (a polyline) needs the search. This is the "Coulomb's
-wedge of soil" of seed 001 §4.4.
+wedge of soil" of Savalle et al. (2022), §4.4.
 
 Local frame: the heel at the origin, ``x`` into the backfill, ``z`` upwards; the back face goes
 up from the heel to the crest, where the backfill surface starts; ``psi`` is its inclination to
@@ -35,7 +35,19 @@ class WedgeError(ValueError):
 class WedgeResult:
     """Active thrust ``thrust`` [N/m] on a back face of vertical height ``height`` [m], the
     critical failure-plane inclination ``rho`` [rad] to the horizontal, and the equivalent
-    coefficient ``K = 2 thrust / (gamma (1 - kv) height²)`` of EN 1998-5 (E.1)."""
+    coefficient ``K = 2 thrust / (gamma (1 - kv) height²)`` of EN 1998-5 (E.1).
+
+    Attributes
+    ----------
+    thrust : float
+        [N/m].
+    rho : float
+        Inclination of the failure plane [rad].
+    K : float
+        Equivalent coefficient [-].
+    height : float
+        Vertical height of the back face [m].
+    """
 
     thrust: float
     rho: float

@@ -14,7 +14,25 @@ def overturns(model, excitation, *, without_impact: bool = False, tail: float | 
     """Whether the body overturns under ``excitation`` (optionally: before any impact).
 
     The run lasts until ``tail`` seconds after the end of the input (default ``40 / p``: a body
-    left just above the separatrix needs ~ln(1/distance)/p to fall)."""
+    left just above the separatrix needs ~ln(1/distance)/p to fall).
+
+    Parameters
+    ----------
+    model : RockingModel or RigidBlock
+        The body and its laws.
+    excitation : Record, HarmonicPulse or GroundMotion
+        The input.
+    without_impact : bool
+        Count only overturning before the first impact.
+    tail : float, optional
+        Seconds simulated after the end of the input [s] (default ``40 / p``).
+    rtol : float
+        Relative tolerance of the integrator.
+
+    Returns
+    -------
+    bool
+    """
     mdl = as_model(model)
     tail = 40.0 / mdl.p if tail is None else tail
     r = simulate(mdl, excitation, duration=excitation.end_time + tail, rtol=rtol,
@@ -38,7 +56,28 @@ def critical_amplitude(
     body, by bisection between ``lo`` (must not overturn) and ``hi`` (must overturn).
 
     With ``without_impact`` only overturning before the first impact counts (the "mode 2"
-    overturning of the closed-form pulse solutions, e.g. Zhang and Makris 2001)."""
+    overturning of the closed-form pulse solutions, e.g. Zhang and Makris 2001).
+
+    Parameters
+    ----------
+    model : RockingModel or RigidBlock
+        The body and its laws.
+    make_excitation : callable
+        ``amplitude -> excitation``.
+    lo, hi : float
+        Bracket of the amplitude (in the units of ``make_excitation``'s argument).
+    without_impact : bool
+        Count only overturning before the first impact.
+    xtol : float
+        Absolute tolerance of the bisection.
+    rtol : float
+        Relative tolerance of the integrator.
+
+    Returns
+    -------
+    float
+        The critical amplitude.
+    """
     mdl = as_model(model)
 
     def ok(a):

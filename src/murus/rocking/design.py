@@ -1,6 +1,6 @@
-"""Design of a restrained rocking wall: tie, spring bed, resonance, damper (seed 002 §2-3).
+"""Design of a restrained rocking wall: tie, spring bed, resonance, damper (EURODYN (2020), §2-3).
 
-Seed 002 (Giresini et al., EURODYN 2020) studies a wall rocking in one-sided motion: a horizontal
+EURODYN (2020) studies a wall rocking in one-sided motion: a horizontal
 tie (stiffness ``K``, optionally with a viscous damper ``c``) restrains the clockwise rotation about
 the outer corner O, and the transverse walls, modelled as a bed of horizontal springs of stiffness
 ``K'`` per unit height, restrain the anticlockwise rotation about O'. This module collects the
@@ -19,9 +19,9 @@ by its height ``y`` above the base and its horizontal position ``x`` in the body
 mid-thickness). SI units throughout: m, kg, s, N, N/m (tie), N/m/m = N/m² (spring bed per unit
 height), N s/m (damper), rad, rad/s.
 
->>> from murus.rocking import seed002_block
->>> blk = seed002_block("block1")
->>> round(bed_stiffness_from_walls(1.5e9, 0.3, 1.0))     # seed 002 §4.2: K' = 4.5e8 N/m/m
+>>> from murus.rocking import restrained_wall_block
+>>> blk = restrained_wall_block("block1")
+>>> round(bed_stiffness_from_walls(1.5e9, 0.3, 1.0))     # EURODYN (2020), §4.2: K' = 4.5e8 N/m/m
 450000000
 >>> td = tie_design(blk)
 >>> round(td.T_d, 1), round(td.phi_d * 1000, 2)           # N, mm
@@ -116,7 +116,8 @@ def _nan_to_none(v):
 # -- geometry --------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class TieGeometry:
-    """Lever quantities of a point of the wall (a tie or damper anchorage), seed 002 eq. 2 and 7.
+    """Lever quantities of a point of the wall (a tie or damper anchorage), EURODYN (2020), eq. 2
+    and 7.
 
     Attributes (SI): ``height`` [m] above the base and ``x`` [m] in the body frame; ``R_t`` [m]
     the distance from the pivot O (x = +b/2) to the point and ``alpha_t`` [rad] the angle between
@@ -146,7 +147,7 @@ def tie_geometry(body: RigidBlock, height: float | None = None, x: float = 0.0) 
     wall (0 = mid-thickness, ``+b/2`` = the face on the side of the pivot O).
 
     About O at ``(+b/2, 0)``: ``R_t = sqrt((b/2 - x)² + height²)`` and
-    ``alpha_t = atan2(b/2 - x, height)`` (seed 002 eq. 2 notation: in eq. 2 the horizontal
+    ``alpha_t = atan2(b/2 - x, height)`` (EURODYN (2020), eq. 2 notation: in eq. 2 the horizontal
     displacement of the point is ``R_t (sin alpha_t - sin A_t)`` and its lever ``R_t cos A_t``).
     About O' at ``(-b/2, 0)``: ``R_t_neg = sqrt((b/2 + x)² + height²)``,
     ``alpha_t_neg = atan2(b/2 + x, height)``. ``height`` defaults to the top of the wall;
@@ -168,11 +169,11 @@ def tie_geometry(body: RigidBlock, height: float | None = None, x: float = 0.0) 
 
 # -- spring bed (eq. 10, 11) -----------------------------------------------------------------
 def bed_stiffness_from_walls(E_x: float, t: float, L_eff: float) -> float:
-    """Stiffness of the spring bed of the transverse walls, ``K' = E_x t / L_eff`` (seed 002
+    """Stiffness of the spring bed of the transverse walls, ``K' = E_x t / L_eff`` (EURODYN (2020)
     eq. 10) [N/m per m of height = N/m²].
 
     ``E_x`` [Pa] equivalent lateral elastic modulus of the transverse walls, ``t`` [m] their
-    thickness, ``L_eff`` [m] their effective length. Seed 002 §4.3: ``E_x = 1.5e9`` (printed
+    thickness, ``L_eff`` [m] their effective length. EURODYN (2020), §4.3: ``E_x = 1.5e9`` (printed
     "N/m/m", a modulus in Pa), ``t = 0.3 m``, ``L_eff = 1.0 m`` give ``K' = 4.5e8 N/m/m``, the
     value used in §4.2.
     """
@@ -185,8 +186,8 @@ def bed_stiffness_from_walls(E_x: float, t: float, L_eff: float) -> float:
 def bed_stiffness_equal(
     body: RigidBlock, K: float, tie_height: float | None = None, tie_x: float = 0.0
 ) -> float:
-    """Spring bed stiffness [N/m/m] that makes the two one-sided systems equally stiff, seed 002
-    eq. 11 as printed: ``K' = K (3/8) R_t² / (R³ cos(alpha))``.
+    """Spring bed stiffness [N/m/m] that makes the two one-sided systems equally stiff,
+    EURODYN (2020) eq. 11 as printed: ``K' = K (3/8) R_t² / (R³ cos(alpha))``.
 
     ``K`` [N/m] is the tie stiffness, ``R_t`` the distance from the pivot O to the tie (at
     ``tie_height``, ``tie_x``; default top, mid-thickness), ``R`` and ``alpha`` those of the body.
@@ -206,7 +207,7 @@ def bed_stiffness_equal(
 # -- resonance (eq. 8, 9) --------------------------------------------------------------------
 @dataclass(frozen=True)
 class Resonance:
-    """Resonance frequencies of the restrained wall [rad/s] (seed 002 eq. 8, 9) and the
+    """Resonance frequencies of the restrained wall [rad/s] (EURODYN (2020), eq. 8, 9) and the
     linearised values they approximate.
 
     ``omega_plus`` (eq. 8, tie in tension, rotation about O) and ``omega_minus`` (eq. 9, spring
@@ -258,7 +259,7 @@ def resonance_frequencies(
     g: float = G,
     bed_height: float | None = None,
 ) -> Resonance:
-    """Resonance frequencies [rad/s] of the one-sided restrained wall (seed 002 §2).
+    """Resonance frequencies [rad/s] of the one-sided restrained wall (EURODYN (2020), §2).
 
     Parameters
     ----------
@@ -278,7 +279,7 @@ def resonance_frequencies(
         Effective height ``h'`` [m] of the spring bed, from the base, for the linearised value
         (default: the wall height ``h``; must lie in (0, h]).
 
-    Seed 002 formulas, with ``p = sqrt(m g R / I_O)`` (seed 002 §2):
+    EURODYN (2020) formulas, with ``p = sqrt(m g R / I_O)`` (EURODYN (2020), §2):
 
     - eq. 8: ``omega_r+ = p sqrt(K R_t² / (m g R) - 1) = sqrt((K R_t² - m g R) / I_O)``;
     - eq. 9: ``omega_r- = p sqrt(8 K' R² / (3 m g) - 1) = sqrt((8 K' R³ / 3 - m g R) / I_O)``.
@@ -329,7 +330,7 @@ def resonance_frequencies(
 # -- tie rod (eq. 12) ------------------------------------------------------------------------
 @dataclass(frozen=True)
 class TieDesign:
-    """A steel tie rod designed by seed 002 eq. 12 (SI units).
+    """A steel tie rod designed by EURODYN (2020), eq. 12 (SI units).
 
     ``W`` [N] weight, ``T_d`` [N] design tie force (<= 0: no tie needed), ``sigma_d`` [Pa] design
     stress, ``phi_required`` [m] diameter from ``T_d`` and ``sigma_d``, ``phi_d`` [m] adopted
@@ -376,18 +377,18 @@ def tie_design(
     round_to_commercial: bool = False,
     g: float = G,
 ) -> TieDesign:
-    """Design a steel tie rod by equilibrium about the pivot (seed 002 eq. 12).
+    """Design a steel tie rod by equilibrium about the pivot (EURODYN (2020), eq. 12).
 
     Eq. 12, ``T_d h_t + W s/2 = mu W h/2``: the seismic action is a horizontal static force
-    ``mu W`` at the centre of gravity (seed 002 §3), ``W = m g`` [N] the weight, ``s`` = ``b``
-    [m] the wall thickness, ``h_t`` [m] the tie height (default the top, ``h``). The lever of
+    ``mu W`` at the centre of gravity (EURODYN (2020), §3), ``W = m g`` [N] the weight, ``s`` =
+    ``b`` [m] the wall thickness, ``h_t`` [m] the tie height (default the top, ``h``). The lever of
     ``mu W`` is the height of the centre of gravity ``z_G``, which is ``h/2`` for the uniform
-    walls of seed 002; ``z_G`` is used so that a top mass is handled. Then
+    walls of EURODYN (2020); ``z_G`` is used so that a top mass is handled. Then
 
     - ``T_d = W (mu z_G - b/2) / h_t`` [N]; ``T_d <= 0`` means the wall is stable without a tie
       (``mu <= tan(alpha)``): reported with ``needed = False``;
-    - ``sigma_d = 0.7 f_uk / gamma`` [Pa] (seed 002 §3, ``gamma = 1.05``), with ``f_uk = 430 MPa``
-      for S275 (EN 1993-1-1 Table 3.1, steel to EN 10025-2, t <= 40 mm);
+    - ``sigma_d = 0.7 f_uk / gamma`` [Pa] (EURODYN (2020), §3, ``gamma = 1.05``), with ``f_uk = 430
+      MPa`` for S275 (EN 1993-1-1 Table 3.1, steel to EN 10025-2, t <= 40 mm);
     - ``phi = sqrt(4 T_d / (pi sigma_d))`` [m] from ``T_d = sigma_d pi phi² / 4``; with
       ``round_to_commercial`` the next size of :data:`COMMERCIAL_DIAMETERS_MM` is adopted;
     - ``K_d = E A / L`` [N/m] with ``A = pi phi_d² / 4``, ``E = 210 GPa`` and ``L = 10 m`` (seed
@@ -429,15 +430,17 @@ def tie_design(
 
 # -- damping (eq. 13) ------------------------------------------------------------------------
 def reference_damping(body: RigidBlock, delta_t: float, g: float = G) -> float:
-    """Reference damping coefficient ``c_d`` [N s/m] of a horizontal damper (seed 002 eq. 13).
+    """Reference damping coefficient ``c_d`` [N s/m] of a horizontal damper (EURODYN (2020), eq.
+    13).
 
     ``c_d = F_0 / v = mu W / (delta_u / delta_t) = 2 m g delta_t / h``: from the capacity curve of
     the free-standing wall, ``F_0 = mu W`` is the horizontal force at uplift (``mu = tan(alpha) =
     (b/2) / z_G``, the static collapse multiplier, ``s/h`` for a uniform wall), ``delta_u = b/2``
-    the ultimate displacement of the centre of gravity (seed 002 §4.2, ``u_G = s/2``) and
+    the ultimate displacement of the centre of gravity (EURODYN (2020), §4.2, ``u_G = s/2``) and
     ``delta_t`` [s] a characteristic time of the event, so that ``v = delta_u / delta_t``.
     Written with ``z_G``: ``c_d = m g delta_t / z_G``, i.e. ``2 m g delta_t / h`` for the uniform
-    walls of seed 002 (``z_G = h/2``). Seed 002 uses ``c`` = 0.1 %, 1 %, 5 %, > 10 % of ``c_d``.
+    walls of EURODYN (2020) (``z_G = h/2``). EURODYN (2020) uses ``c`` = 0.1 %, 1 %, 5 %, > 10 % of
+    ``c_d``.
     """
     body = _body(body)
     delta_t = _positive("delta_t", delta_t, "s")
@@ -466,10 +469,11 @@ def design_report(
     fractions: tuple[float, ...] = (),
     g: float = G,
 ) -> dict:
-    """All the design quantities of seed 002 for ``body`` as a JSON-ready dictionary (SI units).
+    """All the design quantities of EURODYN (2020) for ``body`` as a JSON-ready dictionary (SI
+    units).
 
     The tie stiffness is ``K`` [N/m] if given, else ``K_over_Kd * K_d``, else ``K_d`` (eq. 12,
-    the reference value of seed 002). The spring bed stiffness is ``K_bed`` [N/m/m] if given,
+    the reference value of EURODYN (2020)). The spring bed stiffness is ``K_bed`` [N/m/m] if given,
     else eq. 10 from ``walls = (E_x, t, L_eff)``, else eq. 11 from ``K``. The damping section
     (eq. 13, with ``c = f c_d`` for each of ``fractions``) is present when ``delta_t`` [s] is
     given. NaN values (no oscillation) are written as ``None``.

@@ -1,6 +1,6 @@
-"""``murus design`` commands: tie, damper, resonance (seed 002 eq. 8-13).
+"""``murus design`` commands: tie, damper, resonance (EURODYN (2020), eq. 8-13).
 
-Thin layer over :mod:`murus.rocking.design`. The wall is ``--block block1..block6`` (seed 002
+Thin layer over :mod:`murus.rocking.design`. The wall is ``--block block1..block6`` (EURODYN (2020)
 Table 1) or ``--width --height [--thickness --density --top-mass]``. Each command prints a small
 table (name, value, unit, equation) or, with ``--json``, a JSON object. Bad input exits with code
 2 and a one-line ``error:`` message on stderr. The library (and numba, through
@@ -19,21 +19,23 @@ from murus.cliutil import fail as _fail
 app = typer.Typer(
     rich_markup_mode=None,
     name="design",
-    help="Design of restrained rocking walls (seed 002): tie rod, damper, resonance frequencies.",
+    help="Design of restrained rocking walls (EURODYN (2020)): tie rod, damper, resonance "
+         "frequencies.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
 )
 
-#: Seed 002 unit weight 21 kN/m³ over g = 9.81 m/s² (same as ``seed002_block``) [kg/m³].
-_SEED002_DENSITY = 21000.0 / 9.81
+#: EURODYN (2020) unit weight 21 kN/m³ over g = 9.81 m/s² (same as ``restrained_wall_block``)
+#: [kg/m³].
+_RESTRAINED_WALL_DENSITY = 21000.0 / 9.81
 
-_BLOCK = typer.Option(None, "--block", help="Seed 002 block: block1 ... block6 (Table 1).")
-_WIDTH = typer.Option(None, "--width", help="Wall thickness b (s of seed 002) [m].")
+_BLOCK = typer.Option(None, "--block", help="EURODYN (2020) block: block1 ... block6 (Table 1).")
+_WIDTH = typer.Option(None, "--width", help="Wall thickness b (s of EURODYN (2020)) [m].")
 _HEIGHT = typer.Option(None, "--height", help="Wall height h [m].")
 _THICK = typer.Option(1.0, "--thickness", help="Out-of-plane length of the wall [m].")
-_DENSITY = typer.Option(_SEED002_DENSITY, "--density",
-                        help="Density [kg/m3] (default 21 kN/m3 / g, seed 002).")
+_DENSITY = typer.Option(_RESTRAINED_WALL_DENSITY, "--density",
+                        help="Density [kg/m3] (default 21 kN/m3 / g, EURODYN (2020)).")
 _TOP = typer.Option(0.0, "--top-mass", help="Lumped mass at mid-top [kg].")
 _JSON = typer.Option(False, "--json", help="Print JSON instead of a table.")
 _TIE_H = typer.Option(None, "--tie-height", help="Tie height above the base [m] (default: top).")
@@ -50,12 +52,12 @@ def _errors():
 
 
 def _make_body(block, width, height, thickness, density, top_mass):
-    from murus.rocking.body import RigidBlock, seed002_block
+    from murus.rocking.body import RigidBlock, restrained_wall_block
 
     if block is not None:
         if width is not None or height is not None:
             raise ValueError("give either --block or --width/--height, not both")
-        return seed002_block(block)
+        return restrained_wall_block(block)
     if width is None or height is None:
         raise ValueError("give the wall as --block block1..block6 or as --width and --height")
     from murus.config import check_physical
@@ -99,8 +101,8 @@ def _tie_rows(td) -> list[tuple]:
     return [
         ("W", td.W, "N", "m g"),
         ("h_t", td.tie_height, "m", "tie height"),
-        ("T_d", td.T_d, "N", "seed 002 eq. 12"),
-        ("sigma_d", td.sigma_d, "Pa", "0.7 f_uk / 1.05 (seed 002 §3)"),
+        ("T_d", td.T_d, "N", "EURODYN (2020), eq. 12"),
+        ("sigma_d", td.sigma_d, "Pa", "0.7 f_uk / 1.05 (EURODYN (2020), §3)"),
         ("phi_required", td.phi_required * 1000.0, "mm", "T_d = sigma_d pi phi^2 / 4"),
         ("phi_d", td.phi_d * 1000.0, "mm", "commercial size" if td.commercial else "= required"),
         ("A", td.area, "m2", "pi phi_d^2 / 4"),
@@ -124,7 +126,7 @@ def tie(
                                     help="Round the diameter up to a commercial size."),
     as_json: bool = _JSON,
 ) -> None:
-    """Steel tie rod by equilibrium (seed 002 eq. 12): T_d, diameter, stiffness K_d."""
+    """Steel tie rod by equilibrium (EURODYN (2020), eq. 12): T_d, diameter, stiffness K_d."""
     from murus.rocking.design import tie_design
 
     try:
@@ -164,7 +166,7 @@ def damper(
         None, "--fraction", help="Print c = fraction * c_d (repeat, or comma-separated)."),
     as_json: bool = _JSON,
 ) -> None:
-    """Reference damping coefficient c_d = 2 m g delta_t / h (seed 002 eq. 13)."""
+    """Reference damping coefficient c_d = 2 m g delta_t / h (EURODYN (2020), eq. 13)."""
     from murus.rocking.design import reference_damping
 
     try:
@@ -181,7 +183,7 @@ def damper(
                "c": [{"fraction": f, "c": f * c_d} for f in fr]})
         return
     rows = [("delta_t", delta_t, "s", "characteristic time"),
-            ("c_d", c_d, "N s/m", "seed 002 eq. 13")]
+            ("c_d", c_d, "N s/m", "EURODYN (2020), eq. 13")]
     rows += [(f"c ({f:g} c_d)", f * c_d, "N s/m", "fraction of c_d") for f in fr]
     _table(_title(body), rows)
 
@@ -221,7 +223,8 @@ def resonance(
     length: float = _LENGTH,
     as_json: bool = _JSON,
 ) -> None:
-    """Resonance frequencies of the restrained wall (seed 002 eq. 8, 9) and linearised values."""
+    """Resonance frequencies of the restrained wall (EURODYN (2020), eq. 8, 9) and linearised
+    values."""
     from murus.rocking.design import design_report
 
     try:
@@ -249,9 +252,9 @@ def resonance(
         ("K_d", rep["tie"]["K_d"], "N/m", "eq. 12"),
         ("K", st["K"], "N/m", st["K_source"]),
         ("K'", st["K_bed"], "N/m/m", st["K_bed_source"]),
-        ("omega_r+", res["omega_plus"], "rad/s", "seed 002 eq. 8"),
+        ("omega_r+", res["omega_plus"], "rad/s", "EURODYN (2020), eq. 8"),
         ("omega_r+ lin", res["omega_plus_lin"], "rad/s", "sqrt((K h_t^2 - m g z_G) / I_O)"),
-        ("omega_r-", res["omega_minus"], "rad/s", "seed 002 eq. 9"),
+        ("omega_r-", res["omega_minus"], "rad/s", "EURODYN (2020), eq. 9"),
         ("omega_r- lin", res["omega_minus_lin"], "rad/s",
          f"sqrt((K' h'^3/3 - m g z_G) / I_O), h' = {res['bed_height']:g} m"),
     ]

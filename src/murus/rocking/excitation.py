@@ -24,7 +24,21 @@ class ExcitationError(ValueError):
 @dataclass(frozen=True)
 class Record:
     """A sampled ground acceleration with uniform step ``dt`` [s]; ``acc`` and the optional
-    vertical ``acc_v`` in m/s² (positive upward)."""
+    vertical ``acc_v`` in m/s² (positive upward).
+
+    Parameters
+    ----------
+    dt : float
+        Time step [s] (> 0).
+    acc : array_like
+        Horizontal ground acceleration [m/s²], at least two samples.
+    acc_v : array_like, optional
+        Vertical ground acceleration [m/s²], positive upward, as long as ``acc``.
+    name : str
+        Label of the record.
+    meta : dict
+        Free metadata (event, station ...).
+    """
 
     dt: float
     acc: np.ndarray
@@ -85,7 +99,23 @@ class Record:
 @dataclass(frozen=True)
 class HarmonicPulse:
     """``a(t) = amplitude sin(omega (t - t0) + phase)`` for ``t0 <= t <= t0 + duration``, zero
-    elsewhere. ``omega = 0`` with ``phase = pi/2`` is a rectangular pulse."""
+    elsewhere. ``omega = 0`` with ``phase = pi/2`` is a rectangular pulse.
+
+    Parameters
+    ----------
+    amplitude : float
+        Amplitude [m/s²].
+    omega : float
+        Circular frequency [rad/s] (>= 0).
+    phase : float
+        Phase [rad].
+    duration : float
+        Duration of the pulse [s] (>= 0).
+    t0 : float
+        Start time [s] (>= 0).
+    name : str
+        Label of the pulse.
+    """
 
     amplitude: float
     omega: float
@@ -145,21 +175,67 @@ class HarmonicPulse:
 
 
 def sine_pulse(amplitude: float, frequency: float, cycles: float = 1.0, t0: float = 0.0):
-    """One-sine pulse ``A sin(2 pi f t)`` for ``cycles`` periods (amplitude in m/s², f in Hz)."""
+    """One-sine pulse ``A sin(2 pi f t)`` for ``cycles`` periods (amplitude in m/s², f in Hz).
+
+    Parameters
+    ----------
+    amplitude : float
+        Amplitude ``A`` [m/s²].
+    frequency : float
+        Frequency ``f`` [Hz] (> 0).
+    cycles : float
+        Number of periods (> 0).
+    t0 : float
+        Start time [s].
+
+    Returns
+    -------
+    HarmonicPulse
+    """
     _check_pulse(amplitude, frequency, cycles)
     w = 2.0 * math.pi * frequency
     return HarmonicPulse(amplitude, w, 0.0, cycles / frequency, t0, name="sine-pulse")
 
 
 def cosine_pulse(amplitude: float, frequency: float, cycles: float = 1.0, t0: float = 0.0):
-    """One-cosine pulse ``A cos(2 pi f t)`` for ``cycles`` periods (a jump to A at ``t0``)."""
+    """One-cosine pulse ``A cos(2 pi f t)`` for ``cycles`` periods (a jump to A at ``t0``).
+
+    Parameters
+    ----------
+    amplitude : float
+        Amplitude ``A`` [m/s²].
+    frequency : float
+        Frequency ``f`` [Hz] (> 0).
+    cycles : float
+        Number of periods (> 0).
+    t0 : float
+        Start time [s].
+
+    Returns
+    -------
+    HarmonicPulse
+    """
     _check_pulse(amplitude, frequency, cycles)
     w = 2.0 * math.pi * frequency
     return HarmonicPulse(amplitude, w, 0.5 * math.pi, cycles / frequency, t0, name="cosine-pulse")
 
 
 def rectangular_pulse(amplitude: float, duration: float, t0: float = 0.0):
-    """Constant acceleration ``A`` on ``[t0, t0 + duration]``."""
+    """Constant acceleration ``A`` on ``[t0, t0 + duration]``.
+
+    Parameters
+    ----------
+    amplitude : float
+        Acceleration ``A`` [m/s²].
+    duration : float
+        Duration [s] (> 0).
+    t0 : float
+        Start time [s].
+
+    Returns
+    -------
+    HarmonicPulse
+    """
     if not (math.isfinite(duration) and duration > 0.0):
         raise ExcitationError(f"pulse duration must be positive, got {duration!r}")
     return HarmonicPulse(amplitude, 0.0, 0.5 * math.pi, duration, t0, name="rectangular-pulse")
@@ -184,7 +260,17 @@ Excitation = Record | HarmonicPulse
 
 def as_excitation(motion) -> Excitation:
     """Turn a GroundMotion-like object (attributes ``dt``, ``acc``, optional ``acc_v``), a
-    ``(dt, acc)`` tuple or an excitation into an excitation."""
+    ``(dt, acc)`` tuple or an excitation into an excitation.
+
+    Parameters
+    ----------
+    motion : GroundMotion, tuple, Record, HarmonicPulse or None
+        ``dt`` [s] and ``acc`` [m/s²] (attributes or a tuple); ``None`` is free vibration.
+
+    Returns
+    -------
+    Record or HarmonicPulse
+    """
     if isinstance(motion, Record | HarmonicPulse):
         return motion
     if motion is None:

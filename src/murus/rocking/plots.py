@@ -16,7 +16,8 @@ def _axes(ax, n=1):
 
 
 def plot_response(result, axes=None):
-    """Ground acceleration, rocking criterion RC (seed 000 eq. 9) and theta/alpha against time.
+    """Ground acceleration, rocking criterion RC (Mordant et al. (SERIES), eq. 9) and theta/alpha
+    against time.
 
     ``axes``: three Axes, or ``None`` for a new figure. Returns the Axes."""
     ax = _axes(axes, 3)
@@ -69,7 +70,8 @@ def plot_phase(result, ax=None):
 
 def plot_winkler(result, axes=None):
     """A body on an elastic layer: ground acceleration, theta/alpha, and the contact length
-    with the lifted length (seed 000 Figures 19-20) against time. Returns the Axes."""
+    with the lifted length (Mordant et al. (SERIES), Figures 19-20) against time. Returns the
+    Axes."""
     ax = _axes(axes, 3)
     t = result.t
     ax[0].plot(t, result.ag / 9.81, lw=0.8, color="0.3")

@@ -4,10 +4,11 @@ A law is an object with declared parameters and limits (``PARAMS``) that writes 
 law code and numbers into the parameter vector (:meth:`fill`); the kernel evaluates it at each
 impact (:func:`murus.rocking.kernels.restitution`).
 
-Seed 000 §3.3.2 lost the text of its equations 13-18 in extraction; the laws below reconstruct
-them from the physical description of the seed and the rocking literature (Housner 1963 for the
-momentum balance; the ``1 - k sin^2 alpha`` family, with ``k = 2`` for a mass on top and
-``k = 3/2`` for a uniform rectangle, as in seed 002 §4.3). What was assumed is stated on each.
+Mordant et al. (SERIES), §3.3.2 lost the text of its equations 13-18 in extraction; the laws below
+reconstruct them from the physical description of the paper and the rocking literature (Housner 1963
+for the momentum balance; the ``1 - k sin^2 alpha`` family, with ``k = 2`` for a mass on top and
+``k = 3/2`` for a uniform rectangle, as in EURODYN (2020), §4.3). What was assumed is stated on
+each.
 """
 
 from __future__ import annotations
@@ -30,9 +31,9 @@ class RestitutionError(ValueError):
 class Housner:
     """Housner's coefficient from conservation of angular momentum about the new pivot.
 
-    ``e = 1 - 2 m R² sin²(alpha) / I_O`` for the actual body (seed 000 eq. 10): ``cos 2 alpha``
-    for a mass at the top, ``1 - 3/2 sin²(alpha)`` for a uniform rectangle (seed 002 §4.3,
-    Housner 1963).
+    ``e = 1 - 2 m R² sin²(alpha) / I_O`` for the actual body (Mordant et al. (SERIES), eq. 10):
+    ``cos 2 alpha`` for a mass at the top, ``1 - 3/2 sin²(alpha)`` for a uniform rectangle
+    (EURODYN (2020), §4.3, Housner 1963).
     """
 
     KIND: ClassVar[int] = 0
@@ -49,8 +50,9 @@ class Housner:
         return self.value(body)
 
     def fill(self, P: np.ndarray, body: RigidBlock, moving_pivot: bool) -> None:
-        """With a moving pivot (seed 000 eq. 13) the coefficient follows the lever at each
-        impact by the momentum balance about the new pivot; on the corner it is a constant."""
+        """With a moving pivot (Mordant et al. (SERIES), eq. 13) the coefficient follows the lever
+        at each impact by the momentum balance about the new pivot; on the corner it is a
+        constant."""
         P[K.P_E] = self.value(body)
         P[K.P_E_KIND] = K.E_MOMENTUM if moving_pivot else K.E_CONSTANT
 
@@ -58,7 +60,13 @@ class Housner:
 @dataclass(frozen=True)
 class Constant:
     """A constant coefficient ``e`` in [0, 1] given by the user (``e = 1``: elastic impacts,
-    used by seed 002 §4.2 to isolate viscous damping)."""
+    used by EURODYN (2020), §4.2 to isolate viscous damping).
+
+    Parameters
+    ----------
+    e : float
+        Coefficient of restitution of the angular velocity [-], in [0, 1].
+    """
 
     e: float
     KIND: ClassVar[int] = 0
@@ -87,7 +95,7 @@ class Constant:
 
 def momentum_restitution(body: RigidBlock, b1: float, b2: float) -> float:
     """Coefficient of restitution when the pivot moves at the impact (Housner's angular
-    momentum balance about the new pivot, seed 000 eq. 13 reconstructed) [-].
+    momentum balance about the new pivot, Mordant et al. (SERIES), eq. 13 reconstructed) [-].
 
     ``b1``, ``b2``: lever of the weight about the pivot before and after the impact [m]:
     ``e = (I_G + m z_G^2 - m b1 b2) / (I_G + m z_G^2 + m b2^2)``, i.e.
@@ -111,33 +119,52 @@ def _coef(owner: str, name: str, v, lo: float = 0.0) -> float:
 
 @dataclass(frozen=True)
 class AmplitudeDependent:
-    """The restitution laws of seed 000 §3.3.2 (eqs. 14-18, reconstructed), all of the form
+    """The restitution laws of Mordant et al. (SERIES), §3.3.2 (eqs. 14-18, reconstructed), all of
+    the form
 
     ``e_n = 1 - (k0 + k1 r_n) sin^2(alpha_n)``
 
-    - eqs. 14-15 (the alternative formulation of the seed's reference [8], "different options
+    - eqs. 14-15 (the alternative formulation of its reference [8], "different options
       are possible regarding the coefficient of sin^2 alpha"): ``k1 = 0`` and ``k0`` free;
-      ``k0 = 2`` is Housner's value for a mass on top (seed 000 eq. 10), ``k0 = 3/2`` the value
-      for a uniform rectangle, the default of :meth:`coefficient`;
+      ``k0 = 2`` is Housner's value for a mass on top (Mordant et al. (SERIES), eq. 10), ``k0 =
+      3/2`` the value for a uniform rectangle, the default of :meth:`coefficient`;
     - eq. 16, amplitude dependence ("the largest the amplitude, the stronger the impact, the
       lower the restitution"): ``r_n = theta_max,n / theta_abs,max``, the largest rotation of
       the half-cycle before the impact over the largest rotation of the response, with
       ``k1 > 0``. The largest rotation of the whole response is not known while integrating:
       ``variant = "causal"`` (default) uses the running maximum (deterministic, one run);
       ``"iterated"`` re-runs the analysis with the previous run's maximum until it is stable
-      (:func:`murus.rocking.simulate`, at most ``max_iterations``), which is the seed's
+      (:func:`murus.rocking.simulate`, at most ``max_iterations``), which is the paper's
       definition when it converges;
     - eq. 17: once the input has ended (free vibration) ``(k0_free, k1_free)`` replace
-      ``(k0, k1)`` (the seed observed less dissipation then); ``None``: the same law;
+      ``(k0, k1)`` (the paper observed less dissipation then); ``None``: the same law;
     - eq. 18: the energy lost at each impact is multiplied by ``f = (lambda / A0)^2``,
       ``lambda = h / b`` the aspect ratio of the wall and ``A0`` the calibrated reference aspect
       ratio ("proportional to the square of the proportion of the aspect ratios"), so that
       ``e' = sqrt(1 - f (1 - e^2))``; ``None``: off.
 
-    ``alpha_n`` is the slenderness about the current pivot (seed 000 eq. 12). Defaults
-    ``k0 = k1 = 1``: the largest half-cycle dissipates as Housner's top-mass wall (``k = 2``),
-    small ones half as much — a starting point for calibration (``murus.identify``), not a
-    published value."""
+    ``alpha_n`` is the slenderness about the current pivot (Mordant et al. (SERIES), eq. 12).
+    Defaults ``k0 = k1 = 1``: the largest half-cycle dissipates as Housner's top-mass wall (``k =
+    2``), small ones half as much — a starting point for calibration (``murus.identify``), not a
+    published value.
+
+    Parameters
+    ----------
+    k0, k1 : float
+        Coefficients of ``e_n = 1 - (k0 + k1 r_n) sin^2(alpha_n)`` [-].
+    k0_free, k1_free : float, optional
+        The coefficients once the input has ended (eq. 17); ``None``: ``k0``, ``k1``.
+    A0 : float, optional
+        Slenderness scale of the aspect factor of eq. 18 [-]; ``None``: off.
+    variant : str
+        ``"causal"`` (running maximum) or ``"iterated"`` (eq. 16 iterated to a fixed point).
+    max_iterations : int
+        Largest number of runs of the ``"iterated"`` variant.
+
+    References
+    ----------
+    Mordant et al. (SERIES), §3.3.2, eqs. 14-18 (reconstructed); Housner (1963).
+    """
 
     k0: float = 1.0
     k1: float = 1.0

@@ -9,9 +9,9 @@ xarray Datasets (dims: the swept parameters and ``record``; units in ``attrs``) 
 NetCDF with h5netcdf.
 
 - :func:`rocking_spectrum`, :func:`plot_rocking_spectrum`, :func:`plot_overturning_map`
-  (seed 002 §4.1);
+  (EURODYN (2020), §4.1);
 - :func:`fragility`, :func:`fit_fragility`, :func:`fit_msa`, :func:`fit_ida`,
-  :func:`plot_fragility`, :func:`seed002_configs`;
+  :func:`plot_fragility`, :func:`restraint_configs`;
 - :func:`load_study`, :func:`make_study`, :func:`run_study`, :func:`run_plan`,
   :func:`study_status`, :func:`open_result`, :func:`open_executor`; :func:`run_tasks`, the
   generic engine (any picklable function, dependent tasks) of :func:`run_plan` and of the
@@ -52,10 +52,13 @@ _EXPORTS = {
     "fit_fragility": "fragility",
     "fragility": "fragility",
     "fragility_curve": "fragility",
-    "seed002_configs": "fragility",
+    "restraint_configs": "fragility",
     "plot_fragility": "fragility",
 }
 
 __all__ = sorted(_EXPORTS)
+
+#: Deprecated name (DeprecationWarning on call; removed in the next release).
+_EXPORTS["seed002_configs"] = "fragility"
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

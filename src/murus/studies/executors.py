@@ -119,7 +119,19 @@ class SerialExecutor(Executor):
 class ExecutorHandle:
     """An open executor: ``.executor`` (a ``concurrent.futures.Executor``), ``.kind``,
     ``.workers`` (parallel slots), ``.threads`` (numba threads per chunk, ``None``: all),
-    ``.describe()``, ``.restart()``, ``.close()``; a context manager."""
+    ``.describe()``, ``.restart()``, ``.close()``; a context manager.
+
+    Parameters
+    ----------
+    kind : str
+        ``"serial"``, ``"process"`` or ``"dask"``.
+    workers : int, optional
+        Parallel workers.
+    scheduler : str, optional
+        Address of a Dask scheduler, or ``"local"``.
+    timeout : float
+        Time to reach the scheduler [s].
+    """
 
     def __init__(self, kind: str, workers: int | None = None, scheduler: str | None = None,
                  timeout: float = 20.0):
@@ -249,7 +261,23 @@ def open_executor(kind: str = "process", workers: int | None = None,
     """Open an executor: ``"serial"``, ``"process"`` (``workers`` processes, default the number
     of cores) or ``"dask"`` (``scheduler="tcp://HOST:PORT"``, or ``"local"``/``None`` to start
     a LocalCluster of ``workers`` single-threaded processes on 127.0.0.1); ``timeout`` [s] to
-    reach a scheduler."""
+    reach a scheduler.
+
+    Parameters
+    ----------
+    kind : str
+        ``"serial"``, ``"process"`` or ``"dask"``.
+    workers : int, optional
+        Parallel workers.
+    scheduler : str, optional
+        Address of a Dask scheduler, or ``"local"``.
+    timeout : float
+        Time to reach the scheduler [s].
+
+    Returns
+    -------
+    ExecutorHandle
+    """
     return ExecutorHandle(kind, workers, scheduler, timeout)
 
 

@@ -16,7 +16,7 @@ The fragility of a limit state is ``P(LS | IM = x) = Phi(ln(x / theta) / beta)``
   right-censored at the highest level. Without censoring ``ln theta`` is the mean of the log
   capacities and ``beta`` their standard deviation (MLE, divisor n).
 
-Limit states (seed 002 §4): ``theta_max / alpha >= 0.1`` (limited rocking), ``>= 0.4``
+Limit states (EURODYN (2020), §4): ``theta_max / alpha >= 0.1`` (limited rocking), ``>= 0.4``
 (moderate rocking), overturning. Confidence bands: bootstrap over the records (the same records
 are scaled to every level, so resampling records keeps the correlation between stripes), or the
 Fisher information (expected information of the binomial likelihood for MSA, observed information
@@ -26,12 +26,13 @@ for IDA) with the delta method for the curve.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 __all__ = ["FragilityFit", "fit_msa", "fit_ida", "fisher_covariance", "fragility_curve",
-           "LIMIT_STATES", "exceedance", "fit_fragility", "fragility", "seed002_configs",
+           "LIMIT_STATES", "exceedance", "fit_fragility", "fragility", "restraint_configs",
            "plot_fragility"]
 
 #: name -> threshold on theta_max / alpha (None: overturning).
@@ -44,7 +45,21 @@ _B_MIN, _B_MAX = 1.0 / 5.0, 1.0 / 0.01  # beta in [0.01, 5]
 class FragilityFit:
     """A lognormal fragility: ``median`` (IM units), ``beta`` [-], ``cov`` the 2 x 2 covariance
     of ``(ln median, beta)`` (NaN if not available), ``loglik``, ``status`` ("ok", "none
-    exceeded", "all exceeded", "boundary": beta hit its bound of [0.01, 5])."""
+    exceeded", "all exceeded", "boundary": beta hit its bound of [0.01, 5]).
+
+    Attributes
+    ----------
+    median : float
+        Median capacity (IM units).
+    beta : float
+        Logarithmic standard deviation [-].
+    cov : numpy.ndarray
+        Covariance of ``(ln median, beta)``.
+    loglik : float
+        Log-likelihood at the optimum.
+    status : str
+        ``"ok"``, ``"none exceeded"``, ``"all exceeded"`` or ``"boundary"``.
+    """
 
     median: float
     beta: float
@@ -57,7 +72,22 @@ class FragilityFit:
 
 
 def fragility_curve(x, median: float, beta: float):
-    """``Phi(ln(x / median) / beta)``."""
+    """``Phi(ln(x / median) / beta)``.
+
+    Parameters
+    ----------
+    x : array_like
+        IM values (IM units).
+    median : float
+        Median capacity (IM units).
+    beta : float
+        Logarithmic standard deviation [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Probability of exceedance [-].
+    """
     from scipy.special import ndtr
 
     x = np.asarray(x, dtype=float)
@@ -81,7 +111,25 @@ def _check_stripes(levels, n, z):
 
 def fit_msa(levels, n, z) -> FragilityFit:
     """Maximum-likelihood lognormal fragility from stripes: ``z[j]`` of ``n[j]`` records exceed
-    the limit state at the level ``levels[j]`` (Baker 2015 eq. 11)."""
+    the limit state at the level ``levels[j]`` (Baker 2015 eq. 11).
+
+    Parameters
+    ----------
+    levels : array_like
+        IM levels of the stripes (IM units, > 0).
+    n : array_like
+        Number of records at each level.
+    z : array_like
+        Number of records exceeding the limit state at each level.
+
+    Returns
+    -------
+    FragilityFit
+
+    References
+    ----------
+    Baker (2015), eq. 11.
+    """
     from scipy.optimize import minimize
     from scipy.special import log_ndtr
 
@@ -153,7 +201,23 @@ def fisher_covariance(median: float, beta: float, levels, n) -> np.ndarray:
 def fit_ida(capacities, censored_at: float | None = None) -> FragilityFit:
     """Maximum-likelihood lognormal fragility from record capacities (IM at which each record
     first exceeds the limit state); NaN capacities are right-censored at ``censored_at`` (the
-    highest level run). Covariance from the observed information (numerical Hessian)."""
+    highest level run). Covariance from the observed information (numerical Hessian).
+
+    Parameters
+    ----------
+    capacities : array_like
+        Capacity of each record, in IM units; NaN: not exceeded up to ``censored_at``.
+    censored_at : float, optional
+        Highest level run (IM units).
+
+    Returns
+    -------
+    FragilityFit
+
+    References
+    ----------
+    Baker (2015), eqs. 3-4.
+    """
     from scipy.optimize import minimize
     from scipy.special import log_ndtr
 
@@ -239,7 +303,39 @@ def fit_fragility(ds, *, x: str = "im", method: str = "msa", ci: str = "bootstra
     ``fragility_beta`` and their ``_lo``/``_hi`` bounds (two-sided ``level``),
     ``fragility_status``, ``p_exceed`` (observed fractions), ``fragility_curve`` with
     ``_lo``/``_hi`` on ``im_curve``, and ``n_valid``. ``progress(done, total)``, if given, is
-    called after each fit (a fit with its bootstrap can take seconds)."""
+    called after each fit (a fit with its bootstrap can take seconds).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result with dimensions ``x`` and ``record``.
+    x : str
+        Name of the intensity dimension.
+    method : str
+        ``"msa"`` or ``"ida"``.
+    ci : str
+        Confidence intervals: ``"bootstrap"``, ``"fisher"`` or ``"none"``.
+    n_boot : int
+        Bootstrap samples.
+    level : float
+        Two-sided confidence level [-].
+    seed : int
+        Seed of the bootstrap.
+    limit_states : dict, optional
+        ``{name: theta_max / alpha threshold}``; default the limit states of EURODYN (2020), §4.
+    n_curve : int
+        Points of the fitted curves.
+    progress : callable, optional
+        ``progress(done, total)``.
+
+    Returns
+    -------
+    xarray.Dataset
+
+    References
+    ----------
+    Baker (2015).
+    """
     import xarray as xr
     from scipy.special import ndtr, ndtri
 
@@ -344,14 +440,37 @@ def _fit(e: np.ndarray, levels: np.ndarray, method: str) -> FragilityFit:
 
 
 # ----------------------------------------------------------------------------- analysis --
-def seed002_configs(body, *, delta_t: float = 10.186, c_over_cd: float = 0.10, walls="eq11",
+def restraint_configs(body, *, delta_t: float = 10.186, c_over_cd: float = 0.10, walls="eq11",
                     K_over_Kd: float = 1.0) -> dict:
-    """Free-standing, tied and damped versions of a seed 002 wall (dict name -> RockingModel):
-    free-standing (two-sided); tied: a tension-only tie ``K = K_over_Kd K_d`` (eq. 12) at the
-    top and one-sided transverse walls (eq. 11 by default); damped: the tied wall with a
+    """Free-standing, tied and damped versions of an EURODYN (2020) wall (dict name ->
+    RockingModel): free-standing (two-sided); tied: a tension-only tie ``K = K_over_Kd K_d`` (eq.
+    12) at the top and one-sided transverse walls (eq. 11 by default); damped: the tied wall with a
     damper ``c = c_over_cd c_d`` at the top (eq. 13, characteristic time ``delta_t`` [s]; the
-    default 10.186 s is the value calibrated in validation/restrained.py on seed 002 Figure 9,
-    and 10 % c_d is the seed's design value for limited rocking)."""
+    default 10.186 s is the value calibrated in validation/restrained.py on EURODYN (2020), Figure
+    9, and 10 % c_d is the design value of EURODYN (2020) for limited rocking).
+
+    Parameters
+    ----------
+    body : RigidBlock
+        The wall.
+    delta_t : float
+        Characteristic time of eq. 13 [s].
+    c_over_cd : float
+        Damper coefficient over ``c_d`` [-].
+    walls : str or float
+        ``"eq11"``, ``"rigid"`` or a spring-bed stiffness [N/m/m].
+    K_over_Kd : float
+        Tie stiffness over ``K_d`` [-].
+
+    Returns
+    -------
+    dict
+        ``{name: RockingModel}``.
+
+    References
+    ----------
+    EURODYN (2020), eqs. 11-13 and Figure 9.
+    """
     from murus.rocking import Damper, RockingModel, SpringBed, Tie
     from murus.rocking.design import bed_stiffness_equal, reference_damping, tie_design
 
@@ -366,6 +485,26 @@ def seed002_configs(body, *, delta_t: float = 10.186, c_over_cd: float = 0.10, w
             f"tied + damper {100 * c_over_cd:g} % c_d": damped}
 
 
+
+def seed002_configs(body, **kw) -> dict:
+    """Deprecated alias of :func:`restraint_configs` (removed in the next release).
+
+    Parameters
+    ----------
+    body : RigidBlock
+        The wall.
+    **kw
+        The keywords of :func:`restraint_configs`.
+
+    Returns
+    -------
+    dict
+        ``{name: RockingModel}``.
+    """
+    warnings.warn("seed002_configs is deprecated: use restraint_configs", DeprecationWarning,
+                  stacklevel=2)
+    return restraint_configs(body, **kw)
+
 def fragility(models, records="farfield", im="PGA", levels=None, *, method: str = "msa",
               ci: str = "bootstrap", n_boot: int = 200, level: float = 0.90, seed: int = 0,
               duration=None, executor="process", workers=None, scheduler=None, out=None,
@@ -373,7 +512,7 @@ def fragility(models, records="farfield", im="PGA", levels=None, *, method: str 
     """Fragility analysis of one or more rocking models over a record suite.
 
     models:
-        A RockingModel or a dict ``{name: RockingModel}`` (e.g. :func:`seed002_configs`), run
+        A RockingModel or a dict ``{name: RockingModel}`` (e.g. :func:`restraint_configs`), run
         side by side (dimension ``config``).
     records:
         Default the FEMA P695 far-field set (44 components); see
@@ -429,7 +568,23 @@ def fragility(models, records="farfield", im="PGA", levels=None, *, method: str 
 def plot_fragility(ds, ax=None, *, limit_state=None, config=None, progress=None):
     """Fragility curves with their confidence bands and the observed fractions (markers), one
     colour per configuration, one line style per limit state (fitted first by
-    :func:`fit_fragility`, with its ``progress``, unless ``ds`` has them). Returns the Axes."""
+    :func:`fit_fragility`, with its ``progress``, unless ``ds`` has them). Returns the Axes.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A fragility result (or a sweep to fit first).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw.
+    limit_state, config : str, optional
+        Restrict to one limit state or configuration.
+    progress : callable, optional
+        ``progress(done, total)`` of the fit.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
     import matplotlib.pyplot as plt
 
     if "fragility_curve" not in ds:

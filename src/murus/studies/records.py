@@ -37,15 +37,17 @@ _CACHE: dict[str, list] = {}
 class RecordSet:
     """Ground motions of a study (SI units once loaded: m/s²).
 
-    kind:
+    Parameters
+    ----------
+    kind
         ``"suite"`` (``suite`` = "farfield" | "nearfield_pulse" | "nearfield_no_pulse",
         ``components`` = "both" | "a" | "b"), ``"files"`` (``files``: absolute paths, read with
         :func:`murus.motion.read` and ``units``, ``dt``, ``format``) or ``"motions"``.
-    select:
+    select
         Record names to keep (e.g. ``"farfield_01a"``), in the given order; default all.
-    scale:
+    scale
         Factor applied to every record [-].
-    max_duration:
+    max_duration
         Keep the first ``max_duration`` seconds of each record (``None``: whole records).
     """
 
@@ -213,7 +215,17 @@ _SA = re.compile(r"^\s*sa\s*\(\s*(?:t\s*=\s*)?([0-9.eE+-]+)\s*s?\s*\)\s*$", re.I
 @dataclass(frozen=True)
 class IntensityMeasure:
     """``PGA`` [g], ``PGV`` [m/s] or ``Sa(T)`` [g] (5 % damped pseudo-spectral acceleration at
-    the period ``T`` [s]). ``IntensityMeasure.parse("Sa(T=0.5)")``."""
+    the period ``T`` [s]). ``IntensityMeasure.parse("Sa(T=0.5)")``.
+
+    Parameters
+    ----------
+    name : str
+        ``"PGA"``, ``"PGV"`` or ``"Sa"``.
+    period : float, optional
+        Period of ``Sa`` [s].
+    damping : float
+        Damping ratio of ``Sa`` [-].
+    """
 
     name: str
     period: float | None = None

@@ -1,7 +1,7 @@
-"""Rocking spectra (seed 002 §4.1, Figures 3-4) and overturning maps.
+"""Rocking spectra (EURODYN (2020), §4.1, Figures 3-4) and overturning maps.
 
 A rocking spectrum is the largest normalised rotation ``theta_max / alpha`` of one geometry under
-one record as a function of the restraint: seed 002 sweeps the tie stiffness ``K`` over
+one record as a function of the restraint: EURODYN (2020) sweeps the tie stiffness ``K`` over
 ``0 <= K <= K_d`` (50 values; ``K_d`` from eq. 12), with a tension-only tie at the top and the
 transverse walls as a spring bed whose stiffness follows the tie by eq. 11 (one-sided motion),
 Housner's restitution, and reads the curves against the limit states of limited (0.1) and
@@ -9,13 +9,14 @@ moderate (0.4) rocking and against the free-standing response. At ``K = 0`` eq. 
 ``K' = 0``: the wall is free-standing and rocks two-sided.
 
 The same machinery sweeps any other parameter of the restraint or of the input: damper
-coefficient as a fraction of ``c_d`` (eq. 13; seed 002 Figure 10), record scale factor, or the
-frequency ratio ``omega_p / p`` of a pulse.
+coefficient as a fraction of ``c_d`` (eq. 13; EURODYN (2020), Figure 10), record scale factor, or
+the frequency ratio ``omega_p / p`` of a pulse.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
@@ -25,26 +26,52 @@ from murus.studies.records import RecordSet
 __all__ = ["rocking_spectrum", "spectrum_case", "plot_rocking_spectrum", "plot_overturning_map",
            "LIMIT_STATES"]
 
-#: Limit states of seed 002 §4 on theta_max / alpha.
+#: Limit states of EURODYN (2020), §4 on theta_max / alpha.
 LIMIT_STATES = {"limited": 0.1, "moderate": 0.4}
 
-#: The 50 stiffness ratios of seed 002 §4.1 (0 <= K <= K_d).
-SEED002_RATIOS = np.linspace(0.0, 1.0, 50)
+#: The 50 stiffness ratios of EURODYN (2020), §4.1 (0 <= K <= K_d).
+TIE_STIFFNESS_RATIOS = np.linspace(0.0, 1.0, 50)
 
 
 def spectrum_case(body, *, walls="eq11", restitution="housner", tie_height=None,
                   tension_only: bool = True, c_over_cd=None, delta_t=None, damper_height=None,
                   duration=None, rtol: float = RTOL) -> dict:
-    """The rocking case (tables as a dict) of seed 002 §4.1 for ``body`` (a RigidBlock).
+    """The rocking case (tables as a dict) of EURODYN (2020), §4.1 for ``body`` (a RigidBlock).
 
     walls:
-        ``"eq11"`` (spring bed from the tie, seed 002 eq. 11), ``"rigid"``, or a stiffness
+        ``"eq11"`` (spring bed from the tie, EURODYN (2020), eq. 11), ``"rigid"``, or a stiffness
         [N/m/m] (e.g. 4.5e8, eq. 10 in §4.2).
     restitution:
         ``"housner"`` or a number (constant coefficient).
     c_over_cd, delta_t:
         A damper at ``damper_height`` (default the top) with ``c = c_over_cd * c_d`` (eq. 13,
         characteristic time ``delta_t`` [s]).
+
+    Parameters
+    ----------
+    body : RigidBlock
+        The wall.
+    walls : str or float
+        See above.
+    restitution : str or float
+        See above.
+    tie_height : float, optional
+        Height of the tie [m] (default the top).
+    tension_only : bool
+        The tie works in tension only.
+    c_over_cd, delta_t : float, optional
+        See above.
+    damper_height : float, optional
+        Height of the damper [m] (default the top).
+    duration : float, optional
+        Duration of each run [s] (default the record's).
+    rtol : float
+        Relative tolerance of the integrator.
+
+    Returns
+    -------
+    dict
+        The case tables.
     """
     b = body
     case = {
@@ -67,7 +94,8 @@ def spectrum_case(body, *, walls="eq11", restitution="housner", tie_height=None,
         case["solver"]["duration"] = float(duration)
     if c_over_cd is not None:
         if delta_t is None:
-            raise ValueError("a damper as a fraction of c_d needs delta_t [s] (seed 002 eq. 13)")
+            raise ValueError("a damper as a fraction of c_d needs delta_t [s] (EURODYN (2020), "
+                             "eq. 13)")
         case["restraint"]["damper"] = {
             "fraction": 0.0, "delta_t": float(delta_t),
             "height": b.height if damper_height is None else float(damper_height)}
@@ -77,7 +105,7 @@ def spectrum_case(body, *, walls="eq11", restitution="housner", tie_height=None,
 def rocking_spectrum(
     body,
     records="farfield",
-    K_over_Kd=SEED002_RATIOS,
+    K_over_Kd=TIE_STIFFNESS_RATIOS,
     *,
     walls="eq11",
     restitution="housner",
@@ -97,12 +125,12 @@ def rocking_spectrum(
     retries: int = 2,
     progress=None,
 ):
-    """Rocking spectra of ``body`` under ``records`` (seed 002 §4.1) as an xarray Dataset.
+    """Rocking spectra of ``body`` under ``records`` (EURODYN (2020), §4.1) as an xarray Dataset.
 
     Parameters
     ----------
     body:
-        A :class:`~murus.rocking.RigidBlock` (e.g. ``seed002_block("block2")``).
+        A :class:`~murus.rocking.RigidBlock` (e.g. ``restrained_wall_block("block2")``).
     records:
         A FEMA P695 suite name (default ``"farfield"``: 44 components), a folder, a list of
         files or GroundMotions, a :class:`~murus.studies.records.RecordSet`, or a pulse as a
@@ -114,7 +142,7 @@ def rocking_spectrum(
         dimension of the Dataset (in this order), a number a fixed value (a scalar
         coordinate).
     walls, restitution, tie_height, tension_only:
-        See :func:`spectrum_case`; seed 002: ``"eq11"``, Housner, top, tension-only.
+        See :func:`spectrum_case`; EURODYN (2020): ``"eq11"``, Housner, top, tension-only.
     free_standing:
         Also run the wall without tie and damper (the reference line of Figures 3-4):
         variable ``free_standing`` (``theta_max / alpha``) and ``free_standing_overturned``.
@@ -204,10 +232,30 @@ def _plt():
 def plot_rocking_spectrum(ds, ax=None, *, record=None, x=None, limit_states=LIMIT_STATES,
                           ymax: float | None = None):
     """Plot ``theta_max / alpha`` against the swept parameter ``x`` (default the first
-    dimension, ``K_over_Kd``), in the style of seed 002 Figures 3-4: one curve per record (or
+    dimension, ``K_over_Kd``), in the style of EURODYN (2020), Figures 3-4: one curve per record (or
     the chosen ``record``, a name or index), the limit states (dashed), the free-standing value
     (dotted, when the Dataset has it) and overturned cases as crosses at the top. With many
-    records the median and the 16-84 % band are drawn over thin lines. Returns the Axes."""
+    records the median and the 16-84 % band are drawn over thin lines. Returns the Axes.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A rocking-spectrum result.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw.
+    record : str or int, optional
+        One record (name or index).
+    x : str, optional
+        The swept dimension.
+    limit_states : dict
+        ``{name: theta_max / alpha}`` lines.
+    ymax : float, optional
+        Upper limit of the axis.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
     plt = _plt()
     if ax is None:
         _, ax = plt.subplots(figsize=(7.0, 3.6), layout="constrained")
@@ -281,7 +329,23 @@ def plot_overturning_map(ds, x=None, y=None, ax=None, *, what: str = "overturned
     """A map over two dimensions (default: the first swept parameter and ``record``, or the
     first two parameters, averaged over the records) of the fraction of overturned cases
     (``what="overturned"``) or of the median ``theta_max / alpha`` (``what="theta"``).
-    Returns the Axes."""
+    Returns the Axes.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result.
+    x, y : str, optional
+        The two dimensions.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw.
+    what : str
+        ``"overturned"`` or ``"theta"``.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
     plt = _plt()
     if ax is None:
         _, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
@@ -318,3 +382,11 @@ def plot_overturning_map(ds, x=None, y=None, ax=None, *, what: str = "overturned
     else:
         ax.set_ylabel(_label(ds, y))
     return ax
+
+
+def __getattr__(name: str):
+    if name == "SEED002_RATIOS":
+        warnings.warn("SEED002_RATIOS is deprecated: use TIE_STIFFNESS_RATIOS", DeprecationWarning,
+                      stacklevel=2)
+        return TIE_STIFFNESS_RATIOS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
