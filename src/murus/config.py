@@ -13,8 +13,10 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
 
+from murus.errors import MurusError
 
-class CaseError(ValueError):
+
+class CaseError(MurusError, ValueError):
     """An invalid case file; ``str()`` is one line naming the file, line and key."""
 
 

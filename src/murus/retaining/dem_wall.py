@@ -68,6 +68,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.retaining.geometry import RetainingWall, clip_above, polygon_area_centroid
 
 __all__ = ["DemWallError", "DemWall", "BackSegment", "build_wall", "stones_of_wall",
@@ -80,7 +81,7 @@ TABLE6_JOINT = {"kn": 2.8e12, "ks": 2.8e12}
 TABLE1_JOINT = {"kn": 2.6e12, "ks": 2.6e12}
 
 
-class DemWallError(ValueError):
+class DemWallError(MurusError, ValueError):
     """Invalid input to the DEM wall builder (one-line message)."""
 
 

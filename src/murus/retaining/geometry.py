@@ -36,13 +36,15 @@ import math
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
+from murus.errors import MurusError
+
 __all__ = [
     "GeometryError", "RetainingWall", "BedJoint", "WallPart", "PRESETS", "MOCKUP_SLENDERNESS",
     "preset", "mockup", "polygon_area_centroid", "clip_above",
 ]
 
 
-class GeometryError(ValueError):
+class GeometryError(MurusError, ValueError):
     """Invalid wall geometry or material (one-line message)."""
 
 

@@ -13,13 +13,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.rocking import kernels as K
 from murus.rocking.body import RigidBlock
 from murus.rocking.restitution import Housner, RestitutionLaw, make_restitution
 from murus.rocking.restraints import Damper, Pivot, SpringBed, Tie
 
 
-class ModelError(ValueError):
+class ModelError(MurusError, ValueError):
     """An invalid model option."""
 
 
