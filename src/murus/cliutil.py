@@ -53,6 +53,42 @@ def option_words(message: str, ctx=None) -> str:
     return message
 
 
+def error_line(exc: BaseException) -> str:
+    """The one-line message of the error ``exc``: a :class:`murus.errors.MurusError` that
+    carries a key path and a source file but no location yet (not a
+    :class:`murus.config.CaseError`, located where it is raised) is located by
+    :func:`murus.config.where` (``FILE line N: [key] message``); any other error gives its
+    message (its type name when empty). Only the first line is kept.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error.
+
+    Returns
+    -------
+    str
+        One line.
+    """
+    from murus.errors import MurusError
+
+    msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    if isinstance(exc, MurusError) and exc.key and exc.source is not None:
+        from pathlib import Path
+
+        from murus.config import CaseError, where
+
+        if isinstance(exc, CaseError):
+            return msg
+
+        try:
+            text = Path(exc.source).read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
+            text = ""
+        msg = f"{where(Path(exc.source), text, exc.key)} {msg}"
+    return msg
+
+
 def fail(message) -> None:
     """Print ``error: message`` (one line, :func:`plain`, parameters named by their options:
     :func:`option_words`) on stderr and exit with code 2."""
@@ -96,7 +132,7 @@ def guard(*errors: type[BaseException], first_line: bool = False):
     except errors as exc:
         msg = str(exc)
         if first_line and msg:
-            msg = msg.splitlines()[0]
+            msg = error_line(exc)
         fail(msg or type(exc).__name__)
 
 

@@ -161,7 +161,7 @@ def stones_of_wall(wall: RetainingWall, stone_length: float | None = None,
         raise DemWallError(f"bond_phase must be 0 or 1, got {bond_phase!r}")
     if wall.stone_height is None:
         raise DemWallError(f"{wall.name}: the courses are unknown (stone_height=None): give "
-                           "stone_height")
+                           "stone_height", key=("stone_height",))
     L = wall.stone_length if stone_length is None else float(stone_length)
     if not (L > 0 and math.isfinite(L)):
         raise DemWallError(f"stone_length must be positive [m], got {stone_length!r}")
