@@ -234,22 +234,24 @@ def load_toml(path) -> tuple[dict, str]:
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
-        raise CaseError(f"{path}: no such case file") from None
+        raise CaseError(f"{path}: no such case file", source=path) from None
     except IsADirectoryError:
-        raise CaseError(f"{path}: is a folder, not a case file") from None
+        raise CaseError(f"{path}: is a folder, not a case file", source=path) from None
     except UnicodeDecodeError:
         raise CaseError(f"{path}: cannot read the case file: {describe_encoding(path)}, "
-                        "not UTF-8 text") from None
+                        "not UTF-8 text", source=path) from None
     except OSError as exc:
-        raise CaseError(f"{path}: cannot read the case file ({exc.strerror or exc})") from None
+        raise CaseError(f"{path}: cannot read the case file ({exc.strerror or exc})",
+                        source=path) from None
     if not text.strip():
-        raise CaseError(f"{path}: the case file is empty")
+        raise CaseError(f"{path}: the case file is empty", source=path)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise CaseError(f"{path.name}: invalid TOML: {exc}") from None
+        raise CaseError(f"{path.name}: invalid TOML: {exc}", source=path) from None
     if not data:
-        raise CaseError(f"{path}: the case file has only comments: no table or key")
+        raise CaseError(f"{path}: the case file has only comments: no table or key",
+                        source=path)
     return data, text
 
 

@@ -120,11 +120,11 @@ def run(
     out: Path | None = typer.Option(None, "--out", "-o",
                                     help="Study folder (default: [output] folder, or the "
                                     "study file's name next to it)."),
+    executor: str | None = EXECUTOR_OPTION,
+    workers: int | None = WORKERS_OPTION,
     scheduler: str | None = SCHEDULER_OPTION,
     dask: str | None = DASK_OPTION,
-    workers: int | None = WORKERS_OPTION,
     serial: bool = SERIAL_OPTION,
-    executor: str | None = EXECUTOR_OPTION,
     retries: int | None = typer.Option(None, "--retries", min=0,
                                        help="Retries of a failing chunk (default [study])."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
