@@ -134,7 +134,7 @@ def run(
         model, motion, kwargs = build(cfg, path, text)
         result = run_case(model, motion, kwargs)
     except (CaseError, ValueError) as exc:
-        fail(str(exc).splitlines()[0])
+        fail(cliutil.error_line(exc))
     try:
         write_outputs(result, out, figure=not no_figure)
     except OutputError as exc:
@@ -164,7 +164,7 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
     except OutputError as exc:
         _out_error(exc)
     except CaseError as exc:
-        fail(str(exc).splitlines()[0])
+        fail(cliutil.error_line(exc))
     from murus.progress import LazyProgress
 
     error = None

@@ -29,18 +29,22 @@ def plain(message) -> str:
 _CASE_KEY = re.compile(r"\.toml(?: line \d+)?: \[")
 
 
-def option_words(message: str, ctx=None) -> str:
+def option_words(message: str, ctx=None, case_key: bool | None = None) -> str:
     """``message`` with the Python names of the current command's parameters written as its
     command-line options: ``delta_t must be > 0`` becomes ``--delta-t must be > 0``. A name is
     replaced where it has an underscore, or where it is followed by ``must``, ``=`` or ``:``
-    (so that ordinary words are left alone)."""
+    (so that ordinary words are left alone). A message about a key of a case file keeps the
+    key's name: ``case_key`` says so (:func:`guard` knows it from the error's key path and
+    file); when it is None (a bare message) the message's ``FILE.toml line N: [`` tells."""
     try:  # typer >= 0.20 carries its own copy of click
         from typer._click.globals import get_current_context
     except ImportError:  # pragma: no cover - older typer
         from click import get_current_context
 
     ctx = ctx or get_current_context(silent=True)
-    if ctx is None or _CASE_KEY.search(message):  # a case file's keys keep their names
+    if case_key is None:
+        case_key = bool(_CASE_KEY.search(message))
+    if ctx is None or case_key:  # a case file's keys keep their names
         return message
     for p in ctx.command.params:
         longs = [o for o in getattr(p, "opts", []) if o.startswith("--")]
@@ -53,10 +57,57 @@ def option_words(message: str, ctx=None) -> str:
     return message
 
 
-def fail(message) -> None:
+def error_line(exc: BaseException) -> str:
+    """The one-line message of the error ``exc``: a :class:`murus.errors.MurusError` that
+    carries a key path and a source file but no location yet (not a
+    :class:`murus.config.CaseError`, located where it is raised) is located by
+    :func:`murus.config.where` (``FILE line N: [key] message``); any other error gives its
+    message (its type name when empty). Only the first line is kept.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error.
+
+    Returns
+    -------
+    str
+        One line.
+    """
+    from murus.errors import MurusError
+
+    msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    if isinstance(exc, MurusError) and exc.key and exc.source is not None:
+        from pathlib import Path
+
+        from murus.config import CaseError, where
+
+        if isinstance(exc, CaseError):
+            return msg
+
+        try:
+            text = Path(exc.source).read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
+            text = ""
+        msg = f"{where(Path(exc.source), text, exc.key)} {msg}"
+    return msg
+
+
+def _case_key(exc: BaseException) -> bool | None:
+    """True when ``exc`` is about a key of a case file (a key path and a file); None when it
+    does not say (:func:`option_words` then reads the message)."""
+    from murus.errors import MurusError
+
+    if isinstance(exc, MurusError) and exc.key and exc.source is not None:
+        return True
+    return None
+
+
+def fail(message, case_key: bool | None = None) -> None:
     """Print ``error: message`` (one line, :func:`plain`, parameters named by their options:
-    :func:`option_words`) on stderr and exit with code 2."""
-    typer.echo(f"error: {option_words(plain(message))}", err=True)
+    :func:`option_words`, unless ``case_key``: the message is about a key of a case file) on
+    stderr and exit with code 2."""
+    typer.echo(f"error: {option_words(plain(message), case_key=case_key)}", err=True)
     raise typer.Exit(code=2)
 
 
@@ -96,8 +147,8 @@ def guard(*errors: type[BaseException], first_line: bool = False):
     except errors as exc:
         msg = str(exc)
         if first_line and msg:
-            msg = msg.splitlines()[0]
-        fail(msg or type(exc).__name__)
+            msg = error_line(exc)
+        fail(msg or type(exc).__name__, case_key=_case_key(exc))
 
 
 def json_safe(v):

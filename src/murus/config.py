@@ -13,9 +13,30 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
 
+from murus.errors import MurusError, key_name
 
-class CaseError(ValueError):
-    """An invalid case file; ``str()`` is one line naming the file, line and key."""
+
+class CaseError(MurusError, ValueError):
+    """An invalid case file; ``str()`` is one line naming the file, line and key.
+
+    Made by :func:`fail_at` (or :func:`locate`), it also carries the key path (:attr:`key`), the
+    file (:attr:`source`) and the message without its location (:attr:`reason`), so that a
+    caller that re-locates the error (a study naming the grid node, a command naming its
+    option) reads them instead of parsing the message.
+
+    Parameters
+    ----------
+    *args
+        The one-line message.
+    key, source
+        As for :class:`murus.errors.MurusError`.
+    reason : str, optional
+        The message without the location (default: the message).
+    """
+
+    def __init__(self, *args, key=(), source=None, reason: str | None = None) -> None:
+        super().__init__(*args, key=key, source=source)
+        self.reason = reason if reason is not None else (str(args[0]) if args else "")
 
 
 #: Physical sense of case-file keys, declared once for every case schema (by key name):
@@ -147,14 +168,18 @@ class MotionFields(Strict):
 
 
 _HEAD = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.\-\"' ]+?)\s*\]\]?\s*(#.*)?$")
-_KEY = re.compile(r"^\s*([A-Za-z0-9_\-\"']+)\s*=")
+_PART = r"(?:[A-Za-z0-9_\-]+|\"[^\"]*\"|'[^']*')"
+_KEY = re.compile(rf"^\s*({_PART}(?:\s*\.\s*{_PART})*)\s*=")
+_SPLIT = re.compile(rf"\s*({_PART})\s*(?:\.|$)")
 
 
 def key_line(text: str, loc: tuple) -> int | None:
     """1-based line of the key ``loc`` (a pydantic location such as ``("body", "width")``) in the
     TOML ``text``, with array-of-table entries: ``("blocks", 2, "width")`` is the key ``width``
     of the third ``[[blocks]]``; the line of the closest enclosing table when the key itself is
-    absent (a default or a missing key); ``None`` when nothing matches."""
+    absent (a default or a missing key); ``None`` when nothing matches. A dotted key
+    (``tie.stiffness = 1`` or ``"restraint.tie.stiffness" = [...]`` in a ``[sweep]`` table) is
+    found by its parts and by its dotted name (``("sweep", "restraint.tie.stiffness")``)."""
     counts: dict[tuple, int] = {}
     table: tuple = ()
     heads: dict[tuple, int] = {}
@@ -173,7 +198,10 @@ def key_line(text: str, loc: tuple) -> int | None:
             continue
         km = _KEY.match(raw)
         if km:
-            keys.setdefault(table + (km.group(1).strip("\"'"),), i)
+            parts = tuple(p.strip("\"'") for p in _SPLIT.findall(km.group(1)))
+            keys.setdefault(table + parts, i)
+            if len(parts) > 1:  # a dotted key also answers to its dotted name
+                keys.setdefault(table + (".".join(parts),), i)
     loc = tuple(loc)
     for k in range(len(loc), 0, -1):
         if loc[:k] in keys:
@@ -183,10 +211,35 @@ def key_line(text: str, loc: tuple) -> int | None:
     return None
 
 
-def _where(path: Path, text: str, loc: tuple) -> str:
+def where(path: Path | None, text: str, loc: tuple, indices: bool = False) -> str:
+    """The location of the key path ``loc`` in a message: ``FILE line N: [key]`` (the line by
+    :func:`key_line`, left out when not found; without a file ``[key]`` alone).
+
+    Parameters
+    ----------
+    path : pathlib.Path or None
+        The case file (its name is written), or None.
+    text : str
+        The TOML text of the file.
+    loc : tuple of str and int
+        The key path.
+    indices : bool
+        Write array-of-table indices (``blocks[2].width``, :func:`murus.errors.key_name`);
+        default: names only (``blocks.width``).
+
+    Returns
+    -------
+    str
+        The location, without a trailing space.
+    """
+    loc = tuple(loc)
+    key = (key_name(loc) if indices else
+           ".".join(str(x) for x in loc if not isinstance(x, int)) or "(top level)")
+    if path is None:
+        return f"[{key}]"
     line = key_line(text, loc)
-    key = ".".join(str(x) for x in loc if not isinstance(x, int)) or "(top level)"
-    return f"{path.name}{f' line {line}' if line else ''}: [{key}]"
+    return f"{Path(path).name}{f' line {line}' if line else ''}: [{key}]"
+
 
 
 def load_toml(path) -> tuple[dict, str]:
@@ -195,22 +248,24 @@ def load_toml(path) -> tuple[dict, str]:
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
-        raise CaseError(f"{path}: no such case file") from None
+        raise CaseError(f"{path}: no such case file", source=path) from None
     except IsADirectoryError:
-        raise CaseError(f"{path}: is a folder, not a case file") from None
+        raise CaseError(f"{path}: is a folder, not a case file", source=path) from None
     except UnicodeDecodeError:
         raise CaseError(f"{path}: cannot read the case file: {describe_encoding(path)}, "
-                        "not UTF-8 text") from None
+                        "not UTF-8 text", source=path) from None
     except OSError as exc:
-        raise CaseError(f"{path}: cannot read the case file ({exc.strerror or exc})") from None
+        raise CaseError(f"{path}: cannot read the case file ({exc.strerror or exc})",
+                        source=path) from None
     if not text.strip():
-        raise CaseError(f"{path}: the case file is empty")
+        raise CaseError(f"{path}: the case file is empty", source=path)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise CaseError(f"{path.name}: invalid TOML: {exc}") from None
+        raise CaseError(f"{path.name}: invalid TOML: {exc}", source=path) from None
     if not data:
-        raise CaseError(f"{path}: the case file has only comments: no table or key")
+        raise CaseError(f"{path}: the case file has only comments: no table or key",
+                        source=path)
     return data, text
 
 
@@ -239,7 +294,7 @@ def validate(model: type[BaseModel], data: dict, path: Path, text: str):
     except ValidationError as exc:
         err = exc.errors()[0]
         loc = tuple(err.get("loc", ()))
-        raise CaseError(f"{_where(path, text, loc)} {error_message(err)}") from None
+        raise fail_at(path, text, loc, error_message(err)) from None
 
 
 def error_message(err: dict) -> str:
@@ -256,6 +311,58 @@ def error_message(err: dict) -> str:
     return msg
 
 
-def fail_at(path: Path, text: str, loc: tuple, msg: str) -> CaseError:
-    """A CaseError for the key ``loc`` of the case file."""
-    return CaseError(f"{_where(path, text, loc)} {msg}")
+def fail_at(path: Path | None, text: str, loc: tuple, msg: str,
+            indices: bool = False) -> CaseError:
+    """A :class:`CaseError` for the key path ``loc`` of the case file: the one place that
+    turns a key path into file and line (:func:`where`).
+
+    Parameters
+    ----------
+    path : pathlib.Path or None
+        The case file (None: the message names the key only).
+    text : str
+        Its TOML text.
+    loc : tuple of str and int
+        The key path.
+    msg : str
+        What is wrong (one line).
+    indices : bool
+        Name array-of-table entries with their index (:func:`where`).
+
+    Returns
+    -------
+    CaseError
+        To be raised; it carries ``loc``, ``path`` and ``msg``.
+    """
+    return CaseError(f"{where(path, text, loc, indices)} {msg}", key=tuple(loc), source=path,
+                     reason=msg)
+
+
+def locate(exc: BaseException, path: Path | None, text: str, prefix: tuple = (),
+           default: tuple = (), msg: str | None = None, indices: bool = False) -> CaseError:
+    """The :class:`CaseError` of an error raised by a model object built from the case file:
+    its key path (:attr:`murus.errors.MurusError.key`, relative to the object) under the table
+    ``prefix``; ``default`` when the error carries no key.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error (a :class:`murus.errors.MurusError` carries its key path).
+    path, text
+        The case file and its text (:func:`fail_at`).
+    prefix : tuple
+        The key path of the table the object was built from, e.g. ``("restraint",)``.
+    default : tuple
+        The key path when ``exc`` has none (default ``prefix``).
+    msg : str, optional
+        The message (default ``str(exc)``).
+    indices : bool
+        As for :func:`fail_at`.
+
+    Returns
+    -------
+    CaseError
+    """
+    key = getattr(exc, "key", ())
+    loc = tuple(prefix) + tuple(key) if key else tuple(default or prefix)
+    return fail_at(path, text, loc, str(exc) if msg is None else msg, indices)

@@ -38,6 +38,8 @@ import time
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
+from murus.errors import MurusError
+
 MANIFEST = ".murus-manifest.json"
 """Name of the manifest file in an output folder."""
 
@@ -93,7 +95,7 @@ def _record(out: Path) -> None:
         raise
 
 
-class OutputError(ValueError):
+class OutputError(MurusError, ValueError):
     """A bad output path: the message is one line naming the offending path."""
 
 

@@ -88,9 +88,9 @@ from murus.config import (
     MotionFields,
     Strict,
     error_message,
-    key_line,
     load_toml,
 )
+from murus.config import fail_at as _fail_at
 
 Pos = float
 Point = tuple[float, float]
@@ -316,21 +316,10 @@ class DemCase(Strict):
 
 
 # ---------------------------------------------------------------------- locations
-def _key_name(loc: tuple) -> str:
-    out = ""
-    for x in loc:
-        if isinstance(x, int):
-            out += f"[{x}]"
-        else:
-            out += ("." if out else "") + str(x)
-    return out or "(top level)"
-
-
 def fail_at(path: Path, text: str, loc: tuple, msg: str) -> CaseError:
     """A one-line CaseError naming file, line and key (``blocks[2].material``: the third
-    ``[[blocks]]`` entry, counted from 0)."""
-    line = key_line(text, loc)
-    return CaseError(f"{path.name}{f' line {line}' if line else ''}: [{_key_name(loc)}] {msg}")
+    ``[[blocks]]`` entry, counted from 0): :func:`murus.config.fail_at` with indices."""
+    return _fail_at(path, text, loc, msg, indices=True)
 
 
 def _validate(data: dict, path: Path, text: str) -> DemCase:
@@ -627,7 +616,6 @@ def build(case: DemCase, path: Path, text: str) -> Built:
         if kind != "record":
             raise fail_at(path, text, ("dem", "duration"), "required key is missing "
                           "(simulated time, s)")
-    motion = None
     if kind in ("sine-pulse", "cosine-pulse", "harmonic-ramp"):
         span = duration if kind == "harmonic-ramp" else mo.cycles / mo.frequency
         nmo = span / (mo.dt or 0.001)
@@ -637,23 +625,11 @@ def build(case: DemCase, path: Path, text: str) -> Built:
             raise fail_at(path, text, key, f"the {kind} would have {nmo:.3g} samples of "
                           f"{mo.dt or 0.001:g} s (limit {MAX_MOTION_SAMPLES:.0e}): raise "
                           "[motion] dt or shorten the motion")
-    if kind == "record":
-        from murus.rocking.case import _read_record
+    from murus.motion.case import build_motion
 
-        motion = _read_record(mo, path, text)
-        if duration is None:
-            duration = motion.duration
-    elif kind in ("sine-pulse", "cosine-pulse"):
-        from murus import G
-        from murus.motion.synthetic import sine_pulse
-
-        amp = mo.amplitude if mo.amplitude is not None else mo.amplitude_g * G
-        motion = sine_pulse(amp * mo.scale, mo.frequency, mo.cycles, dt=mo.dt or 0.001,
-                            kind="sine" if kind == "sine-pulse" else "cosine")
-    elif kind == "harmonic-ramp":
-        from murus.motion.synthetic import harmonic_ramp
-
-        motion = harmonic_ramp(mo.A * mo.scale, mo.frequency, duration, dt=mo.dt or 0.001)
+    motion = build_motion(mo, path, text, sampled_dt=mo.dt or 0.001, duration=duration)
+    if kind == "record" and duration is None:
+        duration = motion.duration
     if motion is not None:
         m.set_base_motion(motion)
     tilt = (mo.rate_deg_per_s or 0.0, mo.start_deg) if kind == "tilt" else None

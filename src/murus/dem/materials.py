@@ -14,11 +14,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from murus.dem import kernels as K
+from murus.errors import MurusError
 
 __all__ = ["Joint", "JointError"]
 
 
-class JointError(ValueError):
+class JointError(MurusError, ValueError):
     """Invalid joint parameters."""
 
 

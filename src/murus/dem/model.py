@@ -37,11 +37,12 @@ import numpy as np
 
 from murus.dem import kernels as K
 from murus.dem.materials import Joint
+from murus.errors import MurusError
 
 __all__ = ["Model", "ModelError", "polygon_properties"]
 
 
-class ModelError(ValueError):
+class ModelError(MurusError, ValueError):
     """Invalid model input (one-line message)."""
 
 

@@ -25,11 +25,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 
 DISTRIBUTIONS = ("linear", "constant")
 
 
-class EC6Error(ValueError):
+class EC6Error(MurusError, ValueError):
     """Invalid input to a Eurocode 6 check."""
 
 

@@ -42,6 +42,8 @@ from __future__ import annotations
 
 import math
 
+from murus.errors import MurusError
+
 __all__ = [
     "EC85Error", "R_FACTORS", "seismic_angle", "active_coefficient", "coulomb_coefficient",
     "rankine_coefficient", "total_thrust", "thrust_components", "application_heights",
@@ -49,7 +51,7 @@ __all__ = [
 ]
 
 
-class EC85Error(ValueError):
+class EC85Error(MurusError, ValueError):
     """Input outside the validity limits of EN 1998-5 Annex E (one-line message)."""
 
 

@@ -47,6 +47,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from murus.errors import MurusError
+
 __all__ = ["CalibrationError", "CalibrationResult", "Measurement", "calibrate",
            "measurement_from_test", "plot_calibration", "PARAMETERS"]
 
@@ -57,7 +59,7 @@ PARAMETERS: dict[str, tuple[float, float]] = {
 }
 
 
-class CalibrationError(ValueError):
+class CalibrationError(MurusError, ValueError):
     """Bad input to a calibration (unknown parameter, empty data, bounds)."""
 
 

@@ -40,11 +40,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from murus.errors import MurusError
+
 __all__ = ["Cantilever", "CantileverError", "CantileverModes", "CantileverResponse",
            "equivalent_moduli"]
 
 
-class CantileverError(ValueError):
+class CantileverError(MurusError, ValueError):
     """A parameter of the cantilever model is out of range."""
 
 

@@ -36,6 +36,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from murus.errors import MurusError
+
 __all__ = ["ClassifyError", "Criterion", "Classification", "classify", "classify_test",
            "classify_sequence", "lifted_length", "plot_rotations", "plot_lifted_length",
            "CLASSES"]
@@ -43,7 +45,7 @@ __all__ = ["ClassifyError", "Criterion", "Classification", "classify", "classify
 CLASSES = ("cantilever", "hybrid", "rocking")
 
 
-class ClassifyError(ValueError):
+class ClassifyError(MurusError, ValueError):
     """Invalid input to the classification."""
 
 

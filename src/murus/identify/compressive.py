@@ -36,11 +36,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from murus.errors import MurusError
+
 __all__ = ["CompressiveError", "contact_length", "fit_plane", "TestContact", "test_contact",
            "CompressiveTable", "compressive_table", "plot_contact_length"]
 
 
-class CompressiveError(ValueError):
+class CompressiveError(MurusError, ValueError):
     """Invalid input to the contact-length computation."""
 
 

@@ -55,12 +55,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from murus.errors import MurusError
+
 __all__ = ["ModalError", "FRF", "Mode", "ModalResult", "Evolution", "frf", "identify",
            "evolution", "transmissibility", "plot_frf", "plot_frequency_evolution",
            "plot_damping_evolution"]
 
 
-class ModalError(ValueError):
+class ModalError(MurusError, ValueError):
     """Invalid input to the modal identification."""
 
 

@@ -89,6 +89,7 @@ from pathlib import Path
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 
 __all__ = [
     "TestDataError",
@@ -119,7 +120,7 @@ _REQUIRED_KEYS = ("sampling_rate_hz", "wall_length_m", "wall_height_m")
 _COLUMN = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*\[([^\]]*)\]\s*$")
 
 
-class TestDataError(ValueError):
+class TestDataError(MurusError, ValueError):
     """A test file or sequence folder that does not follow the documented format."""
 
     __test__ = False  # not a pytest test class

@@ -43,6 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.motion.core import GroundMotion
 
 __all__ = ["MotionFormatError", "read", "write", "detect_format", "UNITS", "FORMATS"]
@@ -66,7 +67,7 @@ _NUM_RE = re.compile(r"^[+-]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][+-]?\d+)?$")
 _MAX_ABS = 1e6  # m/s²; 100 000 g: anything larger is a corrupt file
 
 
-class MotionFormatError(ValueError):
+class MotionFormatError(MurusError, ValueError):
     """A record file that cannot be read; the message names the file and line."""
 
 

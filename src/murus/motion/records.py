@@ -20,6 +20,7 @@ from functools import cache
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.motion.core import GroundMotion
 
 __all__ = ["suite", "suite_spectra", "RecordsExtraMissing", "SUITES"]
@@ -27,7 +28,7 @@ __all__ = ["suite", "suite_spectra", "RecordsExtraMissing", "SUITES"]
 SUITES = ("farfield", "nearfield_pulse", "nearfield_no_pulse")
 
 
-class RecordsExtraMissing(ImportError):
+class RecordsExtraMissing(MurusError, ImportError):
     """The optional record suites need ``pip install murus[records]``."""
 
 

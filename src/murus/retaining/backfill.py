@@ -126,6 +126,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.retaining.geometry import RetainingWall
 
 __all__ = ["BackfillError", "Packing", "DiscreteBackfill", "AbsorbingBoundary",
@@ -146,7 +147,7 @@ SEED_INTERFACE_K = {"full": 2.9e10, "mockup": 3.0e10}
 BOUNDARIES = ("container", "absorbing")
 
 
-class BackfillError(ValueError):
+class BackfillError(MurusError, ValueError):
     """Invalid input to the discrete backfill (one-line message)."""
 
 

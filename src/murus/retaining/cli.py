@@ -19,6 +19,13 @@ import typer
 from murus.cliutil import dumps, guard
 from murus.cliutil import fail as _fail
 from murus.outputs import OutputError
+from murus.studies.cli import (
+    DASK_OPTION,
+    EXECUTOR_OPTION,
+    SCHEDULER_OPTION,
+    SERIAL_OPTION,
+    WORKERS_OPTION,
+)
 
 app = typer.Typer(
     rich_markup_mode=None,
@@ -366,16 +373,11 @@ def behaviour_factor_cmd(
                                        show_default=False),
     out: Path | None = typer.Option(None, "--out", "-o", help="Study folder (default: the "
                                     "case file's [output] folder, or its name next to it)."),
-    executor: str | None = typer.Option(None, "--executor", help="serial, process (a local "
-                                        "pool of --workers) or dask (--scheduler; default a "
-                                        "local cluster). Default: the case file's [executor], "
-                                        "else process."),
-    workers: int | None = typer.Option(None, "--workers", "-w", min=1, help="Worker "
-                                       "processes (default: the case file's, else the cores)."),
-    scheduler: str | None = typer.Option(None, "--scheduler",
-                                         help="Dask scheduler address, tcp://HOST:PORT."),
-    dask: str | None = typer.Option(None, "--dask", help="'local': start a local Dask cluster."),
-    serial: bool = typer.Option(False, "--serial", help="Run in this process (no pool)."),
+    executor: str | None = EXECUTOR_OPTION,
+    workers: int | None = WORKERS_OPTION,
+    scheduler: str | None = SCHEDULER_OPTION,
+    dask: str | None = DASK_OPTION,
+    serial: bool = SERIAL_OPTION,
     retries: int | None = typer.Option(None, "--retries", min=0, help="Retries of a failing "
                                        "case (default: [study] retries, 2)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
@@ -438,10 +440,11 @@ def behaviour_factor_cmd(
             try:
                 st = behaviour_study(data)
             except CaseError as exc:  # name the option, not the table key
-                msg = str(exc)
-                for key, opt in _BF_KEYS.items():
-                    msg = msg.replace(f"[{key}]", opt)
-                raise CaseError(msg) from None
+                opt = _BF_KEYS.get(".".join(str(x) for x in exc.key
+                                            if not isinstance(x, int)))
+                if opt is None:
+                    raise
+                raise CaseError(f"{opt} {exc.reason}", key=exc.key, reason=exc.reason) from None
             folder = out
         else:
             st = load_behaviour_study(case)

@@ -57,6 +57,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from murus.errors import MurusError
 from murus.retaining.geometry import RetainingWall
 
 __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES",
@@ -77,7 +78,7 @@ SEED_TABLE7 = {
 }
 
 
-class CollapseError(ValueError):
+class CollapseError(MurusError, ValueError):
     """Invalid collapse-protocol input (one-line message)."""
 
 

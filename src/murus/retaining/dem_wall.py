@@ -68,6 +68,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.retaining.geometry import RetainingWall, clip_above, polygon_area_centroid
 
 __all__ = ["DemWallError", "DemWall", "BackSegment", "build_wall", "stones_of_wall",
@@ -81,7 +82,7 @@ TABLE6_JOINT = {"kn": 2.8e12, "ks": 2.8e12}
 TABLE1_JOINT = {"kn": 2.6e12, "ks": 2.6e12}
 
 
-class DemWallError(ValueError):
+class DemWallError(MurusError, ValueError):
     """Invalid input to the DEM wall builder (one-line message)."""
 
 
@@ -177,7 +178,7 @@ def stones_of_wall(wall: RetainingWall, stone_length: float | None = None,
         raise DemWallError(f"bond_phase must be 0 or 1, got {bond_phase!r}")
     if wall.stone_height is None:
         raise DemWallError(f"{wall.name}: the courses are unknown (stone_height=None): give "
-                           "stone_height")
+                           "stone_height", key=("stone_height",))
     L = wall.stone_length if stone_length is None else float(stone_length)
     if not (L > 0 and math.isfinite(L)):
         raise DemWallError(f"stone_length must be positive [m], got {stone_length!r}")

@@ -37,13 +37,15 @@ import math
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
+from murus.errors import MurusError
+
 __all__ = [
     "GeometryError", "RetainingWall", "BedJoint", "WallPart", "PRESETS", "MOCKUP_SLENDERNESS",
     "preset", "mockup", "polygon_area_centroid", "clip_above",
 ]
 
 
-class GeometryError(ValueError):
+class GeometryError(MurusError, ValueError):
     """Invalid wall geometry or material (one-line message)."""
 
 
@@ -183,13 +185,15 @@ def _num(name: str, value, lo: float | None = None, lo_open: bool = False,
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise GeometryError(f"{name} must be a number, got {value!r}") from None
+        raise GeometryError(f"{name} must be a number, got {value!r}", key=(name,)) from None
     if not math.isfinite(v):
-        raise GeometryError(f"{name} must be finite, got {value!r}")
+        raise GeometryError(f"{name} must be finite, got {value!r}", key=(name,))
     if lo is not None and (v < lo or (lo_open and v == lo)):
-        raise GeometryError(f"{name} must be {'>' if lo_open else '>='} {lo:g}, got {v:g}")
+        raise GeometryError(f"{name} must be {'>' if lo_open else '>='} {lo:g}, got {v:g}",
+                            key=(name,))
     if hi is not None and (v > hi or (hi_open and v == hi)):
-        raise GeometryError(f"{name} must be {'<' if hi_open else '<='} {hi:g}, got {v:g}")
+        raise GeometryError(f"{name} must be {'<' if hi_open else '<='} {hi:g}, got {v:g}",
+                            key=(name,))
     return v
 
 
@@ -284,7 +288,8 @@ class RetainingWall:
                                                 self.interface_friction_deg, 0.0, False,
                                                 self.backfill_friction_deg))
         if self.base not in ("inclined", "horizontal"):
-            raise GeometryError(f"base must be 'inclined' or 'horizontal', got {self.base!r}")
+            raise GeometryError(f"base must be 'inclined' or 'horizontal', got {self.base!r}",
+                                key=("base",))
         b_calc = self.base_width - self.height * (self.external_batter + self.internal_batter)
         if self.top_width is None:
             s(self, "top_width", b_calc)
@@ -293,7 +298,7 @@ class RetainingWall:
             if abs(self.top_width - b_calc) > 1e-3:
                 raise GeometryError(
                     f"top_width {self.top_width:g} m is inconsistent with B - H (lambda_v + "
-                    f"lambda_m) = {b_calc:.4f} m")
+                    f"lambda_m) = {b_calc:.4f} m", key=("top_width",))
         if self.top_width <= 0.0:
             raise GeometryError(f"the batters close the section below the crest (b = "
                                 f"{self.top_width:.4f} m)")
@@ -303,7 +308,7 @@ class RetainingWall:
             if any(x1 <= x0 for x0, x1 in zip(xs, xs[1:], strict=False)) or not all(
                     math.isfinite(v) for p in prof for v in p):
                 raise GeometryError("backfill_profile must be finite (dx, dz) points with dx "
-                                    "strictly increasing from 0")
+                                    "strictly increasing from 0", key=("backfill_profile",))
             s(self, "backfill_profile", prof)
 
     # -- angles -----------------------------------------------------------------------------

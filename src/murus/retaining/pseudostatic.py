@@ -57,6 +57,7 @@ from functools import lru_cache
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.eurocode import ec8_5
 from murus.retaining.geometry import BedJoint, RetainingWall, WallPart
 
@@ -69,7 +70,7 @@ __all__ = [
 MODES = ("sliding", "overturning")
 
 
-class PseudoStaticError(ValueError):
+class PseudoStaticError(MurusError, ValueError):
     """Invalid pseudo-static input or no limit state in the searched range (one line)."""
 
 

@@ -24,10 +24,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from murus.errors import MurusError
+
 __all__ = ["SectionsError", "WeightedResponse", "first_passage_times", "weighted_response"]
 
 
-class SectionsError(ValueError):
+class SectionsError(MurusError, ValueError):
     """Bad section histories or weights."""
 
 

@@ -375,7 +375,7 @@ def behaviour_study(data: dict, path: Path | None = None, text: str = "") -> Beh
     def fail(loc, msg):
         if path is None:
             return CaseError(f"[{'.'.join(str(x) for x in loc if not isinstance(x, int))}] "
-                             f"{msg}")
+                             f"{msg}", key=tuple(loc), reason=msg)
         return fail_at(path, text, tuple(loc), msg)
 
     try:
@@ -393,8 +393,9 @@ def behaviour_study(data: dict, path: Path | None = None, text: str = "") -> Beh
         wall = preset(cfg.wall.preset, **ov)
     except (GeometryError, TypeError, ValueError) as exc:
         msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        key = next((k for k in ov if msg.startswith(k) or f" {k} " in f" {msg} "), "preset")
-        raise fail(("wall", key), msg) from None
+        # a GeometryError names the parameter (its key path); an override is a [wall] key
+        key = getattr(exc, "key", ())
+        raise fail(("wall", key[0] if key and key[0] in ov else "preset"), msg) from None
     cases: list[tuple[float, str]] = [(float(f), v) for v in cfg.cases.vertical
                                       for f in cfg.cases.frequencies]
     for i, e in enumerate(cfg.cases.extra):
@@ -436,8 +437,9 @@ def _check_dem_wall(wall: RetainingWall, numerics: dict, fail) -> None:
         build_wall(wall, **kw, **numerics.get("build", {}))
     except (DemWallError, ModelError, JointError, ValueError) as exc:
         msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        loc = ("wall", "stone_height") if "stone_height" in msg else ("numerics",)
-        raise fail(loc, msg) from None
+        # a DemWallError with a key names a parameter of the wall, else the numerics
+        key = exc.key if isinstance(exc, DemWallError) else ()
+        raise fail(("wall",) + key if key else ("numerics",), msg) from None
 
 
 # ----------------------------------------------------------------------------- tasks -----

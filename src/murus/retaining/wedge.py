@@ -24,10 +24,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from murus.errors import MurusError
+
 __all__ = ["WedgeError", "WedgeResult", "trial_wedge"]
 
 
-class WedgeError(ValueError):
+class WedgeError(MurusError, ValueError):
     """No finite trial-wedge thrust for these inputs (one-line message)."""
 
 

@@ -28,9 +28,10 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 from murus import G
+from murus.errors import MurusError
 
 
-class BodyError(ValueError):
+class BodyError(MurusError, ValueError):
     """A body definition that is not physical (one-line message naming the parameter)."""
 
 

@@ -49,8 +49,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from murus import G
-from murus.config import MotionFields, Strict, fail_at, load_toml, validate
+from murus.config import MotionFields, Strict, fail_at, load_toml, locate, validate
 
 
 class BodyCfg(Strict):
@@ -203,9 +202,10 @@ class MotionCfg(MotionFields):
 
     @property
     def amplitude_si(self) -> float:
-        if self.amplitude is not None:
-            return self.amplitude * self.scale
-        return (self.amplitude_g or 0.0) * G * self.scale
+        """The pulse amplitude [m/s²], scale included (:func:`murus.motion.case.amplitude_si`)."""
+        from murus.motion.case import amplitude_si
+
+        return amplitude_si(self)
 
 
 class SolverCfg(Strict):
@@ -281,13 +281,9 @@ def build(case: RockingCase, path: Path, text: str):
     """Model, excitation and solver options of a validated case.
 
     Returns ``(model, motion, kwargs)`` for :func:`murus.rocking.simulate`."""
+    from murus.motion.case import build_motion
     from murus.rocking.body import BodyError, RigidBlock
-    from murus.rocking.excitation import (
-        cosine_pulse,
-        free_vibration,
-        rectangular_pulse,
-        sine_pulse,
-    )
+
     b = case.body
     try:
         body = RigidBlock(b.width, b.height, b.thickness, b.density, b.top_mass, name=b.name)
@@ -299,16 +295,7 @@ def build(case: RockingCase, path: Path, text: str):
         model = build_model(case, body, path, text)
     m = case.motion
     kind = m.kind
-    if kind == "record":
-        motion = _read_record(m, path, text)
-    elif kind == "sine-pulse":
-        motion = sine_pulse(m.amplitude_si, m.frequency, m.cycles)
-    elif kind == "cosine-pulse":
-        motion = cosine_pulse(m.amplitude_si, m.frequency, m.cycles)
-    elif kind == "rectangular-pulse":
-        motion = rectangular_pulse(m.amplitude_si, m.duration)
-    else:
-        motion = free_vibration()
+    motion = build_motion(m, path, text)
     kwargs = {
         "method": case.solver.method,
         "duration": case.solver.duration,
@@ -452,33 +439,7 @@ def build_model(case: RockingCase, body, path: Path, text: str):
                             transverse_walls=walls, damper=damper, motion_sides=r.motion_sides,
                             pivot=pivot, rest_tol=case.solver.rest_tol)
     except (ModelError, RestitutionError, RestraintError) as exc:
-        msg = str(exc)
-        if "above the wall" in msg or "outside the wall" in msg:
-            for key in ("tie", "damper", "transverse_walls"):
-                if key.replace("_", " ") in msg or msg.startswith(key):
-                    where = ("restraint", key)
-        elif "transverse walls make" in msg:
-            where = ("restraint", "transverse_walls")
-        elif "one-sided wall" in msg:
-            where = ("restraint", "motion_sides")
-        raise fail_at(path, text, where, msg) from None
+        # a RockingModel error names its argument (tie, damper, transverse_walls,
+        # motion_sides): a key of [restraint]; the others are the table being built
+        raise locate(exc, path, text, ("restraint",) if exc.key else (), where) from None
 
-
-def _read_record(m: MotionCfg, path: Path, text: str):
-    from murus.motion import MotionFormatError, read
-
-    f = Path(m.file)
-    if not f.is_absolute():
-        f = path.parent / f
-    if not f.exists():
-        raise fail_at(path, text, ("motion", "file"), f"motion file '{m.file}' not found")
-    try:
-        gm = read(f, units=m.units, dt=m.dt, scale=m.scale, format=m.format)
-    except MotionFormatError as exc:
-        raise fail_at(path, text, ("motion", "file"), f"motion file {exc}") from None
-    except ValueError as exc:
-        raise fail_at(path, text, ("motion", "file"), f"motion file {f.name}: {exc}") from None
-    if gm.npts < 2:
-        raise fail_at(path, text, ("motion", "file"),
-                      f"motion file {f.name}: the record has fewer than two samples")
-    return gm

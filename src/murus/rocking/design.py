@@ -34,10 +34,11 @@ import math
 from dataclasses import asdict, dataclass
 
 from murus import G
+from murus.errors import MurusError
 from murus.rocking.body import RigidBlock
 
 
-class DesignError(ValueError):
+class DesignError(MurusError, ValueError):
     """An invalid design input (one-line message naming the parameter)."""
 
 

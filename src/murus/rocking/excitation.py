@@ -14,10 +14,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from murus.errors import MurusError
 from murus.rocking import kernels as K
 
 
-class ExcitationError(ValueError):
+class ExcitationError(MurusError, ValueError):
     """An excitation that cannot drive a simulation."""
 
 

@@ -13,13 +13,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.rocking import kernels as K
 from murus.rocking.body import RigidBlock
 from murus.rocking.restitution import Housner, RestitutionLaw, make_restitution
 from murus.rocking.restraints import Damper, Pivot, SpringBed, Tie
 
 
-class ModelError(ValueError):
+class ModelError(MurusError, ValueError):
     """An invalid model option."""
 
 
@@ -92,10 +93,10 @@ class RockingModel:
                 raise ModelError(f"{kind.KIND} must be a {kind.__name__}")
             if item.height > b.height * (1 + 1e-12):
                 raise ModelError(f"{kind.KIND} height {item.height:g} m is above the wall "
-                                 f"(height {b.height:g} m)")
+                                 f"(height {b.height:g} m)", key=(kind.KIND,))
             if abs(item.x) > hb * (1 + 1e-12):
                 raise ModelError(f"{kind.KIND} x = {item.x:g} m is outside the wall "
-                                 f"(|x| <= {hb:g} m)")
+                                 f"(|x| <= {hb:g} m)", key=(kind.KIND,))
         bed = self.transverse_walls
         if bed is not None:
             if not isinstance(bed, SpringBed):
@@ -103,17 +104,18 @@ class RockingModel:
             if bed.z1 + bed.effective_height > b.height * (1 + 1e-12):
                 raise ModelError(
                     f"transverse walls reach {bed.z1 + bed.effective_height:g} m, above the "
-                    f"wall (height {b.height:g} m)")
+                    f"wall (height {b.height:g} m)", key=("transverse_walls",))
             if bed.x is not None and abs(bed.x) > hb * (1 + 1e-12):
-                raise ModelError(f"transverse_walls x = {bed.x:g} m is outside the wall")
+                raise ModelError(f"transverse_walls x = {bed.x:g} m is outside the wall",
+                                 key=("transverse_walls",))
         if self.motion_sides not in ("one", "two"):
             raise ModelError(f"motion_sides must be 'one' or 'two', got {self.motion_sides!r}")
         if self.motion_sides == "one" and bed is None:
             raise ModelError("a one-sided wall needs transverse walls (the spring bed that stops "
-                             "inward rotations)")
+                             "inward rotations)", key=("motion_sides",))
         if self.motion_sides == "two" and bed is not None:
             raise ModelError("transverse walls make the motion one-sided: set "
-                             "motion_sides = 'one'")
+                             "motion_sides = 'one'", key=("transverse_walls",))
         if not isinstance(self.pivot, Pivot):
             raise ModelError("pivot must be a Pivot")
 

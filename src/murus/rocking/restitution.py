@@ -19,11 +19,12 @@ from typing import ClassVar
 
 import numpy as np
 
+from murus.errors import MurusError
 from murus.rocking import kernels as K
 from murus.rocking.body import RigidBlock
 
 
-class RestitutionError(ValueError):
+class RestitutionError(MurusError, ValueError):
     """An invalid restitution law or parameter."""
 
 

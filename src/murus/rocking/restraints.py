@@ -20,8 +20,10 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+from murus.errors import MurusError
 
-class RestraintError(ValueError):
+
+class RestraintError(MurusError, ValueError):
     """An invalid restraint (one-line message naming the parameter)."""
 
 

@@ -108,6 +108,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 from murus.rocking import winkler_kernels as WK
 from murus.rocking.body import RigidBlock
 from murus.rocking.defaults import WINKLER_RTOL
@@ -139,7 +140,7 @@ _STATUS = {
 _KINEMATICS = {"centre": 0.0, "corner": 1.0}
 
 
-class WinklerError(ValueError):
+class WinklerError(MurusError, ValueError):
     """An invalid elastic-layer model or simulation option (one-line message)."""
 
 

@@ -69,7 +69,21 @@ def resume_command(*words) -> str:
     return shlex.join(["murus", *[str(w) for w in words]])
 
 
-EXECUTOR_HELP = "Executor: serial, process (a local pool of --workers) or dask (--scheduler)."
+EXECUTOR_HELP = ("Executor: serial, process (a local pool of --workers) or dask (--scheduler; "
+                 "default a local cluster). Default: the case file's [executor] table where "
+                 "it has one, else process.")
+
+#: The executor options shared by the commands that run studies (``murus study run``,
+#: ``murus retaining behaviour-factor``): the defaults of their parameters, one definition
+#: each, read by :func:`executor_choice`.
+EXECUTOR_OPTION = typer.Option(None, "--executor", help=EXECUTOR_HELP)
+WORKERS_OPTION = typer.Option(None, "--workers", "-w", min=1, help="Worker processes (default: "
+                              "the case file's [executor] workers where it has them, else the "
+                              "cores).")
+SCHEDULER_OPTION = typer.Option(None, "--scheduler",
+                                help="Dask scheduler address, tcp://HOST:PORT.")
+DASK_OPTION = typer.Option(None, "--dask", help="'local': start a local Dask cluster.")
+SERIAL_OPTION = typer.Option(False, "--serial", help="Run in this process (no pool).")
 
 
 def executor_choice(executor: str | None, serial: bool, dask: str | None,
@@ -106,13 +120,11 @@ def run(
     out: Path | None = typer.Option(None, "--out", "-o",
                                     help="Study folder (default: [output] folder, or the "
                                     "study file's name next to it)."),
-    scheduler: str | None = typer.Option(None, "--scheduler",
-                                         help="Dask scheduler address, tcp://HOST:PORT."),
-    dask: str | None = typer.Option(None, "--dask", help="'local': start a local Dask cluster."),
-    workers: int | None = typer.Option(None, "--workers", "-w", min=1,
-                                       help="Worker processes (default: the cores)."),
-    serial: bool = typer.Option(False, "--serial", help="Run in this process (no pool)."),
-    executor: str | None = typer.Option(None, "--executor", help=EXECUTOR_HELP),
+    executor: str | None = EXECUTOR_OPTION,
+    workers: int | None = WORKERS_OPTION,
+    scheduler: str | None = SCHEDULER_OPTION,
+    dask: str | None = DASK_OPTION,
+    serial: bool = SERIAL_OPTION,
     retries: int | None = typer.Option(None, "--retries", min=0,
                                        help="Retries of a failing chunk (default [study])."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),

@@ -32,13 +32,15 @@ import signal
 import threading
 from concurrent.futures import Executor, Future
 
+from murus.errors import MurusError
+
 __all__ = ["SerialExecutor", "ExecutorHandle", "open_executor", "limit_threads",
            "watch_parent", "EXECUTOR_KINDS", "ExecutorError"]
 
 EXECUTOR_KINDS = ("serial", "process", "dask")
 
 
-class ExecutorError(ValueError):
+class ExecutorError(MurusError, ValueError):
     """An executor that cannot be opened (one-line message)."""
 
 

@@ -22,11 +22,12 @@ from pathlib import Path
 import numpy as np
 
 from murus import G
+from murus.errors import MurusError
 
 __all__ = ["RecordSet", "IntensityMeasure", "RecordError"]
 
 
-class RecordError(ValueError):
+class RecordError(MurusError, ValueError):
     """A record set or intensity measure that cannot be used (one-line message)."""
 
 

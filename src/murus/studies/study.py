@@ -185,11 +185,8 @@ class Study:
                 return fail_at(self.case_path, self.case_text, loc, msg + at)
             loc = ("case",) + tuple(loc)
         if self.path is None:
-            return CaseError(f"[{'.'.join(str(x) for x in loc)}] {msg}{at}")
-        if loc[0] == "sweep" and len(loc) == 2:
-            line = _sweep_line(self.text, str(loc[1]))
-            if line is not None:
-                return CaseError(f"{self.path.name} line {line}: [sweep.{loc[1]}] {msg}{at}")
+            return CaseError(f"[{'.'.join(str(x) for x in loc)}] {msg}{at}", key=loc,
+                             reason=msg + at)
         return fail_at(self.path, self.text, loc, msg + at)
 
     # -------------------------------------------------------------- plan
@@ -440,49 +437,28 @@ class Study:
         try:
             return build_model(cfg, body, path or Path("study"), text)
         except CaseError as exc:
-            msg = str(exc)
-            if self.case_path is None and self.path is not None:
-                msg = msg.replace("[restraint", "[case.restraint").replace(
-                    "[restitution", "[case.restitution").replace("[pivot", "[case.pivot")
+            # the key path of the case's table; in a study file the case is its [case] table
+            loc = exc.key if self.case_path is not None or self.path is None else \
+                ("case",) + exc.key
             at = ", ".join(f"{k} = {_fmt(v)}" for k, v in node.items())
-            raise CaseError(f"{msg} (at {at})" if at else msg) from None
+            raise fail_at(path or Path("study"), text, loc,
+                          f"{exc.reason} (at {at})" if at else exc.reason) from None
 
     def _pulse(self, cfg, body, node):
-        from murus import G
-        from murus.rocking.excitation import cosine_pulse, rectangular_pulse, sine_pulse
+        from murus.motion.case import build_motion
 
         m = cfg.motion
         kind = m.kind
         if kind not in ("sine-pulse", "cosine-pulse", "rectangular-pulse"):
             raise self._fail(("motion",), "without [records] the case's motion must be a pulse "
                              "(sine-pulse, cosine-pulse, rectangular-pulse) or a record file")
-        amp = m.amplitude * m.scale if m.amplitude is not None else m.amplitude_g * G * m.scale
-        if kind == "rectangular-pulse":
-            return rectangular_pulse(amp, m.duration)
-        freq = m.frequency
-        if "omega_p_over_p" in node:
+        freq = None
+        if "omega_p_over_p" in node and kind != "rectangular-pulse":
             freq = float(node["omega_p_over_p"]) * body.p / (2.0 * math.pi)
-        fn = sine_pulse if kind == "sine-pulse" else cosine_pulse
-        return fn(amp, freq, m.cycles)
+        return build_motion(m, None, kind=kind, frequency=freq)
 
 
 _UNION_TAG = re.compile(r"^(float|int|str|bool|literal\[.*\]|function-.*)$")
-
-
-def _sweep_line(text: str, name: str) -> int | None:
-    """Line of the sweep key ``name`` (bare, quoted or dotted) in the [sweep] table."""
-    inside = False
-    forms = {name, f'"{name}"', f"'{name}'"}
-    for i, raw in enumerate(text.splitlines(), start=1):
-        t = raw.strip()
-        if t.startswith("["):
-            inside = re.match(r"^\[\s*sweep\s*\]", t) is not None
-            continue
-        if inside and "=" in t:
-            key = t.split("=", 1)[0].strip()
-            if key in forms or ".".join(p.strip().strip("\"'") for p in key.split(".")) == name:
-                return i
-    return None
 
 
 def _motion_kind(data: dict) -> str | None:
@@ -658,7 +634,7 @@ def make_study(case: dict, sweep: dict, records=None, *, name: str = "study",
         vals = [v] if isinstance(v, str | int | float) else list(np.asarray(v).tolist())
 
         def fail(msg, k=k):
-            return CaseError(f"[sweep.{k}] {msg}")
+            return CaseError(f"[sweep.{k}] {msg}", key=("sweep", k), reason=msg)
 
         sw[k] = _values(k, vals, fail)
     return Study(case=copy.deepcopy(case), sweep=sw,

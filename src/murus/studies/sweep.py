@@ -47,6 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
+from murus.errors import MurusError
 from murus.rocking.defaults import RTOL
 from murus.studies.records import RecordSet
 
@@ -58,7 +59,7 @@ __all__ = ["Dim", "Point", "Plan", "ChunkTask", "run_chunk", "run_plan", "run_ta
 FORMAT_VERSION = 1
 
 
-class StudyError(ValueError):
+class StudyError(MurusError, ValueError):
     """An invalid study or results folder (one-line message)."""
 
 
