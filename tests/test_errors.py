@@ -205,9 +205,9 @@ def test_retaining_cli_names_the_option_from_the_key(tmp_path):
     res = CliRunner().invoke(app, ["retaining", "behaviour-factor", "--preset", "DSRW1",
                                    "--stone-height", "-0.1", "--out", str(tmp_path / "o")])
     assert res.exit_code == 2
-    # the key ("wall", "stone_height") names the option; the message's own parameter name
-    # becomes its option too (cliutil.option_words), as before
-    assert "error: --stone-height --stone-height must be > 0, got -0.1" in res.output
+    # the key ("wall", "stone_height") names the option, once (the reason's own parameter
+    # name is not repeated after it)
+    assert "error: --stone-height must be > 0, got -0.1" in res.output
     res = CliRunner().invoke(app, ["retaining", "behaviour-factor", "--preset", "mockup-1.3",
                                    "--out", str(tmp_path / "o")])
     assert res.exit_code == 2 and "error: --stone-height mockup H/B=1.3: the courses" \

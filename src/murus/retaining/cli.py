@@ -444,7 +444,11 @@ def behaviour_factor_cmd(
                                             if not isinstance(x, int)))
                 if opt is None:
                     raise
-                raise CaseError(f"{opt} {exc.reason}", key=exc.key, reason=exc.reason) from None
+                reason = exc.reason
+                name = str(exc.key[-1]) if exc.key else ""
+                if name and reason.startswith(name + " "):  # "stone_height must be > 0"
+                    reason = reason[len(name) + 1:]
+                raise CaseError(f"{opt} {reason}", key=exc.key, reason=exc.reason) from None
             folder = out
         else:
             st = load_behaviour_study(case)
