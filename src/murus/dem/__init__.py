@@ -11,7 +11,7 @@ The names below are imported on first use (PEP 562), so that ``murus --help`` do
 numba.
 """
 
-from importlib import import_module
+from murus._lazy import lazy_exports
 
 _EXPORTS = {
     "Joint": "materials",
@@ -32,13 +32,4 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS)
 
 
-def __getattr__(name):
-    if name in _EXPORTS:
-        obj = getattr(import_module(f"murus.dem.{_EXPORTS[name]}"), name)
-        globals()[name] = obj
-        return obj
-    raise AttributeError(f"module 'murus.dem' has no attribute {name!r}")
-
-
-def __dir__():
-    return __all__
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
