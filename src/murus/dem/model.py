@@ -35,6 +35,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from murus import G
 from murus.dem import kernels as K
 from murus.dem.materials import Joint
 
@@ -137,7 +138,7 @@ class Model:
         central-difference stability limit of a body between springs).
     """
 
-    def __init__(self, thickness: float = 1.0, gravity: float = 9.81, joint: Joint | None = None,
+    def __init__(self, thickness: float = 1.0, gravity: float = G, joint: Joint | None = None,
                  rounding: float | None = None, margin: float | None = None,
                  safety: float = 0.2) -> None:
         if not thickness > 0:

@@ -13,6 +13,7 @@ import math
 
 import typer
 
+from murus import G
 from murus.cliutil import dumps
 from murus.cliutil import fail as _fail
 
@@ -26,7 +27,7 @@ app = typer.Typer(
 )
 
 #: Seed 002 unit weight 21 kN/m³ over g = 9.81 m/s² (same as ``seed002_block``) [kg/m³].
-_SEED002_DENSITY = 21000.0 / 9.81
+_SEED002_DENSITY = 21000.0 / G
 
 _BLOCK = typer.Option(None, "--block", help="Seed 002 block: block1 ... block6 (Table 1).")
 _WIDTH = typer.Option(None, "--width", help="Wall thickness b (s of seed 002) [m].")

@@ -20,6 +20,8 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+from murus import G
+
 
 class RestraintError(ValueError):
     """An invalid restraint (one-line message naming the parameter)."""
@@ -196,7 +198,7 @@ class Pivot:
     def code(self) -> int:
         return 0 if self.law == "corner" else PIVOT_READINGS[self.reading]
 
-    def lever(self, body, a_g, a_v=0.0, g: float = 9.81):
+    def lever(self, body, a_g, a_v=0.0, g: float = G):
         """Lever of the weight about the pivot [m] for ground accelerations [m/s²] (NumPy),
         the same formula as the kernel's :func:`murus.rocking.kernels.lever`."""
         import numpy as np
