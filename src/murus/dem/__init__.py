@@ -1,7 +1,8 @@
 """2D distinct elements (UDEC-like) for block masonry: rigid convex polygons, clumps and discs,
 Mohr-Coulomb joints with rounded corners, explicit central differences (seed 001 eqs. 2-4),
 local and mass-proportional damping, kinematic bases driven by ground motions, monitors,
-energy balance and checkpoints.
+energy balance and checkpoints; disc packings (:mod:`murus.dem.packing`), absorbing
+boundaries and boundary forces (:mod:`murus.dem.boundary`).
 
 Conventions (details in :mod:`murus.dem.model`, :mod:`murus.dem.kernels`,
 :mod:`murus.dem.engine`): SI units; x horizontal, y up, gravity -y; angles counter-clockwise;
@@ -27,6 +28,13 @@ _EXPORTS = {
     "tilt_probe": "engine",
     "stop_when": "engine",
     "run_verification": "verify",
+    "PackingError": "packing",
+    "disc_grid": "packing",
+    "check_overlap": "packing",
+    "solid_fraction": "packing",
+    "AbsorbingBoundary": "boundary",
+    "wall_thrust": "boundary",
+    "contact_forces_from": "boundary",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -49,6 +49,7 @@ import numpy as np
 from murus.dem import kernels as K
 from murus.dem.materials import Joint
 from murus.dem.model import Model
+from murus.dem.packing import GRID_GAP, disc_grid
 
 __all__ = ["BiaxialResult", "CalibrationResult", "disc_assembly", "biaxial_test",
            "calibrate_rolling", "plot_biaxial"]
@@ -118,11 +119,12 @@ class CalibrationResult:
 
 
 def disc_assembly(n: int, radius=(0.02, 0.03), seed: int = 0, aspect: float = 2.0,
-                  gap: float = 0.02) -> tuple[np.ndarray, np.ndarray, float, float]:
+                  gap: float = GRID_GAP) -> tuple[np.ndarray, np.ndarray, float, float]:
     """``n`` discs without overlap on a square grid of pitch ``2 r_max (1 + gap)``, about
     ``aspect`` = height / width; radii uniform in ``radius`` [m] (generator ``seed``).
     Returns centres (n, 2) [m] (box corner at the origin), radii (n,) [m], box width and
-    height [m] (half a pitch of clearance to the walls)."""
+    height [m] (half a pitch of clearance to the walls). The square lattice of
+    :func:`murus.dem.packing.disc_grid`."""
     rmin, rmax = float(radius[0]), float(radius[1])
     if not (0 < rmin <= rmax):
         raise ValueError(f"radius range must satisfy 0 < rmin <= rmax [m], got {radius!r}")
@@ -130,15 +132,11 @@ def disc_assembly(n: int, radius=(0.02, 0.03), seed: int = 0, aspect: float = 2.
         raise ValueError(f"n must be at least 4 discs, got {n!r}")
     if not aspect > 0:
         raise ValueError(f"aspect must be positive, got {aspect!r}")
-    rng = np.random.default_rng(seed)
-    pitch = 2.0 * rmax * (1.0 + gap)
     nx = max(2, int(round(math.sqrt(n / aspect))))
     ny = int(math.ceil(n / nx))
-    ii = np.arange(n)
-    cx = (ii % nx + 0.5) * pitch
-    cy = (ii // nx + 0.5) * pitch
-    r = rng.uniform(rmin, rmax, n)
-    return np.column_stack([cx, cy]), r, nx * pitch, ny * pitch
+    centres, r, pitch = disc_grid((rmin, rmax), seed=seed, gap=gap, lattice="square", n=n,
+                                  columns=nx)
+    return centres, r, nx * pitch, ny * pitch
 
 
 class _Box:
