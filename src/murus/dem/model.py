@@ -608,7 +608,8 @@ class Model:
 
     def save(self, path) -> None:
         """Whole state to an ``.npz`` file (a callable base motion and custom probes are not
-        saved: set them again after :meth:`load`)."""
+        saved: set them again after :meth:`load`), written atomically and durably
+        (:func:`murus.outputs.atomic_write`: a crash never leaves a half checkpoint)."""
         self.build()
         arrays = {name.lstrip("_"): getattr(self, name) for name in self._ARRAYS}
         arrays["bext"] = self.bext
@@ -631,7 +632,13 @@ class Model:
                        for b in self._bodies],
         }
         arrays["meta"] = np.array(json.dumps(meta))
-        np.savez(path, **arrays)
+        if hasattr(path, "write"):  # an open file
+            np.savez(path, **arrays)
+            return
+        from murus.outputs import atomic_write
+
+        dest = str(path) if str(path).endswith(".npz") else f"{path}.npz"  # as np.savez names it
+        atomic_write(dest, lambda tmp: np.savez(tmp, **arrays))
 
     @classmethod
     def load(cls, path) -> Model:
