@@ -328,3 +328,23 @@ def test_ctrl_c_exits_130_with_one_line_and_outputs_as_before(tmp_path, monkeypa
     assert r.exit_code == 130
     assert r.stderr.strip() == "interrupted"
     assert snapshot(tmp_path) == before
+
+
+def test_atomic_write_flushes_and_cleans_up(tmp_path, monkeypatch):
+    synced = []
+    real_fsync = os.fsync
+    monkeypatch.setattr(outputs.os, "fsync", lambda fd: (synced.append(fd), real_fsync(fd)))
+    p = outputs.atomic_write(tmp_path / "a.bin", lambda t: t.write_bytes(b"new"))
+    assert p.read_bytes() == b"new" and len(synced) == 2  # the file, then its folder
+    # a piece of a study: its own temporary name; a failed write leaves nothing behind
+    name = outputs.process_tmp_name(p)
+    assert name == f".a.bin.tmp-{os.getpid()}"
+
+    def fail(t):
+        assert t.name == name
+        t.write_bytes(b"half")
+        raise OSError("disk full")
+
+    with pytest.raises(OSError, match="disk full"):
+        outputs.atomic_write(p, fail, tmp_name=name)
+    assert p.read_bytes() == b"new" and sorted(os.listdir(tmp_path)) == ["a.bin"]

@@ -269,12 +269,13 @@ def verify_dem(
     from rich.markup import escape
     from rich.table import Table
 
+    from murus import G
     from murus.dem.verify import CASES
 
     unknown = [c for c in case if c not in CASES]
     if unknown:
         fail(f"--case {unknown[0]}: unknown case; choose from {', '.join(CASES)}")
-    table = Table(title="murus.dem verification (g = 9.81 m/s2)")
+    table = Table(title=f"murus.dem verification (g = {G:g} m/s2)")
     for col in ("case", "expected", "obtained", "error", "tolerance", "result"):
         table.add_column(col, justify="left" if col == "case" else "right")
     failed = 0

@@ -1,4 +1,5 @@
-"""The one atomic writer of murus: output folders and single output files.
+"""The one atomic writer of murus: output folders, single output files and the pieces of
+studies (:func:`atomic_write` is the one low-level writer; everything else calls it).
 
 Rules (README "Outputs"):
 
@@ -8,11 +9,12 @@ Rules (README "Outputs"):
   leaves every other file alone. A new output whose name collides with a file murus did not
   write is an :class:`OutputError` naming the file, raised before anything is moved (and,
   when the command knows its file names, before anything is computed).
-* New results become visible atomically. A folder that does not exist yet is built as a
-  hidden temporary sibling and renamed into place; into an existing folder each file is moved
-  with :func:`os.replace` (each file atomic), the manifest last. If a move fails, the files
-  already moved are put back, so the folder is as it was; Ctrl-C is held off during the moves
-  (they take milliseconds) and raised right after.
+* New results become visible atomically and durably: every file is flushed to the disk
+  (``fsync``) before it is renamed into place, and its folder after. A folder that does not
+  exist yet is built as a hidden temporary sibling and renamed into place; into an existing
+  folder each file is moved with :func:`os.replace` (each file atomic), the manifest last.
+  If a move fails, the files already moved are put back, so the folder is as it was; Ctrl-C
+  is held off during the moves (they take milliseconds) and raised right after.
 * Before any computation, :func:`check_dir` / :func:`check_file` refuse an ``--out`` that
   names an existing file (folder outputs) or folder (file outputs), lies under a file, is
   ``.`` or the current working folder, or whose nearest existing ancestor is not a writable
@@ -83,16 +85,7 @@ def _record(out: Path) -> None:
     folder = out.parent if str(out.parent) else Path(".")
     names = sorted(_recorded(folder) | {out.name})
     text = json.dumps({"format": "murus-files/1", "files": names}, indent=2) + "\n"
-    fd, name = tempfile.mkstemp(prefix=f".{FILES}.", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.chmod(name, file_mode())
-        os.replace(name, folder / FILES)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(name)
-        raise
+    atomic_write(folder / FILES, lambda p: Path(p).write_text(text, encoding="utf-8"))
 
 
 class OutputError(MurusError, ValueError):
@@ -377,13 +370,118 @@ def _hold_sigint() -> Iterator[None]:
 
 
 # ------------------------------------------------------------------------------ writers
+def _fsync_path(path, directory: bool = False) -> None:
+    """Flush ``path`` (a file, or with ``directory`` a folder's entries) to the disk.
+
+    Folders are flushed on POSIX systems only (Windows cannot open a folder for it), and a
+    file system that cannot flush a folder (``EINVAL``) is let be."""
+    if directory and os.name == "nt":  # pragma: no cover - Windows
+        return
+    try:
+        fd = os.open(path, os.O_RDONLY if directory else os.O_RDWR)
+    except OSError:
+        if directory:
+            return
+        fd = os.open(path, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    except OSError:
+        if not directory:
+            raise
+    finally:
+        os.close(fd)
+
+
+def process_tmp_name(path) -> str:
+    """Temporary name ``.NAME.tmp-PID`` of a piece of a study written by this process (see
+    :func:`atomic_write`): one per process and piece, recognisable in a study folder."""
+    return f".{Path(path).name}.tmp-{os.getpid()}"
+
+
+def atomic_write(path, write: Callable[[Path], object], *, tmp_name: str | None = None,
+                 fsync: bool = True, on_replace: Callable[[], object] | None = None) -> Path:
+    """Write one file atomically: the one low-level writer of murus.
+
+    ``write(tmp)`` writes the content to a temporary sibling ``tmp`` of ``path`` (same
+    folder, so that the rename is atomic); the file gets the umask permissions
+    (:func:`file_mode`), is flushed to the disk (``fsync``), and is renamed over ``path`` with
+    :func:`os.replace`; then the folder entry is flushed too. A reader sees the old file or
+    the new one, never a partial one, even after a power cut. On any failure (including
+    Ctrl-C) the temporary file is removed and ``path`` is as it was. Ctrl-C is held off
+    during the rename (and ``on_replace``) and raised right after.
+
+    :func:`write_file` (output files of the CLI: missing parents, ownership record, one-line
+    :class:`OutputError`), the manifest and the pieces of studies
+    (:mod:`murus.studies.sweep`, :mod:`murus.retaining.study`) all write through it.
+
+    Parameters
+    ----------
+    path : path-like
+        Destination file; its folder must exist.
+    write : callable
+        ``write(tmp)`` writes the whole content to the path ``tmp``.
+    tmp_name : str, optional
+        File name of the temporary sibling. Default: a fresh unique name
+        (:func:`tempfile.mkstemp`, ``.NAME.XXXXXXXX.EXT``, ending in the extension of
+        ``path`` so that writers picking the format from it work). The pieces of studies
+        (checksummed chunks and cases, ``study.json``, ``result.nc``) pass their own name,
+        :func:`process_tmp_name` (``.NAME.tmp-PID``, as they always had): one per process and
+        piece, so that the workers writing into one study folder never share one.
+    fsync : bool
+        Flush the file and the folder to the disk (default). Only files that are rewritten
+        every second and have no value after a crash (progress files) pass False.
+    on_replace : callable, optional
+        Called right after the rename, inside the same Ctrl-C-deferred section (e.g. to
+        record the file as murus's own).
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    OSError
+        The folder is missing or not writable, or ``write`` failed (nothing changed).
+    """
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    tmp: Path | None = None
+    try:
+        if tmp_name is None:
+            fd, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix or ".tmp",
+                                        dir=folder)
+            os.close(fd)
+            tmp = Path(name)
+        else:
+            tmp = folder / tmp_name
+        write(tmp)
+        os.chmod(tmp, file_mode())
+        if fsync:
+            _fsync_path(tmp)
+        with _hold_sigint():
+            os.replace(tmp, path)
+            tmp = None
+            if fsync:
+                _fsync_path(folder, directory=True)
+            if on_replace is not None:
+                on_replace()
+    except BaseException:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                tmp.unlink()
+        raise
+    return path
+
+
 def write_file(out, write: Callable[[Path], object], record: bool = False) -> Path:
     """Write one output file atomically.
 
     ``write(tmp)`` writes a temporary file in the same folder as ``out`` (its name ends with
     the same extension, so writers that pick the format from it work); it is then given the
-    umask permissions and renamed over ``out`` with :func:`os.replace`. Missing parents are
-    created (and removed again on failure). On any failure nothing changes at ``out``.
+    umask permissions, flushed to the disk and renamed over ``out`` (:func:`atomic_write`).
+    Missing parents are created (and removed again on failure). On any failure nothing
+    changes at ``out``.
 
     Parameters
     ----------
@@ -406,26 +504,20 @@ def write_file(out, write: Callable[[Path], object], record: bool = False) -> Pa
         created = _make_parents(out)
     except OSError as exc:
         raise OutputError(f"{out}: cannot create its folder ({exc.strerror or exc})") from None
-    tmp = None
+    started = []
+
+    def _write(tmp):
+        started.append(tmp)
+        return write(tmp)
+
     try:
         try:
-            fd, name = tempfile.mkstemp(prefix=f".{out.name}.", suffix=out.suffix or ".tmp",
-                                        dir=out.parent if str(out.parent) else ".")
+            atomic_write(out, _write, on_replace=(lambda: _record(out)) if record else None)
         except OSError as exc:
+            if started:  # raised by ``write`` or the rename: as it is
+                raise
             raise OutputError(f"{out}: cannot write there ({exc.strerror or exc})") from None
-        os.close(fd)
-        tmp = Path(name)
-        write(tmp)
-        os.chmod(tmp, file_mode())
-        with _hold_sigint():
-            os.replace(tmp, out)
-            tmp = None
-            if record:
-                _record(out)
     except BaseException:
-        if tmp is not None:
-            with contextlib.suppress(OSError):
-                tmp.unlink()
         _remove_created(created)
         _restore_times(times)
         raise
@@ -487,14 +579,23 @@ def staged_dir(out, command: str = "murus", names: Iterable[str] | None = None):
         yield tmp
         files = _files(tmp)
         try:
+            for rel in files:  # the new files reach the disk before they become visible
+                if not (tmp / rel).is_symlink():
+                    _fsync_path(tmp / rel)
             if exists:
                 _publish_into(tmp, out, files, command)
+                for d in sorted({(out / rel).parent for rel in files}):
+                    _fsync_path(d, directory=True)
             else:
                 _chmod_tree(tmp)
                 (tmp / MANIFEST).write_text(_manifest_text(command, files), encoding="utf-8")
                 os.chmod(tmp / MANIFEST, file_mode())
+                _fsync_path(tmp / MANIFEST)
+                for d in sorted({(tmp / rel).parent for rel in files} | {tmp}):
+                    _fsync_path(d, directory=True)
                 with _hold_sigint():
                     os.rename(tmp, out)
+                _fsync_path(out.parent, directory=True)
         except OSError as exc:
             raise OutputError(f"{out}: cannot write the outputs ({exc.strerror or exc})") \
                 from None
@@ -588,11 +689,9 @@ def _publish_into(tmp: Path, out: Path, files: list[str], command: str) -> None:
 
 
 def _replace_bytes(out: Path, rel: str, data: bytes, tmp: Path) -> None:
-    fd, name = tempfile.mkstemp(prefix=".manifest.", dir=tmp)
-    with os.fdopen(fd, "wb") as f:
-        f.write(data)
-    os.chmod(name, file_mode())
-    os.replace(name, out / rel)
+    """Replace ``out / rel`` with ``data`` atomically (``tmp``, the staging folder, is not
+    used any more: the temporary file is a sibling of the destination)."""
+    atomic_write(out / rel, lambda p: Path(p).write_bytes(data))
 
 
 def _replace_text(out: Path, rel: str, text: str, tmp: Path) -> None:

@@ -61,6 +61,14 @@ def test_sequence_report(seq, tmp_path):
     for row, ev in zip(c["tests"], s["evolution"], strict=True):
         assert row["E_eff_pa"] == pytest.approx(
             c["modulus_pa"] * (ev["f1_hz"] / c["f1_model_hz"]) ** 2, rel=1e-9)
+    # the library function behind the command gives the same summary and report
+    from murus.identify import process_sequence
+
+    lib = process_sequence(seq)
+    assert json.loads(json.dumps(lib.summary(), default=str)) == json.loads(
+        json.dumps(s, default=str))
+    figs = ["frequency.png", "damping.png", "compressive_length.png"]
+    assert lib.markdown(figs) == rep
 
 
 def _one_line_error(r):

@@ -1,7 +1,8 @@
 """2D distinct elements (UDEC-like) for block masonry: rigid convex polygons, clumps and discs,
 Mohr-Coulomb joints with rounded corners, explicit central differences (Savalle et al. (2022), eqs.
 2-4), local and mass-proportional damping, kinematic bases driven by ground motions, monitors,
-energy balance and checkpoints.
+energy balance and checkpoints; disc packings (:mod:`murus.dem.packing`), absorbing
+boundaries and boundary forces (:mod:`murus.dem.boundary`).
 
 Conventions (details in :mod:`murus.dem.model`, :mod:`murus.dem.kernels`,
 :mod:`murus.dem.engine`): SI units; x horizontal, y up, gravity -y; angles counter-clockwise;
@@ -11,7 +12,7 @@ The names below are imported on first use (PEP 562), so that ``murus --help`` do
 numba.
 """
 
-from importlib import import_module
+from murus._lazy import lazy_exports
 
 _EXPORTS = {
     "Joint": "materials",
@@ -27,18 +28,16 @@ _EXPORTS = {
     "tilt_probe": "engine",
     "stop_when": "engine",
     "run_verification": "verify",
+    "PackingError": "packing",
+    "disc_grid": "packing",
+    "check_overlap": "packing",
+    "solid_fraction": "packing",
+    "AbsorbingBoundary": "boundary",
+    "wall_thrust": "boundary",
+    "contact_forces_from": "boundary",
 }
 
 __all__ = sorted(_EXPORTS)
 
 
-def __getattr__(name):
-    if name in _EXPORTS:
-        obj = getattr(import_module(f"murus.dem.{_EXPORTS[name]}"), name)
-        globals()[name] = obj
-        return obj
-    raise AttributeError(f"module 'murus.dem' has no attribute {name!r}")
-
-
-def __dir__():
-    return __all__
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

@@ -49,11 +49,30 @@ import numpy as np
 from murus.dem import kernels as K
 from murus.dem.materials import Joint
 from murus.dem.model import Model
+from murus.dem.packing import GRID_GAP, disc_grid
 
 __all__ = ["BiaxialResult", "CalibrationResult", "disc_assembly", "biaxial_test",
            "calibrate_rolling", "plot_biaxial"]
 
 _LEFT, _RIGHT, _BOTTOM, _TOP = 0, 1, 2, 3
+
+# Settings of the procedure (module docstring), named once:
+#: Local damping during the compaction (Cundall's 0.7, PFC's default for static problems).
+COMPACTION_DAMPING = 0.7
+#: Closing speed of the walls before the servo, as a multiple of the shear strain rate.
+CLOSE_RATE = 10.0
+#: The servo takes over when the mean wall stress reaches this fraction of sigma3.
+CLOSE_STRESS = 0.25
+#: Unbalanced-force ratio below which the compacted sample is in equilibrium.
+COMPACTION_UNBALANCE = 2e-2
+#: Consecutive chunks within ``tol`` and :data:`COMPACTION_UNBALANCE` that end the compaction.
+COMPACTION_STREAK = 5
+#: Largest number of steps of the compaction (a RuntimeError beyond).
+MAX_COMPACTION_STEPS = 400_000
+#: Time constant of the integral term of the lateral servo during the shear [chunks].
+SERVO_INTEGRAL_CHUNKS = 50.0
+#: Largest speed of the lateral walls during the shear, as a multiple of ``strain_rate W0``.
+LATERAL_RATE = 20.0
 
 
 @dataclass
@@ -118,11 +137,12 @@ class CalibrationResult:
 
 
 def disc_assembly(n: int, radius=(0.02, 0.03), seed: int = 0, aspect: float = 2.0,
-                  gap: float = 0.02) -> tuple[np.ndarray, np.ndarray, float, float]:
+                  gap: float = GRID_GAP) -> tuple[np.ndarray, np.ndarray, float, float]:
     """``n`` discs without overlap on a square grid of pitch ``2 r_max (1 + gap)``, about
     ``aspect`` = height / width; radii uniform in ``radius`` [m] (generator ``seed``).
     Returns centres (n, 2) [m] (box corner at the origin), radii (n,) [m], box width and
-    height [m] (half a pitch of clearance to the walls)."""
+    height [m] (half a pitch of clearance to the walls). The square lattice of
+    :func:`murus.dem.packing.disc_grid`."""
     rmin, rmax = float(radius[0]), float(radius[1])
     if not (0 < rmin <= rmax):
         raise ValueError(f"radius range must satisfy 0 < rmin <= rmax [m], got {radius!r}")
@@ -130,15 +150,11 @@ def disc_assembly(n: int, radius=(0.02, 0.03), seed: int = 0, aspect: float = 2.
         raise ValueError(f"n must be at least 4 discs, got {n!r}")
     if not aspect > 0:
         raise ValueError(f"aspect must be positive, got {aspect!r}")
-    rng = np.random.default_rng(seed)
-    pitch = 2.0 * rmax * (1.0 + gap)
     nx = max(2, int(round(math.sqrt(n / aspect))))
     ny = int(math.ceil(n / nx))
-    ii = np.arange(n)
-    cx = (ii % nx + 0.5) * pitch
-    cy = (ii // nx + 0.5) * pitch
-    r = rng.uniform(rmin, rmax, n)
-    return np.column_stack([cx, cy]), r, nx * pitch, ny * pitch
+    centres, r, pitch = disc_grid((rmin, rmax), seed=seed, gap=gap, lattice="square", n=n,
+                                  columns=nx)
+    return centres, r, nx * pitch, ny * pitch
 
 
 class _Box:
@@ -258,7 +274,8 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
                  inertial: float = 1e-3, cs_fraction: float = 0.3, damping: float = 0.3,
                  compaction_friction_deg: float | None = None, wall_joint: Joint | None = None,
                  chunk: int = 10, servo_alpha: float = 0.5, tol: float = 0.02,
-                 sample_strain: float = 0.002, max_compaction_steps: int = 400_000,
+                 sample_strain: float = 0.002,
+                 max_compaction_steps: int = MAX_COMPACTION_STEPS,
                  progress: Callable | None = None) -> BiaxialResult:
     """Biaxial test of ``n`` discs (module doc) with the disc-disc ``joint`` (kn, ks [Pa/m],
     friction, rolling coefficient).
@@ -310,7 +327,7 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
             err = sigma3 - sig[j]  # > 0: push inwards
             d = servo_alpha * err * length[j] / kw[j] if kw[j] > 0 else du_max
             if integ is not None:  # PI: the integral term carries the steady wall speed
-                integ[j] += d / 50.0
+                integ[j] += d / SERVO_INTEGRAL_CHUNKS
                 d += integ[j]
             du[j] = max(-du_max, min(du_max, d))
         return du
@@ -318,25 +335,25 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
     # ---- 1. isotropic compaction: the walls close in at a constant speed (strain rate
     # 10 x the shear rate) until the mean wall stress reaches sigma3 / 4, then the servo
     w0, h0 = box.size()
-    v_close = 10.0 * strain_rate * np.array([w0, w0, h0, h0])
+    v_close = CLOSE_RATE * strain_rate * np.array([w0, w0, h0, h0])
     steps = 0
     sig, kw = box.stresses()
-    while np.mean(sig) < 0.25 * sigma3 and steps < max_compaction_steps:
+    while np.mean(sig) < CLOSE_STRESS * sigma3 and steps < max_compaction_steps:
         box.move(v_close * tc, tc)
-        _advance(m, chunk, 0.7)
+        _advance(m, chunk, COMPACTION_DAMPING)
         steps += chunk
         sig, kw = box.stresses()
-    vmax_c = 10.0 * strain_rate * max(w0, h0)
+    vmax_c = CLOSE_RATE * strain_rate * max(w0, h0)
     ok = 0
     while steps < max_compaction_steps:
         box.move(servo(sig, kw, vmax_c * tc, range(4)), tc)
-        _advance(m, chunk, 0.7)
+        _advance(m, chunk, COMPACTION_DAMPING)
         steps += chunk
         sig, kw = box.stresses()
         ratio = m.S[K.S_UNBAL] / m.S[K.S_MEANF] if m.S[K.S_MEANF] > 0 else math.inf
-        if np.all(np.abs(sig / sigma3 - 1.0) < tol) and ratio < 2e-2:
+        if np.all(np.abs(sig / sigma3 - 1.0) < tol) and ratio < COMPACTION_UNBALANCE:
             ok += 1
-            if ok >= 5:
+            if ok >= COMPACTION_STREAK:
                 break
         else:
             ok = 0
@@ -353,7 +370,7 @@ def biaxial_test(joint: Joint, n: int = 200, sigma3: float = 50e3, radius=(0.02,
 
     # ---- 2. shearing at constant axial strain rate, lateral stress held
     v_axial = 0.5 * strain_rate * H0  # each of top and bottom [m/s]
-    vmax_l = 20.0 * strain_rate * W0
+    vmax_l = LATERAL_RATE * strain_rate * W0
     every = max(1, int(round(sample_strain / (strain_rate * tc))))
     e1, s1, s3, ev = [], [], [], []
     acc = np.zeros(3)

@@ -35,6 +35,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from murus import G
 from murus.dem import kernels as K
 from murus.dem.materials import Joint
 from murus.errors import MurusError
@@ -149,7 +150,7 @@ class Model:
         central-difference stability limit of a body between springs).
     """
 
-    def __init__(self, thickness: float = 1.0, gravity: float = 9.81, joint: Joint | None = None,
+    def __init__(self, thickness: float = 1.0, gravity: float = G, joint: Joint | None = None,
                  rounding: float | None = None, margin: float | None = None,
                  safety: float = 0.2) -> None:
         if not thickness > 0:
@@ -619,7 +620,8 @@ class Model:
 
     def save(self, path) -> None:
         """Whole state to an ``.npz`` file (a callable base motion and custom probes are not
-        saved: set them again after :meth:`load`)."""
+        saved: set them again after :meth:`load`), written atomically and durably
+        (:func:`murus.outputs.atomic_write`: a crash never leaves a half checkpoint)."""
         self.build()
         arrays = {name.lstrip("_"): getattr(self, name) for name in self._ARRAYS}
         arrays["bext"] = self.bext
@@ -642,7 +644,13 @@ class Model:
                        for b in self._bodies],
         }
         arrays["meta"] = np.array(json.dumps(meta))
-        np.savez(path, **arrays)
+        if hasattr(path, "write"):  # an open file
+            np.savez(path, **arrays)
+            return
+        from murus.outputs import atomic_write
+
+        dest = str(path) if str(path).endswith(".npz") else f"{path}.npz"  # as np.savez names it
+        atomic_write(dest, lambda tmp: np.savez(tmp, **arrays))
 
     @classmethod
     def load(cls, path) -> Model:

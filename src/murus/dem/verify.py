@@ -18,12 +18,12 @@ import math
 
 import numpy as np
 
+from murus import G
 from murus.dem import engine as E
 from murus.dem import kernels as K
 from murus.dem.materials import Joint
 from murus.dem.model import Model
 
-G = 9.81
 RHO = 2000.0
 
 

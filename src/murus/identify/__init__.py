@@ -4,7 +4,8 @@ sequences (:mod:`~murus.identify.testdata`), white-noise modal identification
 (:mod:`~murus.identify.compressive`), cantilever / hybrid / rocking classification
 (:mod:`~murus.identify.classify`), virtual test sequences (:mod:`~murus.identify.synth`), the
 Timoshenko cantilever (:mod:`~murus.identify.cantilever`) and the calibration of the rocking
-model (:mod:`~murus.identify.calibrate`).
+model (:mod:`~murus.identify.calibrate`); the whole processing of a sequence, behind ``murus lab
+sequence``, is :func:`~murus.identify.pipeline.process_sequence`.
 
 Names are imported on first use (PEP 562), so importing the package loads neither scipy nor
 matplotlib.
@@ -53,6 +54,8 @@ _EXPORTS = {
     "CalibrationResult": "calibrate",
     "Measurement": "calibrate",
     "calibrate": "calibrate",
+    "SequenceReport": "pipeline",
+    "process_sequence": "pipeline",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -10,12 +10,12 @@ when every step has succeeded. The library (scipy, matplotlib) is imported insid
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import typer
 
-from murus.cliutil import dumps, fail, json_safe
+from murus.cliutil import dumps, fail
+from murus.identify.pipeline import DENSITY, MODULUS, THICKNESS
 
 app = typer.Typer(
     rich_markup_mode=None,
@@ -159,178 +159,43 @@ def sequence(
     nperseg: int | None = _NPERSEG,
     f_min: float = _FMIN,
     f_max: float | None = _FMAX,
-    modulus: float = typer.Option(5.6e9, "--modulus", help="Cantilever model: Young's modulus "
+    modulus: float = typer.Option(MODULUS, "--modulus", help="Cantilever model: Young's modulus "
                                   "E [Pa] (default 1000 fk, EN 1996-1-1 §3.7.2, with the "
                                   "Mordant et al. (SERIES) measured fk = 5.6 MPa, printed '6.5' "
                                   "by the "
                                   "extraction); G = 0.4 E."),
-    density: float = typer.Option(1800.0, "--density", help="Cantilever model: masonry "
+    density: float = typer.Option(DENSITY, "--density", help="Cantilever model: masonry "
                                   "density [kg/m3]."),
-    thickness: float = typer.Option(0.138, "--thickness", help="Cantilever model: wall "
+    thickness: float = typer.Option(THICKNESS, "--thickness", help="Cantilever model: wall "
                                     "thickness [m]."),
 ) -> None:
     """Frequency and damping evolution (Mordant et al. (SERIES), Figures 3-4), classification (§2.3)
     with the rotations (Figures 6-7), compressive lengths (Table 2, Figure 5), lifted lengths
     (Figures 19-20), the Timoshenko cantilever model against the identified frequencies, and
     one Markdown report."""
-    from murus.identify.classify import Criterion, classify_sequence
-    from murus.identify.compressive import compressive_table
-    from murus.identify.modal import evolution
-    from murus.identify.testdata import read_sequence
+    from murus.identify.classify import Criterion
+    from murus.identify.pipeline import process_sequence
 
     _check_out(out, ["summary.json", "report.md"])
     try:
         crit = Criterion(cantilever_below=cantilever_below, rocking_above=rocking_above,
                          min_rotation=min_rotation)
-        seq = read_sequence(sequence_dir)
-        evo = evolution(seq, n_modes=n_modes, nperseg=nperseg, f_min=f_min, f_max=f_max)
-        classes = classify_sequence(seq, crit)
-        comp = None
-        if any(e.test.has_lvdt for e in seq.seismic):
-            comp = compressive_table(seq, closure=closure)
-        cant = _cantilever_rows(seq, evo, modulus, density, thickness)
+        rep = process_sequence(sequence_dir, n_modes=n_modes, closure=closure, criterion=crit,
+                               nperseg=nperseg, f_min=f_min, f_max=f_max, modulus=modulus,
+                               density=density, thickness=thickness)
     except _errors() as exc:
         fail(exc)
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from murus.identify.classify import plot_lifted_length, plot_rotations
-    from murus.identify.compressive import plot_contact_length
-    from murus.identify.modal import plot_damping_evolution, plot_frequency_evolution
+    _pyplot()
     from murus.outputs import OutputError
 
-    figs = []
     try:
         with _staged(out, ["summary.json", "report.md"]) as tmp:
-            for stem, fn in (("frequency", plot_frequency_evolution),
-                             ("damping", plot_damping_evolution)):
-                ax = fn(evo)
-                ax.figure.tight_layout()
-                _save(ax.figure, tmp / stem)
-                figs.append(f"{stem}.png")
-                plt.close(ax.figure)
-            if comp is not None:
-                ax = plot_contact_length(comp)
-                ax.figure.tight_layout()
-                _save(ax.figure, tmp / "compressive_length")
-                figs.append("compressive_length.png")
-                plt.close(ax.figure)
-                (tmp / "compressive_length.csv").write_text(comp.to_csv(), encoding="utf-8")
-            by_label = {e.label: e for e in seq.seismic}
-            for c in classes:
-                ax = plot_rotations(by_label[c.name].test, classification=c)
-                ax.figure.tight_layout()
-                _save(ax.figure, tmp / f"rotations_{c.name}")
-                plt.close(ax.figure)
-            for e in seq.seismic:
-                if e.test.has_lvdt:
-                    ax = plot_lifted_length(e.test, closure=closure)
-                    ax.figure.tight_layout()
-                    _save(ax.figure, tmp / f"lifted_{e.label}")
-                    plt.close(ax.figure)
-            summary = {"sequence": seq.name, "folder": str(sequence_dir),
-                       "table1": seq.table1(), "evolution": evo.rows(),
-                       "classification": [c.to_dict() for c in classes],
-                       "compressive_length": comp.rows if comp is not None else None,
-                       "criterion": {"cantilever_below": cantilever_below,
-                                     "rocking_above": rocking_above,
-                                     "min_rotation_rad": min_rotation},
-                       "closure_m": closure, "cantilever": cant}
-            (tmp / "summary.json").write_text(dumps(summary),
-                                              encoding="utf-8")
-            (tmp / "report.md").write_text(_report(seq, evo, classes, comp, crit, closure, figs)
-                                           + _cantilever_report(cant), encoding="utf-8")
+            rep.write(tmp)
             written = _written(tmp)
     except OutputError as exc:
         fail(exc)
     for name in written:
         typer.echo(f"wrote {out / name}")
-
-
-def _cantilever_rows(seq, evo, modulus, density, thickness) -> dict | None:
-    """The Timoshenko cantilever of the sequence's wall (length, height and top mass of its
-    first test) against the identified first frequencies: model f1 and E_eff per test."""
-    import numpy as np
-
-    from murus.identify.cantilever import Cantilever, equivalent_moduli
-
-    if not len(seq):
-        return None
-    t0 = seq.entries[0].test
-    c = Cantilever(height=t0.wall_height, length=t0.wall_length, thickness=thickness,
-                   modulus=modulus, density=density, tip_mass=t0.top_mass or 0.0)
-    f = evo.frequency[:, 0] if evo.frequency.size else np.zeros(0)
-    E = equivalent_moduli(c, f)
-    return {"modulus_pa": modulus, "density": density, "thickness_m": thickness,
-            "length_m": c.length, "height_m": c.height, "top_mass_kg": c.tip_mass,
-            "f1_model_hz": float(c.frequencies(1)[0]),
-            "tests": [{"test": lab, "f1_hz": json_safe(float(fi)),
-                       "E_eff_pa": json_safe(float(e))}
-                      for lab, fi, e in zip(evo.labels, f, E, strict=True)]}
-
-
-def _cantilever_report(cant: dict | None) -> str:
-    if cant is None:
-        return ""
-    lines = ["", "## Cantilever model (low-amplitude regime)", "",
-             f"Timoshenko cantilever (murus.identify.cantilever): L = {cant['length_m']:g} m, "
-             f"H = {cant['height_m']:g} m, t = {cant['thickness_m']:g} m, E = "
-             f"{cant['modulus_pa'] / 1e9:.3g} GPa, G = 0.4 E, {cant['density']:g} kg/m3, top "
-             f"mass {cant['top_mass_kg']:g} kg: f1 = {cant['f1_model_hz']:.3f} Hz. E_eff is the "
-             "modulus that gives each identified f1 (E_eff / E = (f1 / f1,model)^2).", "",
-             "| test | f1 identified [Hz] | f1 / f1,model | E_eff [GPa] |", "|---|---|---|---|"]
-    for r in cant["tests"]:
-        f1 = r["f1_hz"]
-        if f1 is None:
-            lines.append(f"| {r['test']} | / | / | / |")
-            continue
-        lines.append(f"| {r['test']} | {f1:.3f} | {f1 / cant['f1_model_hz']:.3f} | "
-                     f"{r['E_eff_pa'] / 1e9:.3f} |")
-    return "\n".join(lines) + "\n"
-
-
-def _report(seq, evo, classes, comp, crit, closure, figs) -> str:
-    lines = [f"# Shaking-table sequence: {seq.name}", "",
-             f"Folder `{seq.folder}`, {len(seq)} tests ({len(seq.seismic)} seismic, "
-             f"{len(seq.white_noise)} white noise).", "", "## Seismic tests (Mordant et al. "
-                                                          "(SERIES), Table 1)",
-             "", "| No | Test | PGA nominal [g] | PGA measured [g] |", "|---|---|---|---|"]
-    for r in seq.table1():
-        nom = "/" if r["pga_nominal_g"] is None else f"{r['pga_nominal_g']:.4f}"
-        lines.append(f"| {r['no']} | {r['test']} | {nom} | {r['pga_measured_g']:.4f} |")
-    lines += ["", "## Natural frequencies and damping (white-noise tests, Mordant et al. "
-                  "(SERIES), Figures 3-4)",
-              "", "H1 FRF of top over table acceleration; frequency and damping from a modal "
-              "fit of the base-excitation transmissibility near each peak; (?) marks an "
-              "unreliable estimate (see summary.json for the reasons).", "", evo.table(), "",
-              "![frequency](frequency.png)", "", "![damping](damping.png)", "",
-              "## Classification (Mordant et al. (SERIES), §2.3)", "",
-              f"ratio = max|rot_bottom| / max|rot_top|: cantilever below "
-              f"{crit.cantilever_below}, rocking at or above {crit.rocking_above}, hybrid in "
-              f"between; cantilever when max|rot_top| < {crit.min_rotation:g} rad.", ""]
-    if classes:
-        lines += ["| Test | Class | Ratio | max rot bottom [mrad] | max rot top [mrad] |",
-                  "|---|---|---|---|---|"]
-        for c in classes:
-            ratio = "/" if not math.isfinite(c.ratio) else f"{c.ratio:.3f}"
-            lines.append(f"| {c.name} | {c.label} | {ratio} | {1e3 * c.peak_bottom:.4f} | "
-                         f"{1e3 * c.peak_top:.4f} |")
-    else:
-        lines.append("No seismic test has both rotation channels.")
-    lines += ["", "## Compressive length (Mordant et al. (SERIES), Table 2, Figure 5)", ""]
-    if comp is not None:
-        lines += [f"Plane base section fitted to the base transducers; contact where the "
-                  f"opening is at most {closure:g} m. Eurocode 6 assessments: equivalent "
-                  "static load 2.5 x level x m g at the top (murus.eurocode.ec6).", "",
-                  comp.to_markdown(), "", "![compressive length](compressive_length.png)", "",
-                  "Lifted length L - Lc against time (Mordant et al. (SERIES), Figures 19-20): "
-                  "`lifted_<test>.png`; bottom and top rotations (Figures 6-7): "
-                  "`rotations_<test>.png`."]
-    else:
-        lines.append("No seismic test has base transducers.")
-    return "\n".join(lines) + "\n"
 
 
 @app.command()

@@ -7,6 +7,7 @@ SI units: s, m/s², m/s, m. Heavy modules (scipy.signal, h5py, matplotlib) are i
 >>> from murus.motion import synthetic, spectra, measures, processing
 """
 
+from murus._lazy import lazy_exports
 from murus.motion.core import GroundMotion
 from murus.motion.io import MotionFormatError, read, write
 
@@ -39,14 +40,7 @@ def suite(name: str = "farfield", components: str = "both", normalized: bool = F
     return _suite(name, components, normalized)
 
 
-def __getattr__(name):
-    if name == "RecordsExtraMissing":
-        from murus.motion.records import RecordsExtraMissing
-
-        return RecordsExtraMissing
-    if name in ("synthetic", "spectra", "measures", "processing", "artificial", "records", "io",
-                "plots"):
-        import importlib
-
-        return importlib.import_module(f"murus.motion.{name}")
-    raise AttributeError(f"module 'murus.motion' has no attribute {name!r}")
+__getattr__, __dir__ = lazy_exports(
+    __name__, {"RecordsExtraMissing": "records"}, globals(),
+    submodules=("synthetic", "spectra", "measures", "processing", "artificial", "records", "io",
+                "plots"))

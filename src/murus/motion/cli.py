@@ -15,6 +15,7 @@ from pathlib import Path
 
 import typer
 
+from murus import G
 from murus.cliutil import guard
 from murus.outputs import check_dir
 
@@ -80,7 +81,7 @@ def info(
         return
     typer.echo(f"{file}  [{s['format']}]")
     typer.echo(f"  npts {s['npts']}   dt {s['dt']:g} s   duration {s['duration']:.3f} s")
-    typer.echo(f"  PGA {s['pga']:.4g} m/s² ({s['pga'] / 9.81:.4g} g)   PGV {s['pgv']:.4g} m/s"
+    typer.echo(f"  PGA {s['pga']:.4g} m/s² ({s['pga'] / G:.4g} g)   PGV {s['pgv']:.4g} m/s"
                f"   PGD {s['pgd']:.4g} m (after baseline correction)")
     typer.echo(f"  uncorrected: PGV {s['pgv_raw']:.4g} m/s   PGD {s['pgd_raw']:.4g} m")
     typer.echo(f"  baseline: {s['baseline']}")

@@ -24,7 +24,7 @@ are imported on first use (PEP 562), so that the command line stays light.
 1.59
 """
 
-from importlib import import_module
+from murus._lazy import lazy_exports
 
 _EXPORTS = {
     "MOCKUP_SLENDERNESS": "geometry",
@@ -66,13 +66,4 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS)
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        value = getattr(import_module(f"murus.retaining.{_EXPORTS[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'murus.retaining' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

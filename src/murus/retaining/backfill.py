@@ -41,7 +41,9 @@ back face where the seed asks for at least six sub-contacts per unit (§2); the 
 and its height are reproduced, its course-by-course distribution is coarse. Pass ``radius``
 for finer discs (the count grows as ``1 / r²`` and the time step shrinks as ``r``).
 
-Generation (:func:`generate_packing`): discs on a hexagonal grid of pitch ``2 r_max (1 + gap)``
+Generation (:func:`generate_packing`; the generic tools, lattice, overlap check, solid fraction,
+absorbing boundary and wall thrust, are in :mod:`murus.dem.packing` and :mod:`murus.dem.boundary`
+and re-exported here): discs on a hexagonal grid of pitch ``2 r_max (1 + gap)``
 (no initial overlap: :func:`check_overlap` raises :class:`BackfillError` otherwise), in the
 region stretched upwards by ``fill`` (the loose grid has a solid fraction near 0.6 and
 compacts to about 0.8), inside a rigid box (the back face, the floor and the lateral
@@ -126,7 +128,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
-from murus.errors import MurusError
+from murus.dem.boundary import AbsorbingBoundary, contact_forces_from, wall_thrust
+from murus.dem.packing import GRID_GAP, PackingError, check_overlap, disc_grid, solid_fraction
 from murus.retaining.geometry import RetainingWall
 
 __all__ = ["BackfillError", "Packing", "DiscreteBackfill", "AbsorbingBoundary",
@@ -146,9 +149,36 @@ SEED_INTERFACE_K = {"full": 2.9e10, "mockup": 3.0e10}
 
 BOUNDARIES = ("container", "absorbing")
 
+# Packing defaults (module docstring, "Discs" and "Generation"), shared by
+# :func:`generate_packing` and :class:`DiscreteBackfill`:
+#: Default mean disc radius as a fraction of the wall height: 0.04 m for the 2.5 m walls of
+#: Savalle et al. (2022), about 2,000 discs for W = 5 m (a collapse run within minutes).
+RADIUS_FRACTION = 0.016
+#: Radii uniform in ``r_mean (1 -+ SPREAD)``: ``r_max / r_min = 1.5``, the size ratio of the
+#: biaxial calibration (:data:`CALIBRATION`).
+SPREAD = 0.2
+#: The lattice fills the region stretched upwards by this factor (a loose lattice, solid
+#: fraction near 0.6, compacts to about 0.8 and fills the region after settling).
+FILL = 1.45
+#: Gravity multiple of the pre-compaction stage (as in ``benchmarks/bench_dem.py``).
+PRECOMPACT_G = 8.0
+#: Largest numbers of steps of the two settling stages of the generation (pre-compaction,
+#: then 1 g): enough for the unbalanced-force ratio :data:`SETTLE_TOL` on the walls of
+#: Savalle et al. (2022) Table 5 with the default radius.
+PACKING_STEPS = (6000, 30000)
+#: Unbalanced-force ratio that ends a settling stage (the engine's ``settle``).
+SETTLE_TOL = 1e-2
+#: Largest number of steps of the settling behind the real wall (:meth:`DiscreteBackfill.settle`).
+SETTLE_STEPS = 20000
+#: Disc density during the generation [kg/m³] (the packing does not depend on it: the real
+#: density follows from the backfill unit weight and the solid fraction).
+GENERATION_DENSITY = 1800.0
 
-class BackfillError(MurusError, ValueError):
-    """Invalid input to the discrete backfill (one-line message)."""
+
+BackfillError = PackingError
+"""Invalid input to the discrete backfill (one-line message): the error of the disc packings of
+:mod:`murus.dem.packing` (one class, so that the generic tools moved there raise what the
+backfill always raised)."""
 
 
 def _is_mock(wall: RetainingWall) -> bool:
@@ -210,51 +240,6 @@ def region_polygon(wall: RetainingWall, W: float) -> np.ndarray:
     return np.array([[xh, zh], [xe, zh], [xe, float(surf(xe))], [xb, zb]])
 
 
-def check_overlap(centres, radii, tol: float = 0.0) -> None:
-    """Raise :class:`BackfillError` if two discs overlap by more than ``tol`` [m]."""
-    from scipy.spatial import cKDTree
-
-    c = np.asarray(centres, float)
-    r = np.asarray(radii, float)
-    if c.shape[0] < 2:
-        return
-    pairs = cKDTree(c).query_pairs(2.0 * float(r.max()), output_type="ndarray")
-    if pairs.size == 0:
-        return
-    d = np.hypot(*(c[pairs[:, 0]] - c[pairs[:, 1]]).T)
-    ov = r[pairs[:, 0]] + r[pairs[:, 1]] - d
-    bad = ov > tol
-    if bad.any():
-        i, j = pairs[np.argmax(ov)]
-        raise BackfillError(f"{int(bad.sum())} pairs of discs overlap initially (largest "
-                            f"{ov.max():.3g} m, discs {i} and {j}): the generator must place "
-                            "them apart")
-
-
-def solid_fraction(centres, radii, window, h: float | None = None) -> float:
-    """Area fraction of discs in the rectangle ``window = (x0, x1, z0, z1)`` [m], sampled on a
-    grid of spacing ``h`` (default a tenth of the smallest radius; error well below 1 %)."""
-    from scipy.spatial import cKDTree
-
-    x0, x1, z0, z1 = (float(v) for v in window)
-    if not (x1 > x0 and z1 > z0):
-        raise BackfillError(f"empty window {window!r}: the backfill is too small for its "
-                            "discs")
-    c = np.asarray(centres, float)
-    r = np.asarray(radii, float)
-    h = 0.1 * float(r.min()) if h is None else float(h)
-    xs = np.arange(x0 + 0.5 * h, x1, h)
-    zs = np.arange(z0 + 0.5 * h, z1, h)
-    X, Z = np.meshgrid(xs, zs)
-    pts = np.column_stack([X.ravel(), Z.ravel()])
-    k = min(4, len(c))
-    d, idx = cKDTree(c).query(pts, k=k)
-    d = d.reshape(len(pts), -1)
-    idx = idx.reshape(len(pts), -1)
-    inside = np.any(d < r[idx], axis=1)
-    return float(inside.mean())
-
-
 def _window(wall: RetainingWall, W: float, rmax: float, margin: float = 5.0):
     """Interior window: ``margin`` largest radii away from the walls, floor and surface."""
     xh, zh, xe, back_x, surf = _frame(wall, W)
@@ -287,29 +272,17 @@ class Packing:
 
 
 def _grid(wall, W, rmean, spread, gap, fill, seed):
+    """The hexagonal lattice of the region stretched upwards by ``fill``
+    (:func:`murus.dem.packing.disc_grid`); returns centres, radii and the top of the lattice."""
     xh, zh, xe, back_x, surf = _frame(wall, W)
     rmax = rmean * (1 + spread)
-    pitch = 2 * rmax * (1 + gap)
-    dz = pitch * math.sqrt(3) / 2
-    clear = rmax * (1 + gap)
     ztop = zh + fill * (float(max(surf(xh), surf(xe))) - zh)
-    pts = []
-    j = 0
-    z = zh + clear
-    while z <= ztop - clear:
-        x = float(back_x(z)) + clear + (0.5 * pitch if j % 2 else 0.0)
-        while x <= xe - clear:
-            if z <= zh + fill * (float(surf(x)) - zh) - clear:
-                pts.append((x, z))
-            x += pitch
-        z += dz
-        j += 1
-    if len(pts) < 10:
-        raise BackfillError(f"the backfill region ({W:g} m wide) holds only {len(pts)} discs "
+    c, r, _ = disc_grid((rmean * (1 - spread), rmax), seed=seed, gap=gap, lattice="hex",
+                        floor=zh, top=ztop, left=back_x, right=xe,
+                        ceiling=lambda x: zh + fill * (float(surf(x)) - zh))
+    if len(c) < 10:
+        raise BackfillError(f"the backfill region ({W:g} m wide) holds only {len(c)} discs "
                             f"of radius {rmean:g} m: lower radius or raise W")
-    rng = np.random.default_rng(seed)
-    c = np.array(pts)
-    r = rng.uniform(rmean * (1 - spread), rmax, len(c))
     return c, r, ztop
 
 
@@ -349,11 +322,11 @@ def _interface_joint(wall, stiffness_scale):
 
 
 def generate_packing(wall: RetainingWall, W: float | None = None, *, radius: float | None = None,
-                     spread: float = 0.2, seed: int = 0, fill: float = 1.45,
-                     gap: float = 0.02, rolling: float | None = None,
-                     precompact_g: float = 8.0,
-                     steps: tuple[int, int] = (6000, 30000), tol: float = 1e-2,
-                     density: float = 1800.0) -> Packing:
+                     spread: float = SPREAD, seed: int = 0, fill: float = FILL,
+                     gap: float = GRID_GAP, rolling: float | None = None,
+                     precompact_g: float = PRECOMPACT_G,
+                     steps: tuple[int, int] = PACKING_STEPS, tol: float = SETTLE_TOL,
+                     density: float = GENERATION_DENSITY) -> Packing:
     """Settled disc packing of the backfill of ``wall``, ``W`` [m] wide (default ``2 H``: the 5
     m of seed 001 for its 2.5 m walls; module docstring).
 
@@ -371,7 +344,7 @@ def generate_packing(wall: RetainingWall, W: float | None = None, *, radius: flo
     W = default_width(wall) if W is None else float(W)
     if not (W > 0 and math.isfinite(W)):
         raise BackfillError(f"backfill width W must be positive [m], got {W!r}")
-    rmean = 0.016 * wall.height if radius is None else float(radius)
+    rmean = RADIUS_FRACTION * wall.height if radius is None else float(radius)
     if not (rmean > 0 and math.isfinite(rmean)):
         raise BackfillError(f"radius must be positive [m], got {radius!r}")
     if not 0 <= spread < 1:
@@ -433,116 +406,6 @@ def generate_packing(wall: RetainingWall, W: float | None = None, *, radius: flo
     return Packing(wall.name, W, cs, rs, phi, phi_region, area, info)
 
 
-# ------------------------------------------------------------------------ boundary
-class AbsorbingBoundary:
-    """Lysmer-Kuhlemeyer viscous boundary on the discs of the last layer (module docstring),
-    as an ``external(model)`` hook: on each disc ``bodies[i]``, the static force ``static[i]``
-    (Fx, Fy, M) [N, N m] plus ``-c_n (v_x - v_bx)`` and ``-c_t (v_y - v_by)`` [N], ``c_n = rho
-    Vp L_i t``, ``c_t = rho Vs L_i t`` with ``L_i`` the tributary length [m] and ``t`` the
-    thickness [m]. ``dashpots=False`` applies only the static force (settling)."""
-
-    def __init__(self, bodies, lengths, static, rho: float, vp: float, vs: float,
-                 thickness: float = 1.0) -> None:
-        self.bodies = np.asarray(bodies, np.int64)
-        self.lengths = np.asarray(lengths, float)
-        self.static = np.asarray(static, float).reshape(-1, 3)
-        if not (rho > 0 and vp > 0 and vs > 0):
-            raise BackfillError(f"rho, Vp, Vs must be positive, got {rho!r}, {vp!r}, {vs!r}")
-        if self.bodies.size != self.lengths.size or self.static.shape[0] != self.bodies.size:
-            raise BackfillError("bodies, lengths and static forces must have the same length")
-        if np.any(self.lengths < 0):
-            raise BackfillError("tributary lengths must be >= 0")
-        self.rho, self.vp, self.vs = float(rho), float(vp), float(vs)
-        self.cn = self.rho * self.vp * self.lengths * thickness
-        self.ct = self.rho * self.vs * self.lengths * thickness
-        self.dashpots = True
-
-    def forces(self, vel, vbase) -> np.ndarray:
-        """Forces (n, 3) for disc velocities ``vel (n, 2)`` and base velocity ``(vbx, vby)``."""
-        v = np.asarray(vel, float).reshape(-1, 2)
-        out = self.static.copy()
-        if self.dashpots:
-            out[:, 0] -= self.cn * (v[:, 0] - vbase[0])
-            out[:, 1] -= self.ct * (v[:, 1] - vbase[1])
-        return out
-
-    def interval(self, model) -> int:
-        """Steps between hook calls for a stable explicit dashpot: ``c dt_hook / m <= 0.5``."""
-        if self.bodies.size == 0 or model.dt is None:
-            return 1
-        cm = float(np.max(np.maximum(self.cn, self.ct) / model.bmass[self.bodies]))
-        return max(1, int(0.5 / (cm * model.dt)))
-
-    def __call__(self, model) -> None:
-        if self.bodies.size == 0:
-            return
-        vb = (0.0, 0.0)
-        if self.dashpots and model.dt is not None:
-            vb = model.base_velocity(model.time - 0.5 * model.dt)[0]
-        model.bext[self.bodies] = self.forces(model.bvel[self.bodies], vb)
-
-
-def wall_thrust(model, stones, fill_bodies) -> tuple[float, float]:
-    """Resultant (Fx, Fy) [N] of the contact forces of the backfill discs on the stones
-    (Fx < 0: pushing the wall out of the slope)."""
-    from murus.dem import kernels as K
-
-    model.build()
-    on = model.sid >= 0
-    ba = model.sbody[model.pairs[:, 0]]
-    bb = model.sbody[model.pairs[:, 1]]
-    st = np.zeros(model.nbody, bool)
-    st[np.asarray(stones)] = True
-    fl = np.zeros(model.nbody, bool)
-    fl[np.asarray(fill_bodies)] = True
-    f = model.sf
-    fx = fy = 0.0
-    for sgn, a, b in ((1.0, ba, bb), (-1.0, bb, ba)):
-        # force on shape b is Fn n + Fs t; on a the opposite: stones as b (sgn +1) or a (-1)
-        sel = (fl[a] & st[b])[:, None] & on
-        if sel.any():
-            fn = f[..., K.F_FN][sel]
-            fs = f[..., K.F_FS][sel]
-            nx = f[..., K.F_NX][sel]
-            ny = f[..., K.F_NY][sel]
-            fx += sgn * float(np.sum(fn * nx - fs * ny))
-            fy += sgn * float(np.sum(fn * ny + fs * nx))
-    return fx, fy
-
-
-def _forces_from(model, body_k, others) -> dict[int, np.ndarray]:
-    """Contact force and moment (Fx, Fy, M) on each body of ``others`` from the body
-    ``body_k``."""
-    from murus.dem import kernels as K
-
-    on = model.sid >= 0
-    ba = model.sbody[model.pairs[:, 0]]
-    bb = model.sbody[model.pairs[:, 1]]
-    oth = set(int(o) for o in others)
-    out: dict[int, np.ndarray] = {}
-    f = model.sf
-    for k in range(model.pairs.shape[0]):
-        a, b = int(ba[k]), int(bb[k])
-        if body_k not in (a, b):
-            continue
-        o = b if a == body_k else a
-        if o not in oth:
-            continue
-        sgn = 1.0 if o == b else -1.0
-        for s in range(2):
-            if not on[k, s]:
-                continue
-            fn, fs = f[k, s, K.F_FN], f[k, s, K.F_FS]
-            nx, ny = f[k, s, K.F_NX], f[k, s, K.F_NY]
-            fx = sgn * (fn * nx - fs * ny)
-            fy = sgn * (fn * ny + fs * nx)
-            px = f[k, s, K.F_PX] - model.bpos[o, 0]
-            py = f[k, s, K.F_PY] - model.bpos[o, 1]
-            acc = out.setdefault(o, np.zeros(3))
-            acc += (fx, fy, px * fy - py * fx)
-    return out
-
-
 # ------------------------------------------------------------------------ backfill
 class DiscreteBackfill:
     """The discrete backfill of ``wall``, ``W`` [m] wide (default :func:`default_width`, ``2
@@ -564,13 +427,13 @@ class DiscreteBackfill:
 
     def __init__(self, wall: RetainingWall, W: float | None = None,
                  boundary: str = "container", *,
-                 radius: float | None = None, spread: float = 0.2, seed: int = 0,
-                 fill: float = 1.45, precompact_g: float = 8.0,
-                 packing_steps: tuple[int, int] = (6000, 30000), packing: Packing | None = None,
+                 radius: float | None = None, spread: float = SPREAD, seed: int = 0,
+                 fill: float = FILL, precompact_g: float = PRECOMPACT_G,
+                 packing_steps: tuple[int, int] = PACKING_STEPS, packing: Packing | None = None,
                  rolling: float | None = None, stiffness_scale: float = 1e-3,
                  wave_speeds: tuple[float, float] | None = None,
-                 floor_gap: float | None = None, settle_tol: float = 1e-2,
-                 settle_steps: int = 20000, relax_max: float | None = None,
+                 floor_gap: float | None = None, settle_tol: float = SETTLE_TOL,
+                 settle_steps: int = SETTLE_STEPS, relax_max: float | None = None,
                  relax_vtol: float | None = None, relax_xi: float = 0.1) -> None:
         b = str(boundary).strip().lower()
         if b not in BOUNDARIES:
@@ -663,7 +526,7 @@ class DiscreteBackfill:
         m = dw.model
         st = m.settle(tol=self.settle_tol, max_steps=self.settle_steps, external=external)
         if self.boundary == "absorbing":
-            forces = _forces_from(m, self.container, self.discs)
+            forces = contact_forces_from(m, self.container, self.discs)
             bodies = np.array(sorted(forces, key=lambda b: m.bpos[b, 1]), np.int64)
             static = np.array([forces[b] for b in bodies]).reshape(-1, 3)
             _, zh, xe, _, surf = _frame(self.wall, self.W)

@@ -76,7 +76,6 @@ import dataclasses
 import hashlib
 import json
 import math
-import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
@@ -498,7 +497,7 @@ class _FileReporter:
         data = json.dumps({"desc": desc, "done": done, "total": total, "info": info,
                            "elapsed": now - self.t0})
         try:
-            _atomic(self.path, lambda p: Path(p).write_text(data))
+            _atomic(self.path, lambda p: Path(p).write_text(data), fsync=False)
         except OSError:
             pass
 
@@ -559,14 +558,12 @@ def _case_record(study: BehaviourStudy, case: Case, digest: str, res) -> dict:
     return _json_round(rec)
 
 
-def _atomic(path: Path, write) -> None:
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+def _atomic(path: Path, write, fsync: bool = True) -> None:
+    """Write a piece of the study atomically and durably, under the temporary name of the
+    pieces of studies (:func:`murus.outputs.atomic_write`, :mod:`murus.studies.sweep`)."""
+    from murus.outputs import atomic_write, process_tmp_name
+
+    atomic_write(path, write, tmp_name=process_tmp_name(path), fsync=fsync)
 
 
 def _save_case(folder: Path, rec: dict, res) -> None:

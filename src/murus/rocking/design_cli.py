@@ -13,6 +13,7 @@ import math
 
 import typer
 
+from murus import G
 from murus.cliutil import dumps
 from murus.cliutil import fail as _fail
 
@@ -28,7 +29,7 @@ app = typer.Typer(
 
 #: EURODYN (2020) unit weight 21 kN/m³ over g = 9.81 m/s² (same as ``restrained_wall_block``)
 #: [kg/m³].
-_RESTRAINED_WALL_DENSITY = 21000.0 / 9.81
+_RESTRAINED_WALL_DENSITY = 21000.0 / G
 
 _BLOCK = typer.Option(None, "--block", help="EURODYN (2020) block: block1 ... block6 (Table 1).")
 _WIDTH = typer.Option(None, "--width", help="Wall thickness b (s of EURODYN (2020)) [m].")

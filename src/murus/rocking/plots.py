@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from murus import G
+
 
 def _axes(ax, n=1):
     import matplotlib.pyplot as plt
@@ -22,7 +24,7 @@ def plot_response(result, axes=None):
     ``axes``: three Axes, or ``None`` for a new figure. Returns the Axes."""
     ax = _axes(axes, 3)
     t = result.t
-    ax[0].plot(t, result.ag / 9.81, lw=0.8, color="0.3")
+    ax[0].plot(t, result.ag / G, lw=0.8, color="0.3")
     ax[0].set_ylabel("a_g [g]")
     rc = result.rocking_criterion
     ax[1].plot(t, rc, lw=0.8, color="tab:blue")
@@ -74,7 +76,7 @@ def plot_winkler(result, axes=None):
     Axes."""
     ax = _axes(axes, 3)
     t = result.t
-    ax[0].plot(t, result.ag / 9.81, lw=0.8, color="0.3")
+    ax[0].plot(t, result.ag / G, lw=0.8, color="0.3")
     ax[0].set_ylabel("a_g [g]")
     ax[1].plot(t, result.theta / result.alpha, lw=0.9, color="k")
     ax[1].set_ylabel("theta/alpha [-]")

@@ -20,6 +20,7 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+from murus import G
 from murus.errors import MurusError
 
 
@@ -268,7 +269,7 @@ class Pivot:
     def code(self) -> int:
         return 0 if self.law == "corner" else PIVOT_READINGS[self.reading]
 
-    def lever(self, body, a_g, a_v=0.0, g: float = 9.81):
+    def lever(self, body, a_g, a_v=0.0, g: float = G):
         """Lever of the weight about the pivot [m] for ground accelerations [m/s²] (NumPy),
         the same formula as the kernel's :func:`murus.rocking.kernels.lever`."""
         import numpy as np

@@ -16,7 +16,7 @@ Study folder (``out``)::
     out/
       study.json        the resolved study: spec, digest, chunk layout (written first)
       chunks/c00000.npz one file per finished chunk: raw summaries (n_nodes, n_records, 16),
-      chunks/c00000.npz.sha256   written atomically (temporary file, then os.replace) as
+      chunks/c00000.npz.sha256   written atomically (temporary file, fsync, os.replace) as
       ...               chunks finish, then its SHA-256 (``sha256sum -c`` reads it)
       failures.json     chunks that failed after their retries: error and attempts
       result.nc         the Dataset (NetCDF4 via h5netcdf), written when the run ends
@@ -38,7 +38,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import os
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import FIRST_COMPLETED, wait
@@ -48,6 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from murus.errors import MurusError
+from murus.outputs import atomic_write, process_tmp_name
 from murus.rocking.defaults import RTOL
 from murus.studies.records import RecordSet
 
@@ -236,22 +236,14 @@ def _same(a, b) -> bool:
 
 
 # ----------------------------------------------------------------------------- storage ---
-def _atomic_write_bytes(path: Path, writer: Callable) -> None:
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    try:
-        with open(tmp, "wb") as f:
-            writer(f)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+def _atomic_write_bytes(path: Path, data: bytes) -> None:
+    """Write a piece of a study atomically and durably (:func:`murus.outputs.atomic_write`)."""
+    atomic_write(path, lambda p: Path(p).write_bytes(data), tmp_name=process_tmp_name(path))
 
 
 def _write_json(path: Path, data) -> None:
     text = json.dumps(data, indent=1, sort_keys=True, default=str).encode()
-    _atomic_write_bytes(path, lambda f: f.write(text))
+    _atomic_write_bytes(path, text)
 
 
 def _chunk_path(out: Path, index: int) -> Path:
@@ -277,7 +269,7 @@ def write_checksum(path, sha: str | None = None) -> None:
     path = Path(path)
     sha = file_sha256(path) if sha is None else sha
     text = f"{sha}  {path.name}\n".encode()
-    _atomic_write_bytes(_sidecar(path), lambda f: f.write(text))
+    _atomic_write_bytes(_sidecar(path), text)
 
 
 def check_file(path) -> str | None:
@@ -307,7 +299,7 @@ def _save_chunk(out: Path, index: int, digest: str, raw: np.ndarray) -> None:
     data = buf.getvalue()
     path = _chunk_path(out, index)
     _sidecar(path).unlink(missing_ok=True)  # a stale checksum never vouches for new bytes
-    _atomic_write_bytes(path, lambda f: f.write(data))
+    _atomic_write_bytes(path, data)
     write_checksum(path, hashlib.sha256(data).hexdigest())
 
 
@@ -824,16 +816,11 @@ def _point_quantities(plan: Plan) -> dict:
 
 
 def write_netcdf(ds, path) -> Path:
-    """Write a Dataset to NetCDF4 with the h5netcdf engine, atomically."""
+    """Write a Dataset to NetCDF4 with the h5netcdf engine, atomically and durably
+    (:func:`murus.outputs.atomic_write`)."""
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    try:
-        ds.to_netcdf(tmp, engine="h5netcdf")
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-    return path
+    return atomic_write(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"),
+                        tmp_name=process_tmp_name(path))
 
 
 def open_result(path):
