@@ -1,7 +1,7 @@
-"""Fully discrete granular backfill behind the DEM retaining wall (issue 6 item 2a; seed 001 §2,
-§4.1, Figures 9-10).
+"""Fully discrete granular backfill behind the DEM retaining wall (issue 6 item 2a; Savalle et al.
+(2022), §2, §4.1, Figures 9-10).
 
-Seed 001 (Savalle et al. 2022) models the backfill of a dry-stone retaining wall as a
+Savalle et al. (2022) models the backfill of a dry-stone retaining wall as a
 Mohr-Coulomb continuum (UDEC), ``W`` = 5 m wide behind the wall with a free-field boundary at
 its far end, and checks (Figure 10) that ``2W`` gives the same crest response. Here the backfill
 is a disc assembly in :mod:`murus.dem`, behind the stones of
@@ -34,10 +34,11 @@ the heel (no contact with the heel stone; the gap is far smaller than a disc).
 
 Discs. Radii uniform in ``r_mean (1 -+ spread)`` (default spread 0.2: ``r_max / r_min = 1.5``,
 the size ratio of the biaxial calibration). Default ``r_mean = 0.016 H`` (0.04 m for the 2.5 m
-walls of seed 001): the backfill of a full-scale wall, ``5 m x 2.6 m``, then holds about 2,000
-discs (4,000 for 2W), which keeps a DSRW1 collapse run within minutes on one core. The price:
+walls of Savalle et al. (2022)): the backfill of a full-scale wall, ``5 m x 2.6 m``, then holds
+about 2,000 discs (4,000 for 2W), which keeps a DSRW1 collapse run within minutes on one core.
+The price:
 a disc diameter of 0.08 m against 0.1 m courses gives one or two disc contacts per stone on the
-back face where the seed asks for at least six sub-contacts per unit (§2); the thrust resultant
+back face where the paper asks for at least six sub-contacts per unit (§2); the thrust resultant
 and its height are reproduced, its course-by-course distribution is coarse. Pass ``radius``
 for finer discs (the count grows as ``1 / r²`` and the time step shrinks as ``r``).
 
@@ -53,10 +54,10 @@ surface are removed. The settled positions are the packing put behind the real w
 
 Materials. Disc-disc contacts (and disc-floor): ``kn = ks = 1e9 Pa/m``, friction 30 deg and
 the rolling resistance ``mu_r`` of the biaxial calibration (:func:`rolling_for`: 0.167 gives a
-peak friction angle of 37.97 deg, the 37.7 deg of seed 001 Table 6; 0.347 gives 45.1 deg, the
-45 deg of the mock-ups, Table 1). Wall-backfill interface: seed 001 Table 6 (Table 1 for the
-mock-ups), ``kn = ks = 2.9e10`` (3.0e10) Pa/m times the wall's ``stiffness_scale``, friction
-``wall.interface_friction_deg``. The lateral boundary is frictionless. Disc density
+peak friction angle of 37.97 deg, the 37.7 deg of Savalle et al. (2022), Table 6; 0.347 gives 45.1
+deg, the 45 deg of the mock-ups, Table 1). Wall-backfill interface: Savalle et al. (2022), Table 6
+(Table 1 for the mock-ups), ``kn = ks = 2.9e10`` (3.0e10) Pa/m times the wall's ``stiffness_scale``,
+friction ``wall.interface_friction_deg``. The lateral boundary is frictionless. Disc density
 ``rho_s = gamma / (g phi)`` with ``phi`` the solid (area) fraction of the settled packing,
 measured in an interior window away from the walls and the surface (:func:`solid_fraction`),
 so that the bulk unit weight of the settled assembly is the wall's ``backfill_unit_weight``
@@ -75,8 +76,8 @@ Lateral boundary at ``x = x_heel + W``:
   the surface) and the thickness: :class:`AbsorbingBoundary`. The velocities are relative to
   the base motion, so the boundary does not resist the rigid motion of the model with the
   ground (the far field moves with the base, as UDEC's free-field column at low frequency).
-  Wave speeds: from the elastic constants that seed 001 gives the continuum backfill, Table 6
-  for the full-scale walls (``E = 92.7 MPa``, ``nu = 0.22``: ``Vp = 264 m/s``, ``Vs = 158
+  Wave speeds: from the elastic constants that Savalle et al. (2022) gives the continuum backfill,
+  Table 6 for the full-scale walls (``E = 92.7 MPa``, ``nu = 0.22``: ``Vp = 264 m/s``, ``Vs = 158
   m/s`` with ``rho = 14.9e3 / g``) and Table 1 for the mock-ups (10 MPa, 0.3: 93 and 50 m/s),
   ``Vp = sqrt(E (1 - nu) / ((1 + nu)(1 - 2 nu) rho))``, ``Vs = sqrt(E / (2 (1 + nu) rho))``;
   pass ``wave_speeds=(vp, vs)`` to match the disc assembly instead (its affine estimate with
@@ -101,19 +102,19 @@ friction angle (0.24) and Jaky's ``1 - sin(phi)`` (0.39 at 37.7 deg, 0.56 at the
 assembly's critical-state angle of about 26 deg): about 1.6 times the Coulomb active thrust
 of the pseudo-static analysis (``delta = 2/3 phi``). The thrust of the disc backfill on a wall
 that yields by a few centimetres is thus well above the active value that ``A_pseudo`` and the
-equivalent thrust assume (the disc assembly is softer than the seed's continuum, E = 92.7 MPa,
+equivalent thrust assume (the disc assembly is softer than the paper's continuum, E = 92.7 MPa,
 and mobilises its peak strength only at larger strains), and the wall creeps out from the
-start of the S2 ramp: DSRW1 at 5 Hz collapses at A_col = 3.65 m/s² (seed 001 Table 7: 5.38;
-the equivalent thrust: 8.47) by toppling, in about 3 minutes on two cores (W = 5 m;
+start of the S2 ramp: DSRW1 at 5 Hz collapses at A_col = 3.65 m/s² (Savalle et al. (2022), Table 7:
+5.38; the equivalent thrust: 8.47) by toppling, in about 3 minutes on two cores (W = 5 m;
 ``benchmarks/bench_retaining.py``).
 
-Mock-ups (seed 001 §3): the default radius ``0.016 H`` is 0.7 mm for the 44 mm wall, the
-time step 5.7e-6 s, and the generation, settling and relaxation take about 3 minutes on one
+Mock-ups (Savalle et al. (2022), §3): the default radius ``0.016 H`` is 0.7 mm for the 44 mm wall,
+the time step 5.7e-6 s, and the generation, settling and relaxation take about 3 minutes on one
 core; with the absorbing boundary the dashpot hook runs at every step (its explicit dashpots
 need it on such light discs), which makes a run several times slower than with the container
 (``boundary="container"``, the shaking-table box of the experiments, the CLI's default for the
-mock-ups). Not validated against seed 001 Table 3: VALIDATION.md uses the equivalent thrust for
-the mock-ups.
+mock-ups). Not validated against Savalle et al. (2022), Table 3: VALIDATION.md uses the equivalent
+thrust for the mock-ups.
 
 Units: SI (m, kg, s, N, Pa; ``*_deg`` in degrees).
 """
@@ -141,10 +142,11 @@ __all__ = ["BackfillError", "Packing", "DiscreteBackfill", "AbsorbingBoundary",
 CALIBRATION = ((37.97, 0.167), (45.1, 0.347))
 #: Disc-disc contact of the backfill (the biaxial calibration's).
 DISC_JOINT = {"kn": 1.0e9, "ks": 1.0e9, "friction_deg": 30.0}
-#: Elastic constants of the continuum backfill of seed 001 (E [Pa], nu): Table 6 (full scale)
-#: and Table 1 (mock-ups); used for the dashpots of the absorbing boundary.
+#: Elastic constants of the continuum backfill of Savalle et al. (2022) (E [Pa], nu): Table 6 (full
+#: scale) and Table 1 (mock-ups); used for the dashpots of the absorbing boundary.
 SEED_ELASTIC = {"full": (92.7e6, 0.22), "mockup": (10.0e6, 0.30)}
-#: Wall-backfill interface stiffness [Pa/m]: seed 001 Table 6 (full scale) and Table 1.
+#: Wall-backfill interface stiffness [Pa/m]: Savalle et al. (2022), Table 6 (full scale) and Table
+#: 1.
 SEED_INTERFACE_K = {"full": 2.9e10, "mockup": 3.0e10}
 
 BOUNDARIES = ("container", "absorbing")
@@ -186,8 +188,8 @@ def _is_mock(wall: RetainingWall) -> bool:
 
 
 def default_width(wall: RetainingWall) -> float:
-    """Default backfill width [m]: ``2 H``, the ratio of seed 001 (W = 5 m behind its 2.5 m
-    walls, §4.1; Figure 10 shows that 2W changes nothing), so that a mock-up gets a backfill
+    """Default backfill width [m]: ``2 H``, the ratio of Savalle et al. (2022) (W = 5 m behind its
+    2.5 m walls, §4.1; Figure 10 shows that 2W changes nothing), so that a mock-up gets a backfill
     of its own scale."""
     return 2.0 * wall.height
 
@@ -207,7 +209,7 @@ def rolling_for(phi_deg: float) -> float:
 
 
 def wave_speeds(wall: RetainingWall) -> tuple[float, float]:
-    """P and S wave speeds [m/s] of the seed's continuum backfill (module docstring)."""
+    """P and S wave speeds [m/s] of the paper's continuum backfill (module docstring)."""
     E, nu = SEED_ELASTIC["mockup" if _is_mock(wall) else "full"]
     rho = wall.backfill_unit_weight / G
     vp = math.sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho))
@@ -328,7 +330,7 @@ def generate_packing(wall: RetainingWall, W: float | None = None, *, radius: flo
                      steps: tuple[int, int] = PACKING_STEPS, tol: float = SETTLE_TOL,
                      density: float = GENERATION_DENSITY) -> Packing:
     """Settled disc packing of the backfill of ``wall``, ``W`` [m] wide (default ``2 H``: the 5
-    m of seed 001 for its 2.5 m walls; module docstring).
+    m of Savalle et al. (2022) for its 2.5 m walls; module docstring).
 
     radius : mean radius [m] (default ``0.016 H``); spread : radii uniform in ``radius (1 -+
     spread)``; seed : random radii; fill : the grid fills the region stretched upwards by this
@@ -471,8 +473,9 @@ class DiscreteBackfill:
         self.floor_gap = 0.2 * rmin if floor_gap is None else float(floor_gap)
         if not 0 <= self.floor_gap < rmin:
             raise BackfillError(f"floor_gap must be in [0, r_min = {rmin:g}) m")
-        # Froude scaling from the 2.5 m walls of seed 001 (times and velocities ~ sqrt(H)):
-        # at most 3 s of relaxation by chunks of 0.05 s, damping at 5 Hz, 2 mm/s at full scale
+        # Froude scaling from the 2.5 m walls of Savalle et al. (2022) (times and velocities ~
+        # sqrt(H)): at most 3 s of relaxation by chunks of 0.05 s, damping at 5 Hz, 2 mm/s at full
+        # scale
         self.relax_scale = math.sqrt(wall.height / 2.5)
         self.relax_max = 3.0 * self.relax_scale if relax_max is None else float(relax_max)
         self.relax_vtol = (2e-3 * self.relax_scale if relax_vtol is None

@@ -10,18 +10,18 @@ Example (every key documented in the README)::
     top_mass = 0.0       # kg at mid-top
     [restitution]
     law = "housner"      # or "constant" (value = 0.9), "coefficient" (k = 1.5: e = 1 - k sin2
-                         # alpha, seed 000 eqs. 14-15), "amplitude-dependent" (k0, k1,
-                         # k0_free, k1_free, A0, variant = "causal" | "iterated": eqs. 16-18)
-    [pivot]              # seed 000 §3.3.1
+                         # alpha, Mordant et al. (SERIES), eqs. 14-15), "amplitude-dependent" (k0,
+                         # k1, k0_free, k1_free, A0, variant = "causal" | "iterated": eqs. 16-18)
+    [pivot]              # Mordant et al. (SERIES), §3.3.1
     law = "corner"       # or "compressive-length" with reading = "effective-width" | "kern" |
                          # "neutral-axis", factor = 1.0, min_lever_fraction = 0.05
-    [restraint]          # seed 002
+    [restraint]          # EURODYN (2020)
     motion_sides = "two" # or "one": inward rotations against the transverse walls
     [restraint.tie]
     stiffness = 7.0e4    # N/m; height (m), x (m, body coordinate), tension_only = true,
     height = 6.0         # pretension (N), yield_force (N)
     [restraint.damper]
-    coefficient = 1.0e3  # N s/m, or fraction (of c_d) with delta_t (s), seed 002 eq. 13
+    coefficient = 1.0e3  # N s/m, or fraction (of c_d) with delta_t (s), EURODYN (2020), eq. 13
     height = 6.0
     [restraint.transverse_walls]
     stiffness = 4.5e8    # N/m per m of height, or "rigid"; effective_height (m), z1 (m), x (m)
@@ -142,7 +142,7 @@ class DamperCfg(Strict):
         if (self.coefficient is None) == (self.fraction is None):
             raise ValueError("give either coefficient (N s/m) or fraction (of c_d) with delta_t")
         if self.fraction is not None and self.delta_t is None:
-            raise ValueError("fraction (of c_d, seed 002 eq. 13) needs delta_t (s)")
+            raise ValueError("fraction (of c_d, EURODYN (2020), eq. 13) needs delta_t (s)")
         if self.coefficient is not None and self.delta_t is not None:
             raise ValueError("delta_t goes with fraction, not with coefficient")
         return self

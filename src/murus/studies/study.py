@@ -15,7 +15,7 @@ Example (``examples/studies/seed002_spectrum_block2.toml``)::
     motion_sides = "one"
     [case.restraint.tie]      # height: default the top of the wall
     [case.restraint.transverse_walls]
-    stiffness = "eq11"        # K' from K by seed 002 eq. 11 (or a number, or "rigid")
+    stiffness = "eq11"        # K' from K by EURODYN (2020), eq. 11 (or a number, or "rigid")
     # ... or: case = "wall.toml" (a case file, relative to this file)
 
     [sweep]                   # one dimension per key, in this order
@@ -38,9 +38,9 @@ Example (``examples/studies/seed002_spectrum_block2.toml``)::
 Sweep parameters: any field of the case by dotted name (``"body.width"``,
 ``"restraint.tie.stiffness"``, ``"restraint.damper.fraction"``, ``"restitution.value"``), and:
 
-- ``K_over_Kd``: tie stiffness as a fraction of ``K_d`` of seed 002 eq. 12
+- ``K_over_Kd``: tie stiffness as a fraction of ``K_d`` of EURODYN (2020), eq. 12
   (:func:`murus.rocking.design.tie_design`);
-- ``block``: a seed 002 Table 1 geometry, ``"block1"`` ... ``"block6"``;
+- ``block``: a EURODYN (2020), Table 1 geometry, ``"block1"`` ... ``"block6"``;
 - ``variant``: the names of ``[variants.NAME]`` tables, each replacing whole top-level tables of
   the case (e.g. ``[variants.tied.restraint]``);
 - ``motion.scale``: a factor on every record; ``im``: records scaled to intensity levels;
@@ -49,8 +49,8 @@ Sweep parameters: any field of the case by dotted name (``"body.width"``,
 
 Rules applied to each grid node (study defaults, on top of the case schema): a tie, damper or
 spring bed without a height gets the wall's height; a tie of stiffness 0 is removed; a spring bed
-``"eq11"`` follows the tie (seed 002 eq. 11) and is removed with it, the wall then rocking
-two-sided: the free-standing wall of seed 002 Figures 3-4 at K = 0.
+``"eq11"`` follows the tie (EURODYN (2020), eq. 11) and is removed with it, the wall then rocking
+two-sided: the free-standing wall of EURODYN (2020), Figures 3-4 at K = 0.
 """
 
 from __future__ import annotations
@@ -76,8 +76,8 @@ __all__ = ["Study", "load_study", "make_study", "DERIVED", "PARAM_UNITS"]
 DERIVED = ("K_over_Kd", "block", "variant", "im", "omega_p_over_p")
 
 PARAM_UNITS = {
-    "K_over_Kd": ("1", "tie stiffness over K_d (seed 002 eq. 12)"),
-    "block": ("", "seed 002 Table 1 geometry"),
+    "K_over_Kd": ("1", "tie stiffness over K_d (EURODYN (2020), eq. 12)"),
+    "block": ("", "EURODYN (2020), Table 1 geometry"),
     "variant": ("", "case variant"),
     "omega_p_over_p": ("1", "pulse circular frequency over p"),
     "motion.scale": ("1", "factor on the records"),
@@ -90,7 +90,7 @@ PARAM_UNITS = {
     "restraint.tie.pretension": ("N", "tie pretension"),
     "restraint.tie.yield_force": ("N", "tie yield force"),
     "restraint.damper.coefficient": ("N s/m", "damper coefficient c"),
-    "restraint.damper.fraction": ("1", "damper coefficient over c_d (seed 002 eq. 13)"),
+    "restraint.damper.fraction": ("1", "damper coefficient over c_d (EURODYN (2020), eq. 13)"),
     "restraint.damper.delta_t": ("s", "characteristic time of eq. 13"),
     "restraint.transverse_walls.stiffness": ("N/m/m", "spring bed stiffness K'"),
     "restitution.value": ("1", "coefficient of restitution"),
@@ -282,7 +282,7 @@ class Study:
             bad = [b for b in self.sweep["block"] if b not in
                    [f"block{i}" for i in range(1, 7)]]
             if bad:
-                raise self._fail(("sweep", "block"), f"unknown seed 002 block {bad[0]!r} "
+                raise self._fail(("sweep", "block"), f"unknown EURODYN (2020) block {bad[0]!r} "
                                  "(block1 ... block6)")
         if "omega_p_over_p" in self.sweep and self.records is not None:
             raise self._fail(("sweep", "omega_p_over_p"), "omega_p_over_p sweeps the frequency "
@@ -308,9 +308,9 @@ class Study:
             for key, table in self.variants[node["variant"]].items():
                 data[key] = copy.deepcopy(table)
         if "block" in node:
-            from murus.rocking.body import seed002_block
+            from murus.rocking.body import restrained_wall_block
 
-            b = seed002_block(node["block"])
+            b = restrained_wall_block(node["block"])
             body = dict(data.get("body") or {})
             body.update(width=b.width, height=b.height, thickness=b.thickness,
                         density=b.density, top_mass=0.0, name=b.name)
