@@ -37,11 +37,6 @@ PENDING = {
     "murus.studies.sweep": {"Dim", "Plan", "Point", "open_result", "run_plan", "run_tasks",
                             "study_status", "write_netcdf"},
     # not converted yet (outside the rewritten modules)
-    "murus.identify.calibrate": {"CalibrationResult", "Measurement"},
-    "murus.identify.cantilever": {"Cantilever"},
-    "murus.identify.modal": {"Evolution", "Mode", "identify"},
-    "murus.identify.synth": {"synthesize_tests"},
-    "murus.identify.testdata": {"ShakingTableTest"},
     "murus.retaining.collapse": {"CollapseResult", "collapse_run"},
 }
 

@@ -65,12 +65,38 @@ class CalibrationError(MurusError, ValueError):
 
 @dataclass(frozen=True)
 class Measurement:
-    """A measured rotation history: times ``t`` [s], rotation ``theta`` [rad] (positive as in
-    :mod:`murus.rocking`), the base ``motion`` that produced it (a GroundMotion, or ``None`` for
-    a free-vibration test), the initial state (``theta0`` [rad], ``omega0`` [rad/s]), an
-    optional ``name``, and optionally the ``model`` of this test's wall (a RockingModel; by
-    default the model given to :func:`calibrate`): walls of different aspect ratios calibrated
-    together are what makes A0 of eq. 18 identifiable apart from k0."""
+    """A measured rotation history of a wall, the data of :func:`calibrate`.
+
+    Walls of different aspect ratios calibrated together are what makes A0 of
+    Mordant et al. (SERIES), eq. 18 identifiable apart from k0.
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        Times of the samples [s], 1-D, increasing, at least three.
+    theta : numpy.ndarray
+        Measured rotation [rad] at ``t``, positive as in :mod:`murus.rocking`.
+    motion : murus.motion.GroundMotion or None
+        The base motion that produced the history [m/s²]; ``None`` for a free-vibration test.
+    theta0 : float
+        Initial rotation of the simulation [rad].
+    omega0 : float
+        Initial angular velocity of the simulation [rad/s].
+    name : str
+        Label of the history (keys of :attr:`CalibrationResult.rms`).
+    model : murus.rocking.RockingModel or None
+        The model of this test's wall; ``None``: the model given to :func:`calibrate`.
+
+    Raises
+    ------
+    CalibrationError
+        If ``t`` and ``theta`` are not 1-D of the same length >= 3, not finite, or ``t`` does
+        not increase.
+
+    References
+    ----------
+    Mordant et al. (SERIES), §3.3 and Figures 12, 15-18.
+    """
 
     t: np.ndarray
     theta: np.ndarray
@@ -95,7 +121,40 @@ class Measurement:
 
 @dataclass
 class CalibrationResult:
-    """Outcome of :func:`calibrate` (see the module docstring)."""
+    """Outcome of :func:`calibrate` (see the module docstring for the objective).
+
+    The residuals are dimensionless: each is a rotation difference divided by the largest
+    measured |theta| of its history.
+
+    Attributes
+    ----------
+    params : dict of str to float
+        Fitted value of each calibrated parameter (``k0, k1, k0_free, k1_free`` [-],
+        ``A0`` [-], as in :class:`murus.rocking.restitution.AmplitudeDependent`).
+    cost : float
+        Half the sum of the squared residuals at the optimum [-] (``scipy.optimize``'s cost).
+    rms : dict of str to float
+        Relative RMS error of each history at the optimum [-], by :attr:`Measurement.name`.
+    sensitivity : dict of str to float
+        Norm of ``p dr/dp`` at the optimum [-], per parameter: the change of the residual
+        vector for a relative change of the parameter.
+    std_error : dict of str to float
+        Approximate standard error of each parameter [same unit as the parameter], from the
+        Gauss-Newton covariance ``s^2 (J^T J)^-1`` with ``s^2 = r.r / (n - p)``.
+    correlation : numpy.ndarray
+        Correlation matrix of the parameters [-], shape (p, p), in the order of ``params``.
+    starts : list of dict
+        Every start's outcome: ``start`` and ``params`` (dicts), ``cost`` [-], ``nfev`` (number
+        of evaluations) and ``status`` (of :func:`scipy.optimize.least_squares`).
+    objective : str
+        ``"peaks"`` or ``"envelope"``.
+    n_residuals : int
+        Number of residuals over all histories.
+
+    References
+    ----------
+    Mordant et al. (SERIES), §3.3 and eqs. 14-18.
+    """
 
     params: dict[str, float]
     cost: float

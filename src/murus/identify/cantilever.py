@@ -131,10 +131,46 @@ def _positive(name: str, value: float, allow_zero: bool = False) -> float:
 class Cantilever:
     """Timoshenko cantilever with a tip mass (see the module docstring for the conventions).
 
-    Parameters: ``height``, ``length``, ``thickness`` [m]; ``modulus`` E [Pa]; ``density``
-    [kg/m3]; ``shear_modulus`` G [Pa] (default 0.4 E); ``tip_mass`` [kg];
-    ``tip_inertia`` [kg m2]; ``kappa`` shear coefficient (5/6); ``elements`` (40).
-    ``shear=False`` gives the Euler-Bernoulli beam, ``rotary_inertia=False`` drops rho I."""
+    Parameters
+    ----------
+    height : float
+        Height of the wall, the length of the cantilever [m].
+    length : float
+        In-plane length of the wall, the bending depth [m].
+    thickness : float
+        Thickness of the wall [m].
+    modulus : float
+        Young's modulus E [Pa].
+    density : float
+        Density of the wall [kg/m³] (>= 0; 0 needs a ``tip_mass``).
+    shear_modulus : float, optional
+        Shear modulus G [Pa]; default 0.4 E (EN 1996-1-1, §3.7.3).
+    tip_mass : float
+        Mass on the top node [kg].
+    tip_inertia : float
+        Rotary inertia of the tip mass about the out-of-plane axis through the top node
+        [kg m²].
+    kappa : float
+        Shear coefficient [-]; 5/6 for a rectangle.
+    elements : int
+        Number of finite elements along the height.
+    shear : bool
+        ``False`` gives the Euler-Bernoulli beam (no shear deformation).
+    rotary_inertia : bool
+        ``False`` drops the rotary inertia rho I of the section.
+
+    Raises
+    ------
+    CantileverError
+        If a dimension, the modulus or ``kappa`` is not a finite positive number, the density
+        or a tip quantity is negative, ``elements`` is not a whole number >= 1, or the
+        cantilever has no mass.
+
+    References
+    ----------
+    Friedman & Kosmatka (1993) (the element); EN 1996-1-1 (2005), §3.7.3 (G = 0.4 E);
+    Nigam & Jennings (1969) (the modal response).
+    """
 
     height: float
     length: float

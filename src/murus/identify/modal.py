@@ -104,10 +104,36 @@ class FRF:
 
 @dataclass
 class Mode:
-    """One identified mode: ``frequency`` [Hz] and ``damping`` [-] from the modal fit,
-    ``frequency_peak`` [Hz] from peak picking with parabolic interpolation,
-    ``damping_half_power`` [-] (NaN if a half-power point is missing), ``amplitude`` |H| at
-    the peak, ``coherence`` at the peak, ``residue`` |R| of the fit and ``warnings``."""
+    """One mode identified by :func:`identify` (see the module docstring for the methods).
+
+    Attributes
+    ----------
+    frequency : float
+        Natural frequency from the modal fit [Hz].
+    damping : float
+        Damping ratio from the modal fit [-] (0.05 = 5 %).
+    frequency_peak : float
+        Frequency of the peak of |H| by peak picking with parabolic interpolation [Hz].
+    damping_half_power : float
+        Damping ratio by the half-power bandwidth [-]; NaN if a half-power point is missing.
+    amplitude : float
+        |H| at the peak [-] (ratio of two accelerations).
+    coherence : float
+        Coherence gamma^2 at the peak [-].
+    residue : float
+        |R| of the fitted model ``R w^2 / (w_k^2 - w^2 + 2 i zeta_k w_k w) + C`` [-].
+    warnings : list of str
+        Reasons to doubt the mode; empty when it is :attr:`reliable`.
+    fit_band : tuple of float
+        Lowest and highest frequency of the bins of the fit [Hz].
+    fit_coefficients : tuple of complex
+        ``(R, C)`` of the fitted model [-].
+
+    References
+    ----------
+    Bendat & Piersol, *Random Data*, 4th ed., §8.5 and §9.2 (H1 estimator, resolution bias);
+    Mordant et al. (SERIES), §2.1.
+    """
 
     frequency: float
     damping: float
@@ -339,9 +365,52 @@ def identify(data, fs: float | None = None, *, nperseg: int | None = None,
              max_damping: float = 0.20, name: str | None = None) -> ModalResult:
     """Natural frequencies and damping ratios of a white-noise test (module docstring).
 
-    ``data``: a :class:`~murus.identify.testdata.ShakingTableTest` or ``(x, y)`` with ``fs``
-    [Hz]. Peaks are searched in ``(f_min, f_max)`` [Hz] (default up to 0.8 of Nyquist); at most
-    ``n_modes`` of them, the lowest in frequency, are returned."""
+    Parameters
+    ----------
+    data : ShakingTableTest or tuple of array_like
+        A :class:`~murus.identify.testdata.ShakingTableTest` (its ``table_acc`` and
+        ``top_acc``), or ``(x, y)``: table and top absolute accelerations [m/s²].
+    fs : float, optional
+        Sampling rate of ``(x, y)`` [Hz]; not needed with a test.
+    nperseg : int, optional
+        Length of the Welch segments [samples]; see :func:`frf`.
+    df : float, optional
+        Largest frequency resolution [Hz], used when ``nperseg`` is not given.
+    f_min : float
+        Lower end of the band where peaks are searched [Hz].
+    f_max : float, optional
+        Upper end of that band [Hz]; default 0.8 of the Nyquist frequency.
+    n_modes : int, optional
+        At most this many modes, the lowest in frequency, are returned; default all.
+    prominence : float
+        Smallest prominence of a peak of ``log10 |H|`` [decades].
+    smooth_bins : int
+        Width of the running mean over ``log10 |H|`` before peak picking [bins].
+    min_coherence : float
+        Smallest coherence at a peak for it to be a mode [-].
+    min_coherence_reliable : float
+        Below this coherence at the peak [-], the mode carries a warning.
+    max_damping : float
+        Above this fitted damping ratio [-], the mode carries a warning.
+    name : str, optional
+        Label of the result; default the name of the test, or ``""``.
+
+    Returns
+    -------
+    ModalResult
+        The FRF and the modes found, by increasing frequency.
+
+    Raises
+    ------
+    ModalError
+        If the input is not a test nor ``(x, y)`` with ``fs``, has non-finite values or a
+        constant input, ``nperseg`` is out of range, or the band holds no frequency bins.
+
+    References
+    ----------
+    Bendat & Piersol, *Random Data*, 4th ed., §8.5 and §9.2; Mordant et al. (SERIES), §2.1,
+    Figures 3 and 4.
+    """
     fr = frf(data, fs, nperseg=nperseg, df=df)
     f, H, coh = fr.f, fr.H, fr.coherence
     if f_max is None:
@@ -419,11 +488,37 @@ def identify(data, fs: float | None = None, *, nperseg: int | None = None,
 
 @dataclass
 class Evolution:
-    """Frequencies and damping ratios of the white-noise tests of a sequence
-    (Mordant et al. (SERIES) Figures 3 and 4). ``number``: position of the test in the sequence;
-    ``after_pga_g``: the nominal PGA [g] of the last seismic test before it (0 before the first);
-    arrays ``frequency``, ``damping``, ``damping_half_power`` [Hz, -] and ``reliable`` have shape
-    (n_tests, n_modes), NaN/False where a mode was not found."""
+    """Frequencies and damping ratios of the white-noise tests of a sequence, made by
+    :func:`evolution`.
+
+    Attributes
+    ----------
+    name : str
+        Name of the sequence (the specimen).
+    labels : list of str
+        Label of each white-noise test, in the order of the sequence.
+    number : numpy.ndarray
+        Position of each test in the sequence, shape (n_tests,).
+    after_pga_g : numpy.ndarray
+        Nominal PGA of the last seismic test before each one [g] (0 before the first; the
+        measured PGA where no nominal one is given), shape (n_tests,).
+    frequency : numpy.ndarray
+        Fitted natural frequencies [Hz], shape (n_tests, n_modes); NaN where a mode was not
+        found.
+    damping : numpy.ndarray
+        Fitted damping ratios [-], shape (n_tests, n_modes); NaN where not found.
+    damping_half_power : numpy.ndarray
+        Half-power damping ratios [-], shape (n_tests, n_modes); NaN where not found.
+    reliable : numpy.ndarray
+        Whether each mode is :attr:`Mode.reliable`, bool, shape (n_tests, n_modes); False where
+        not found.
+    results : list of ModalResult
+        The full identification of each test.
+
+    References
+    ----------
+    Mordant et al. (SERIES), §2.1, Figures 3 and 4.
+    """
 
     name: str
     labels: list[str]

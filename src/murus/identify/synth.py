@@ -271,7 +271,60 @@ def synthesize_tests(*, seed: int = 0, wall: SynthWall | None = None,
                      frequency_drop_per_g: float = 0.35, damping_increase_per_g: float = 0.04,
                      noise_acc: float = 0.005, noise_lvdt: float = 1e-6,
                      noise_rot: float = 2e-6):
-    """The tests of a virtual sequence and their truth (module docstring), in memory."""
+    """The tests of a virtual sequence and their truth (module docstring), in memory.
+
+    White-noise tests ``WN01, WN02, ...`` alternate with seismic tests ``S01, S02, ...``, one
+    per level, starting and ending with a white-noise test.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the random generator (inputs and sensor noise); the output is deterministic
+        for a given seed.
+    wall : SynthWall, optional
+        The virtual wall; default ``SynthWall()``.
+    levels : sequence of float
+        Nominal PGA of the seismic tests, in order [g], each in (0, 2).
+    fs : float
+        Sampling rate [Hz]; more than four times the wall's frequency.
+    wn_duration : float
+        Duration of a white-noise test [s] (at least 2048 samples).
+    wn_rms_g : float
+        RMS of the white-noise table acceleration [g].
+    wn_band : tuple of float
+        Frequency band of the white noise [Hz].
+    seismic_duration : float
+        Duration of a seismic test [s] (at least 64 samples).
+    frequency_drop_per_g : float
+        Relative drop of the frequency after a seismic test, per g of its PGA [1/g].
+    damping_increase_per_g : float
+        Increase of the damping ratio after a seismic test, per g of its PGA [1/g].
+    noise_acc : float
+        Standard deviation of the noise on the accelerations [m/s²].
+    noise_lvdt : float
+        Standard deviation of the noise on the transducers [m].
+    noise_rot : float
+        Standard deviation of the noise on the rotations [rad].
+
+    Returns
+    -------
+    tests : list of ShakingTableTest
+        The tests, in the order of the sequence.
+    truth : list of dict
+        Per test: ``test`` (name), ``kind``, ``frequency_hz`` [Hz] and ``damping`` [-] of the
+        wall during the test, ``pga_g`` [g] (``None`` for white noise), ``rocked`` (bool) and
+        ``theta_max_rad``, the largest rigid rocking rotation [rad].
+
+    Raises
+    ------
+    ValueError
+        If a level is outside (0, 2) g, ``fs`` is too low for the wall, or a duration is too
+        short for ``fs``.
+
+    References
+    ----------
+    Mordant et al. (SERIES), §2 and Table 1 (the sequence), Figures 3-4 (the frequency drop).
+    """
     wall = wall or SynthWall()
     levels = [float(a) for a in levels]
     if not levels or any(not (math.isfinite(a) and 0 < a < 2) for a in levels):

@@ -138,8 +138,47 @@ def _family(name: str) -> str | None:
 class ShakingTableTest:
     """One shaking-table test in SI units (see the module docstring for the conventions).
 
-    ``channels`` maps a channel name (``table_acc``, ``top_acc``, ``lvdt_1`` ...,
-    ``rot_bottom``, ``rot_top``) to its samples: m/s2, m, rad."""
+    Attributes
+    ----------
+    name : str
+        Label of the test.
+    sampling_rate : float
+        Sampling rate [Hz], > 0; the samples are uniform in time.
+    wall_length : float
+        Length L of the wall in the plane of shaking [m], > 0.
+    wall_height : float
+        Height H of the wall [m], > 0.
+    channels : dict of str to numpy.ndarray
+        Samples of each channel, all of the same length (at least two): ``table_acc`` and
+        ``top_acc`` (required) [m/s²], absolute horizontal accelerations of the table and of
+        the top of the wall; ``lvdt_1`` ... ``lvdt_n`` [m], base vertical transducers,
+        positive when the joint opens; ``rot_bottom``, ``rot_top`` [rad], in-plane rotations
+        relative to the table, positive clockwise.
+    kind : str
+        ``"seismic"`` or ``"white_noise"``.
+    pga_g : float or None
+        Nominal (target) peak table acceleration [g].
+    lvdt_positions : numpy.ndarray
+        Position x of each transducer along the wall from its left end [m], in the order
+        ``lvdt_1, lvdt_2, ...``.
+    top_mass : float or None
+        Mass on top of the wall [kg].
+    meta : dict of str to str
+        Other header keys of the file.
+    source : str or None
+        Path of the file read, used in error messages.
+
+    Raises
+    ------
+    TestDataError
+        If ``kind`` is unknown, a rate or dimension is not a positive number, a required
+        channel is missing, the channels differ in length or have fewer than two samples, or
+        the transducers and their positions differ in number.
+
+    References
+    ----------
+    Mordant et al. (SERIES), §2, §3.1.1 (sign of the rotation) and Table 1.
+    """
 
     __test__ = False  # not a pytest test class
 
