@@ -37,7 +37,6 @@ PENDING = {
     "murus.studies.sweep": {"Dim", "Plan", "Point", "open_result", "run_plan", "run_tasks",
                             "study_status", "write_netcdf"},
     # not converted yet (outside the rewritten modules)
-    "murus.retaining.collapse": {"CollapseResult", "collapse_run"},
 }
 
 

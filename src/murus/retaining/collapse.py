@@ -111,18 +111,88 @@ def ramp_rate(A_pseudo: float, t_pseudo: float = 2.5) -> float:
 
 @dataclass
 class CollapseResult:
-    """One DEM run of the protocol.
+    """One DEM run of the collapse protocol, made by :func:`collapse_run`.
 
-    ``signal`` "S2" or "S1"; ``A_rate`` [m/s³]; ``a_peak`` [m/s²] (S1) ; ``threshold`` [m];
-    ``collapsed``; ``t_col`` [s] and ``A_col = A_rate t_col`` [m/s²] (nan if no collapse);
-    histories ``t`` [s], ``d_top`` [m] (out of the slope positive), ``acc`` and ``acc_v``
-    (input, [m/s²]), ``kh``, ``kv``; ``polygons`` the stones and foundation at the end (the
-    collapse instant when stopped there) and ``displacement`` their displacement magnitude
-    relative to the base [m], ``rotation`` their rotation [rad] (counter-clockwise);
-    ``wall_time`` [s] (``setup_time`` of it before the dynamic run: building, settling, the
-    backfill's generation; not in :meth:`summary`, which stays the same on a re-run),
-    ``steps``, ``dt`` [s]; ``options`` the numerical settings; ``mode`` the mechanism at the
-    end of the run, "S" or "T" (:func:`failure_mode`).
+    :meth:`summary` adds ``d_top_max`` [m], ``A_peak = 0.6 A_col`` [m/s²] and the behaviour
+    factor ``r = A_peak / A_pseudo`` [-] (NaN without collapse; Savalle et al. (2022), §4.2
+    and §4.4, Table 8).
+
+    Attributes
+    ----------
+    wall : str
+        Name of the wall.
+    frequency : float
+        Frequency f of the input [Hz].
+    vertical : str
+        Vertical component: ``"none"``, ``"in_phase"`` or ``"opposition"``.
+    signal : str
+        ``"S2"`` (harmonic ramp to collapse) or ``"S1"`` (ramp up to ``a_peak`` and down).
+    A_rate : float
+        Slope A of the envelope of the input [m/s³].
+    A_pseudo : float
+        Pseudo-static resistance of the wall [m/s²].
+    a_peak : float
+        Peak of the envelope of an S1 signal [m/s²]; NaN for S2.
+    threshold : float
+        Collapse threshold on ``d_top`` [m] (a fraction of ``height``).
+    height : float
+        Height H of the wall [m].
+    collapsed : bool
+        Whether ``d_top`` exceeded ``threshold``.
+    t_col : float
+        Instant of collapse [s], linear interpolation between samples; NaN if none.
+    A_col : float
+        Amplitude of the envelope of the input at ``t_col`` [m/s²] (``A_rate t_col`` for S2);
+        NaN if no collapse.
+    t_end : float
+        Model time at the end of the run [s] (``t_col``'s step when stopped by the collapse).
+    t : numpy.ndarray
+        Sample times [s].
+    d_top : numpy.ndarray
+        Horizontal displacement of the top stone relative to the base [m], positive out of
+        the slope, at ``t``.
+    acc : numpy.ndarray
+        Horizontal input acceleration [m/s²] at ``t``, positive into the backfill.
+    acc_v : numpy.ndarray
+        Vertical input acceleration [m/s²] at ``t`` (zeros without one).
+    kh : numpy.ndarray
+        Horizontal seismic coefficient of the thrust at ``t`` [-].
+    kv : numpy.ndarray
+        Vertical seismic coefficient of the thrust at ``t`` [-].
+    polygons : list of numpy.ndarray
+        The stones and foundation at the end of the run (the collapse instant when stopped
+        there), each a (k, 2) array of vertices [m].
+    displacement : numpy.ndarray
+        Displacement magnitude of each polygon's body relative to the base [m].
+    wall_time : float
+        Computing time of the run, set-up included [s].
+    steps : int
+        Time steps of the dynamic run.
+    dt : float
+        Time step of the DEM [s].
+    status : str
+        Status of the DEM run: ``"stopped"`` (collapse) or ``"completed"``.
+    options : dict
+        The numerical settings of the run (damping, intervals, threshold fraction, backfill,
+        those of the DEM wall).
+    rotation : numpy.ndarray
+        Rotation of each polygon's body [rad], counter-clockwise positive.
+    mode : str
+        Mechanism at the end of the run, ``"S"`` (sliding) or ``"T"`` (toppling), ``""``
+        when ``d_top <= 0`` (:func:`failure_mode`; Savalle et al. (2022), Table 3).
+    setup_time : float
+        Part of ``wall_time`` before the dynamic run [s] (building, settling, the backfill's
+        generation); not in :meth:`summary`, which stays the same on a re-run.
+    disc_centres : numpy.ndarray
+        Centres of the discs of a discrete backfill at the end [m], shape (n, 2).
+    disc_radii : numpy.ndarray
+        Their radii [m], shape (n,).
+    disc_displacement : numpy.ndarray
+        Their displacement magnitude relative to the base [m], shape (n,).
+
+    References
+    ----------
+    Savalle et al. (2022), §4.2-4.4, Tables 3, 7 and 8.
     """
 
     wall: str
@@ -201,24 +271,92 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                  progress: Callable | None = None) -> CollapseResult:
     """Run the DEM wall under S2 (or S1 with ``a_peak``) until collapse (module docstring).
 
-    frequency [Hz]; vertical: "none", "in_phase", "opposition"; A_rate [m/s³] (default
-    ``A_pseudo / t_pseudo``); t_max [s]: end of an S2 run without collapse (default
-    ``6 t_pseudo``, the envelope at six times A_pseudo); tail [s]: free time after an S1 signal;
-    threshold: fraction of H (default 0.2, 0.05 for mock-ups); xi: mass-proportional damping
-    ratio at ``frequency``; stiffness_scale, safety, ``build``: passed to
-    :func:`~murus.retaining.dem_wall.build_wall`; update_dt [s]: thrust update interval;
-    thrust_scale: 0 removes the backfill, 1 the Annex E thrust; A_pseudo: skip its computation;
-    damping_frame: the velocities the mass-proportional damping acts on, ``"base"`` (relative
-    to the base, default) or ``"absolute"`` (fixed frame, as UDEC/3DEC: "a force which is
-    proportional to absolute velocity and mass", 3DEC 5.0 manual, Optional Features §2.2);
-    backfill: ``"thrust"`` (default, the equivalent thrust on a wall with a backstop) or
-    ``"discrete"`` (a disc backfill behind the wall, no backstop, no thrust:
-    :class:`~murus.retaining.backfill.DiscreteBackfill` with the keywords
-    ``backfill_options``, e.g. ``W``, ``boundary``, ``radius``; ``wall_time`` then includes
-    the generation and settling of the backfill, ``options["backfill_options"]`` its
-    summary); progress: ``progress(t, t_end, info)`` called before the settling (t = 0,
-    info ``"settling"``) and after each chunk of the run (model time t [s], info ``"run"``),
-    e.g. the ``update`` of a :func:`murus.progress.progress` block.
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall (geometry, stones, backfill soil).
+    frequency : float
+        Frequency f of the harmonic input [Hz], > 0.
+    vertical : str
+        Vertical component: ``"none"``, ``"in_phase"`` or ``"opposition"`` (§4.3).
+    signal : str
+        ``"S2"`` (harmonic ramp ``A t sin(2 pi f t)``, Savalle et al. (2022), eq. 5) or
+        ``"S1"`` (ramp up to ``a_peak``, down over twice as long).
+    A_rate : float, optional
+        Slope A of the envelope [m/s³]; default ``A_pseudo / t_pseudo``.
+    a_peak : float, optional
+        Peak of an S1 envelope [m/s²]; required for S1.
+    t_pseudo : float
+        Instant at which the S2 envelope reaches ``A_pseudo`` [s].
+    t_max : float, optional
+        End of an S2 run without collapse [s]; default ``6 t_pseudo`` (the envelope at six
+        times ``A_pseudo``).
+    tail : float
+        Free time after an S1 signal [s].
+    threshold : float, optional
+        Collapse threshold on ``d_top`` as a fraction of the height H [-]; default 0.2
+        (0.05 for the mock-ups, whose name starts with "mockup").
+    xi : float
+        Mass-proportional damping ratio at ``frequency`` [-] (Savalle et al. (2022), Table 6,
+        doubled).
+    stiffness_scale : float
+        Factor on the joint stiffness of Table 6 [-]; passed to
+        :func:`~murus.retaining.dem_wall.build_wall`.
+    safety : float
+        Time-step safety factor on ``min sqrt(m / k)`` [-], in (0, 1]; passed to
+        ``build_wall``.
+    update_dt : float
+        Interval between updates of the thrust [s].
+    sample_dt : float
+        Interval between the samples of the histories [s].
+    motion_dt : float
+        Time step of the input record [s].
+    thrust_scale : float
+        Factor on the equivalent thrust [-]: 0 removes the backfill, 1 the EN 1998-5 Annex E
+        thrust.
+    vertical_ratio : float
+        Amplitude of the vertical component over the horizontal one [-].
+    assumptions : optional
+        Assumptions of the thrust and of the pseudo-static resistance
+        (:mod:`murus.retaining.pseudostatic`); default theirs.
+    build : dict, optional
+        Other keywords of :func:`~murus.retaining.dem_wall.build_wall`.
+    A_pseudo : float, optional
+        Pseudo-static resistance [m/s²]; given, its computation is skipped.
+    damping_frame : str
+        The velocities the mass-proportional damping acts on: ``"base"`` (relative to the
+        base) or ``"absolute"`` (fixed frame, as UDEC/3DEC: "a force which is proportional to
+        absolute velocity and mass", 3DEC 5.0 manual, Optional Features §2.2).
+    backfill : str
+        ``"thrust"`` (the equivalent thrust on a wall with a backstop) or ``"discrete"`` (a
+        disc backfill behind the wall, no backstop, no thrust:
+        :class:`~murus.retaining.backfill.DiscreteBackfill`); ``wall_time`` then includes the
+        generation and settling of the backfill, ``options["backfill_options"]`` its summary.
+    backfill_options : dict, optional
+        Keywords of :class:`~murus.retaining.backfill.DiscreteBackfill`, e.g. ``W``,
+        ``boundary``, ``radius``.
+    progress : callable, optional
+        ``progress(t, t_end, info)``, called before the settling (t = 0, info
+        ``"settling"``) and after each chunk of the run (model time t [s], info ``"run"``),
+        e.g. the ``update`` of a :func:`murus.progress.progress` block.
+
+    Returns
+    -------
+    CollapseResult
+        The run: collapse or not, ``t_col`` and ``A_col``, histories and final state.
+
+    Raises
+    ------
+    CollapseError
+        If an argument is out of range, the wall does not settle under gravity and the
+        static thrust, or the DEM run ends with an error status.
+    KeyboardInterrupt
+        If the run was interrupted (Ctrl-C caught by the DEM engine).
+
+    References
+    ----------
+    Savalle et al. (2022), §4.2-4.4, eq. 5, Tables 6-8; EN 1998-5 (2004), Annex E (the
+    thrust).
     """
     from murus.dem.engine import stop_when
     from murus.motion.synthetic import harmonic_ramp, two_ramp
