@@ -30,7 +30,6 @@ PENDING = {
     # modules rewritten by issue 16 items 1-4 (left to the lead after the merge)
     "murus.dem.engine": {"Probe", "RunResult", "SettleResult", "body_probe", "relative_probe",
                          "stop_when", "tilt_probe"},
-    "murus.retaining.backfill": {"AbsorbingBoundary", "DiscreteBackfill", "generate_packing"},
     "murus.rocking.engine": {"BatchResult", "RockingResult", "simulate_batch"},
     "murus.rocking.winkler": {"WinklerResult"},
     "murus.studies.study": {"Study", "load_study", "make_study", "run_study"},

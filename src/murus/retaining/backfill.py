@@ -329,16 +329,60 @@ def generate_packing(wall: RetainingWall, W: float | None = None, *, radius: flo
                      precompact_g: float = PRECOMPACT_G,
                      steps: tuple[int, int] = PACKING_STEPS, tol: float = SETTLE_TOL,
                      density: float = GENERATION_DENSITY) -> Packing:
-    """Settled disc packing of the backfill of ``wall``, ``W`` [m] wide (default ``2 H``: the 5
-    m of Savalle et al. (2022) for its 2.5 m walls; module docstring).
+    """Settled disc packing of the backfill of ``wall`` (module docstring, "Generation").
 
-    radius : mean radius [m] (default ``0.016 H``); spread : radii uniform in ``radius (1 -+
-    spread)``; seed : random radii; fill : the grid fills the region stretched upwards by this
-    factor; gap : clearance of the grid [fraction of r_max]; rolling : mu_r (default from the
-    wall's backfill friction, :func:`rolling_for`); precompact_g : gravity multiple of the
-    first settling stage (1: none); steps : maximum steps of the two stages; tol :
-    unbalanced-force ratio of the 1 g stage; density : of the discs during generation
-    [kg/m³] (the packing does not depend on it).
+    Discs on a hexagonal lattice in a rigid box (back face, floor, lateral plate), settled
+    under ``precompact_g`` g then under 1 g; the discs above the backfill surface are removed
+    and the radii relieved of the elastic overlaps.
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall whose backfill region is filled.
+    W : float, optional
+        Width of the backfill behind the heel [m]; default ``2 H`` (:func:`default_width`:
+        the 5 m of Savalle et al. (2022), §4.1, for its 2.5 m walls). At least four disc
+        diameters.
+    radius : float, optional
+        Mean disc radius [m]; default ``0.016 H``.
+    spread : float
+        Radii uniform in ``radius (1 -+ spread)`` [-], in [0, 1).
+    seed : int
+        Seed of the random radii.
+    fill : float
+        The lattice fills the region stretched upwards by this factor [-], >= 1.
+    gap : float
+        Clearance of the lattice [fraction of r_max].
+    rolling : float, optional
+        Rolling-resistance coefficient mu_r [-]; default from the wall's backfill friction
+        angle (:func:`rolling_for`).
+    precompact_g : float
+        Gravity multiple of the first settling stage [-] (1: no pre-compaction).
+    steps : tuple of int
+        Largest numbers of steps of the two settling stages.
+    tol : float
+        Unbalanced-force ratio that ends a settling stage [-].
+    density : float
+        Disc density during the generation [kg/m³] (the packing does not depend on it).
+
+    Returns
+    -------
+    Packing
+        ``centres`` (n, 2) [m] and ``radii`` (n,) [m] of the settled discs, the solid
+        fraction ``phi`` [-] in an interior window and ``phi_region`` [-] over the whole region
+        of ``area`` [m²], and ``info``, the generation log (counts, settling messages, steps,
+        time step [s], wall time [s]).
+
+    Raises
+    ------
+    BackfillError
+        If ``W``, ``radius``, ``spread`` or ``fill`` is out of range, ``W`` is narrower than
+        four disc diameters, or the lattice overlaps.
+
+    References
+    ----------
+    Savalle et al. (2022), §2 and §4.1, Tables 1 and 6 (the backfill); Cundall & Strack
+    (1979) (the disc assembly).
     """
     from murus.dem import Joint, Model
 
@@ -410,21 +454,86 @@ def generate_packing(wall: RetainingWall, W: float | None = None, *, radius: flo
 
 # ------------------------------------------------------------------------ backfill
 class DiscreteBackfill:
-    """The discrete backfill of ``wall``, ``W`` [m] wide (default :func:`default_width`, ``2
-    H``), with the lateral ``boundary``
-    ``"container"`` or ``"absorbing"`` (module docstring).
+    """The discrete backfill of ``wall`` behind the DEM wall (module docstring).
 
     Use: ``bf = DiscreteBackfill(wall, W)``; ``dw = build_wall(wall, backstop=False,
     add_bodies=bf.add_to, ...)``; ``bf.settle(dw)``; then run with ``external=bf`` (or
     :meth:`external` to chain with another hook) every :meth:`interval` steps.
 
-    radius, spread, seed, fill, precompact_g, packing_steps : of :func:`generate_packing`
-    (``packing`` a ready :class:`Packing` instead); rolling : mu_r (default from the wall's
-    backfill friction); stiffness_scale : of the wall-backfill interface (the wall's);
-    wave_speeds : (Vp, Vs) [m/s] of the dashpots (default :func:`wave_speeds`); floor_gap :
-    between the heel and the floor slab [m] (default a fifth of the smallest radius);
-    settle_tol, settle_steps : settling of the final model (local damping); relax_max,
-    relax_vtol, relax_xi : the dynamic relaxation that follows (:meth:`_relax`).
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall; it needs a backfill (``backfill_unit_weight > 0``) with a planar surface
+        (no ``backfill_profile``).
+    W : float, optional
+        Width of the backfill behind the heel [m]; default ``2 H`` (:func:`default_width`).
+    boundary : str
+        Lateral boundary at ``x_heel + W``: ``"container"`` (a rigid plate moving with the
+        base) or ``"absorbing"`` (Lysmer-Kuhlemeyer dashpots, :class:`AbsorbingBoundary`).
+    radius : float, optional
+        Mean disc radius [m]; default ``0.016 H`` (:func:`generate_packing`).
+    spread : float
+        Radii uniform in ``radius (1 -+ spread)`` [-].
+    seed : int
+        Seed of the random radii.
+    fill : float
+        Vertical stretch of the generation lattice [-].
+    precompact_g : float
+        Gravity multiple of the pre-compaction stage of the generation [-].
+    packing_steps : tuple of int
+        Largest numbers of steps of the two settling stages of the generation.
+    packing : Packing, optional
+        A ready packing of the same ``W``, used instead of generating one.
+    rolling : float, optional
+        Rolling-resistance coefficient mu_r [-]; default from the wall's backfill friction
+        angle (:func:`rolling_for`).
+    stiffness_scale : float
+        Factor on the wall-backfill interface stiffness of Savalle et al. (2022), Table 6
+        (Table 1 for the mock-ups) [-]; the wall's.
+    wave_speeds : tuple of float, optional
+        ``(Vp, Vs)`` of the dashpots of the absorbing boundary [m/s]; default
+        :func:`wave_speeds`.
+    floor_gap : float, optional
+        Gap between the heel and the floor slab [m], in [0, r_min); default a fifth of the
+        smallest radius.
+    settle_tol : float
+        Unbalanced-force ratio that ends the settling of the final model [-].
+    settle_steps : int
+        Largest number of steps of that settling.
+    relax_max : float, optional
+        Longest dynamic relaxation after the settling [s]; default ``3 sqrt(H / 2.5 m)`` s.
+    relax_vtol : float, optional
+        The relaxation ends when the largest speed of the stones and discs is below this twice
+        in a row [m/s]; default ``2e-3 sqrt(H / 2.5 m)`` m/s.
+    relax_xi : float
+        Mass-proportional damping ratio of the relaxation [-], at 5 Hz for a 2.5 m wall
+        (Froude-scaled).
+
+    Attributes
+    ----------
+    density : float
+        Disc density [kg/m³], ``gamma / (g phi)``, so that the bulk unit weight of the packing
+        is the wall's ``backfill_unit_weight``.
+    vp, vs : float
+        Wave speeds of the absorbing boundary [m/s].
+    unit_weight, unit_weight_region : float
+        Bulk unit weight of the settled assembly [N/m³], in the interior window and over the
+        whole region (NaN before :meth:`settle`).
+    relax_time : float
+        Duration of the dynamic relaxation [s].
+    absorbing : AbsorbingBoundary or None
+        The boundary, after :meth:`settle` with ``boundary="absorbing"``.
+
+    Raises
+    ------
+    BackfillError
+        If ``boundary`` is unknown, the wall has no or a broken backfill, a scale, speed,
+        rolling coefficient or gap is out of range, or the packing's width differs from ``W``.
+
+    References
+    ----------
+    Savalle et al. (2022), §2, §4.1, Tables 1 and 6, Figures 9-10; Lysmer & Kuhlemeyer
+    (1969) (absorbing boundary); Cundall & Strack (1979).
     """
 
     def __init__(self, wall: RetainingWall, W: float | None = None,
