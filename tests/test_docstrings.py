@@ -22,20 +22,15 @@ PACKAGES = ["murus", "murus.motion", "murus.eurocode", "murus.rocking", "murus.d
             "murus.motion.io", "murus.motion.spectra", "murus.motion.measures",
             "murus.motion.processing", "murus.motion.synthetic", "murus.motion.artificial"]
 
-#: Names whose docstrings are not converted yet, by module. Most are in modules that issue 16
-#: rewrites in parallel (the DEM and rocking engines, the study and sweep layer, the discrete
-#: backfill): the lead empties this list after the merge. The others are listed honestly as not
-#: done yet; remove a name when its docstring gains its sections.
+#: Names whose docstrings are not converted yet, by module: those of the modules that issue 16
+#: rewrites in parallel (the DEM and rocking engines): the lead empties this list after the
+#: merge. Remove a name when its docstring gains its sections.
 PENDING = {
     # modules rewritten by issue 16 items 1-4 (left to the lead after the merge)
     "murus.dem.engine": {"Probe", "RunResult", "SettleResult", "body_probe", "relative_probe",
                          "stop_when", "tilt_probe"},
     "murus.rocking.engine": {"BatchResult", "RockingResult", "simulate_batch"},
     "murus.rocking.winkler": {"WinklerResult"},
-    "murus.studies.study": {"Study", "load_study", "make_study", "run_study"},
-    "murus.studies.sweep": {"Dim", "Plan", "Point", "open_result", "run_plan", "run_tasks",
-                            "study_status", "write_netcdf"},
-    # not converted yet (outside the rewritten modules)
 }
 
 

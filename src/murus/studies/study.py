@@ -152,10 +152,48 @@ class StudyFile(Strict):
 # ----------------------------------------------------------------------------- study -----
 @dataclass
 class Study:
-    """A study: a rocking ``case`` (the tables of a case file as a dict), ordered ``sweep``
-    values, ``records`` (or ``None``: the case's pulse), case ``variants``, ``im`` (the measure
-    of the ``im`` levels), chunking and retries. ``path``/``text`` locate errors (file, line,
-    key); ``case_path``/``case_text`` those of a separate case file."""
+    """A study: a rocking case, a grid of swept parameters and a record set (module docstring).
+
+    Made by :func:`load_study` (a study file) or :func:`make_study` (Python objects);
+    :meth:`plan` resolves it into a :class:`~murus.studies.sweep.Plan`, :func:`run_study`
+    runs it.
+
+    Attributes
+    ----------
+    case : dict
+        The tables of a rocking case file (:mod:`murus.rocking.case`), SI units.
+    sweep : dict of str to list
+        The values of each swept parameter, in the order of the dimensions; a parameter's
+        units are those of the case field it names (``body.width`` [m], ``K_over_Kd`` [-],
+        ``motion.scale`` [-], ``im`` [g, or m/s for PGV] ...).
+    records : RecordSet or None
+        The ground motions; ``None``: the case's ``[motion]`` (a pulse).
+    name : str
+        Name of the study.
+    description : str
+        Free text.
+    variants : dict
+        ``{name: tables}``: the case variants of the sweep parameter ``variant``, each
+        replacing whole top-level tables of the case.
+    im : IntensityMeasure or None
+        The measure of the ``im`` levels (``PGA``, ``PGV``, ``Sa(T=...)``).
+    chunk_size : int
+        Histories per task (one ``simulate_batch`` call).
+    retries : int
+        A failing chunk is re-run this many times, then recorded as failed.
+    output : str or None
+        The study folder of the study file (relative paths resolved against the file).
+    figure : str or None
+        File name of a figure plotted when the run ends.
+    path, text : pathlib.Path or None, str
+        The study file and its text, to locate errors (file, line, key).
+    case_path, case_text : pathlib.Path or None, str
+        Those of a separate case file.
+
+    References
+    ----------
+    EURODYN (2020), eqs. 11-12 and Table 1 (``K_over_Kd``, ``block``, ``"eq11"``).
+    """
 
     case: dict
     sweep: dict[str, list]
@@ -539,8 +577,27 @@ def _flatten_sweep(d: dict, prefix: str = "") -> dict:
 
 
 def load_study(path) -> Study:
-    """Read and validate a study file; errors are one-line :class:`CaseError` naming the file,
-    line and key."""
+    """Read and validate a study file (TOML; module docstring).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The study file; a separate case file, a records folder or files and the output folder
+        are relative to its folder.
+
+    Returns
+    -------
+    Study
+        The validated study, its sweep values expanded (``linspace``, ``geomspace``,
+        ``arange`` forms) and its records selected.
+
+    Raises
+    ------
+    CaseError
+        One line naming the file, line and key: unreadable or invalid TOML, an unknown key,
+        a case file, records folder or record file not found, an unknown suite or record, or
+        bad sweep values.
+    """
     path = Path(path)
     data, text = load_toml(path)
     cfg = validate(StudyFile, data, path, text)
@@ -626,9 +683,39 @@ def _record_set(rec: RecordsCfg, path: Path) -> RecordSet:
 def make_study(case: dict, sweep: dict, records=None, *, name: str = "study",
                variants: dict | None = None, im=None, chunk_size: int = 256,
                retries: int = 2) -> Study:
-    """A :class:`Study` from Python objects: ``case`` (rocking case tables as a dict),
-    ``sweep`` (``{name: values}``, ordered), ``records`` (anything
-    :meth:`RecordSet.coerce` takes, or ``None`` for the case's pulse)."""
+    """A :class:`Study` from Python objects.
+
+    Parameters
+    ----------
+    case : dict
+        The tables of a rocking case file as a dict (SI units, :mod:`murus.rocking.case`).
+    sweep : dict
+        ``{name: values}``, in the order of the dimensions; a single number or string is one
+        value. Units: those of the case field each name stands for (module docstring).
+    records : optional
+        Anything :meth:`RecordSet.coerce` takes (a suite name, files, ground motions), or
+        ``None`` for the case's pulse.
+    name : str
+        Name of the study.
+    variants : dict, optional
+        ``{name: tables}`` of the sweep parameter ``variant``.
+    im : str, optional
+        The measure of the ``im`` levels: ``"PGA"``, ``"PGV"`` or ``"Sa(T=...)"``.
+    chunk_size : int
+        Histories per task.
+    retries : int
+        Re-runs of a failing chunk before it is recorded as failed.
+
+    Returns
+    -------
+    Study
+        Errors are located by key (``[sweep.NAME]``), there being no file.
+
+    Raises
+    ------
+    CaseError
+        If the values of a sweep parameter are invalid.
+    """
     sw = {}
     for k, v in sweep.items():
         vals = [v] if isinstance(v, str | int | float) else list(np.asarray(v).tolist())
@@ -646,7 +733,39 @@ def make_study(case: dict, sweep: dict, records=None, *, name: str = "study",
 
 def run_study(study: Study, executor="process", *, workers=None, scheduler=None, out=None,
               progress=None, hook=None):
-    """Plan and run a study (see :func:`murus.studies.sweep.run_plan`)."""
+    """Plan and run a study (see :func:`murus.studies.sweep.run_plan`).
+
+    Parameters
+    ----------
+    study : Study
+        The study.
+    executor : str or ExecutorHandle
+        ``"serial"``, ``"process"``, ``"dask"`` or an open executor handle.
+    workers : int, optional
+        Number of workers of the executor.
+    scheduler : str, optional
+        Address of a Dask scheduler.
+    out : str or pathlib.Path, optional
+        Study folder; default the study's ``output`` (none: nothing is written).
+    progress : callable, optional
+        ``progress(done, total, failed)``, counts of chunks.
+    hook : callable, optional
+        A picklable ``hook(chunk_index)`` run in the worker before each chunk.
+
+    Returns
+    -------
+    xarray.Dataset
+        The summaries of every history over the dimensions of the sweep and ``record``
+        (:func:`~murus.studies.sweep.run_plan`).
+
+    Raises
+    ------
+    CaseError
+        If a grid node does not resolve into a model (one line naming the file, line, key and
+        node).
+    StudyError
+        If the options are invalid or ``out`` holds another study.
+    """
     from murus.studies.sweep import run_plan
 
     out = out if out is not None else study.output

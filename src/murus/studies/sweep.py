@@ -83,7 +83,22 @@ SUMMARY_VARS = (
 
 @dataclass(frozen=True)
 class Dim:
-    """A swept parameter: ``name`` (the dimension), ``values`` and ``attrs`` (units, ...)."""
+    """A swept parameter, one dimension of the grid of a :class:`Plan`.
+
+    Attributes
+    ----------
+    name : str
+        Name of the parameter and of the dimension of the Dataset (not ``"record"``).
+    values : tuple
+        Its values, in order (at least one), in the units of ``attrs["units"]``.
+    attrs : dict
+        Attributes of the coordinate in the Dataset: ``units``, ``long_name``.
+
+    Raises
+    ------
+    StudyError
+        If ``values`` is empty.
+    """
 
     name: str
     values: tuple
@@ -97,8 +112,18 @@ class Dim:
 
 @dataclass(frozen=True)
 class Point:
-    """A grid node: a rocking ``model``, the factor on each record (``scale``: one number or one
-    per record) or, for generated motions, its own ``excitation``."""
+    """A grid node of a :class:`Plan`.
+
+    Attributes
+    ----------
+    model : murus.rocking.RockingModel
+        The rocking model of the node.
+    scale : float or tuple of float
+        Factor on the records [-]: one number, or one per record.
+    excitation : object, optional
+        For generated motions (a pulse of the case), the node's own excitation; ``None``
+        with records.
+    """
 
     model: object
     scale: float | tuple = 1.0
@@ -107,7 +132,35 @@ class Point:
 
 @dataclass
 class Plan:
-    """A resolved study (see the module docstring)."""
+    """A resolved study (see the module docstring): a grid of models times a set of records.
+
+    Attributes
+    ----------
+    name : str
+        Name of the study.
+    dims : list of Dim
+        The swept parameters, in order; the grid's shape is their lengths.
+    points : list of Point
+        One per grid node, in C order (as many as the grid has nodes).
+    records : RecordSet or None
+        The ground motions; ``None``: every point carries its ``excitation``.
+    spec : dict
+        The study's description, JSON-ready (stored in ``study.json`` and the Dataset).
+    duration : float or None
+        Duration of each history [s]; ``None``: the default of
+        :func:`murus.rocking.simulate_batch` (the end of the motion and a free tail).
+    rtol : float
+        Relative tolerance of the event-driven solver [-].
+    chunk_size : int
+        Histories per chunk (nodes per chunk = ``chunk_size / n_records``, at least one).
+
+    Raises
+    ------
+    StudyError
+        If the number of points is not that of the grid, the dimensions are not distinct or
+        one is named ``"record"``, a point lacks an excitation without records, or
+        ``chunk_size`` is not a positive integer.
+    """
 
     name: str
     dims: list[Dim]
@@ -385,11 +438,31 @@ def _prepare_folder(out: Path, plan: Plan, digest: str) -> None:
 
 def study_status(out) -> dict:
     """Tasks (chunks, or the ``task_files`` of ``study.json``) done, missing, damaged and
-    failed in a study folder: ``{"name", "digest", "unit", "total", "done", "missing",
-    "damaged": {index: reason}, "failed": {index: error}, "paths": {index: file relative to
-    the folder}, "complete", "result_file", "result"}``. A task is done when its file is
-    intact (its checksum matches, :func:`check_file`); a truncated or corrupt one is
-    "damaged" (a resume recomputes it)."""
+    failed in a study folder.
+
+    A task is done when its file is intact (its checksum matches, :func:`check_file`); a
+    truncated or corrupt one is "damaged" (a resume recomputes it).
+
+    Parameters
+    ----------
+    out : str or pathlib.Path
+        The study folder (it holds ``study.json``).
+
+    Returns
+    -------
+    dict
+        ``name`` and ``digest`` of the study; ``unit`` (what a task is, default
+        ``"chunks"``); ``total`` (number of tasks); ``done`` and ``missing`` (lists of task
+        indices); ``damaged`` (``{index: reason}``); ``failed`` (``{index: error}``, from
+        ``failures.json``, tasks not done); ``paths`` (``{index: file relative to the
+        folder}``); ``complete`` (all done); ``result_file`` (name of the Dataset file) and
+        ``result`` (whether it exists).
+
+    Raises
+    ------
+    StudyError
+        If ``out`` has no ``study.json`` or it is unreadable.
+    """
     out = Path(out)
     sj = out / "study.json"
     if not sj.exists():
@@ -488,24 +561,58 @@ def run_tasks(
     retries, a bounded window of tasks in flight and progress: the engine of :func:`run_plan`,
     for any picklable module-level ``fn`` (a chunk of rocking histories, a DEM run, ...).
 
-    on_result:
+    ``KeyboardInterrupt`` (Ctrl-C: SIGINT raises it in this process while the run lasts,
+    whatever a task installs, e.g. the DEM engine) and ``SystemExit`` are not retried: they
+    stop the run within about a second. The tasks that finish within ``grace`` seconds are
+    stored with those that had finished; the others running then are abandoned (the workers
+    of a process pool are killed, a Dask cluster opened here is closed), the queued ones
+    dropped; then the exception propagates.
+
+    Parameters
+    ----------
+    fn : callable
+        A picklable module-level function of one payload.
+    tasks : iterable of (int, object)
+        ``(index, payload)`` pairs.
+    executor : str or ExecutorHandle
+        As for :func:`run_plan`.
+    workers : int, optional
+        Number of workers of the executor.
+    scheduler : str, optional
+        Address of a Dask scheduler, or ``"local"``.
+    retries : int
+        A task that raises (or whose worker dies) is submitted again up to this many times.
+    on_result : callable
         ``on_result(index, result)``, called in this process as each task finishes, in index
         order among the tasks that finish together (store the result there: an interruption
         loses no finished task); it may return further ``(index, payload)`` tasks, queued
         at once (a stage that needs this result, e.g. the S1 checks of a collapse run).
-    total, done:
-        For ``progress(done, total, failed)``: the number of tasks of the whole study
-        (default: those given) and of those already done (stored by an earlier run).
-    executor, workers, scheduler, retries, hook, window:
-        As for :func:`run_plan` (``hook(index)`` runs in the worker before the task).
+    progress : callable, optional
+        ``progress(done, total, failed)``, counts of tasks.
+    total : int, optional
+        Number of tasks of the whole study, for ``progress``; default those given plus
+        ``done``.
+    done : int
+        Number of tasks already done (stored by an earlier run), for ``progress``.
+    hook : callable, optional
+        A picklable ``hook(index)`` run in the worker before the task.
+    window : int, optional
+        Tasks in flight at once; default as for :func:`run_plan`.
+    grace : float
+        Time given to the running tasks to finish after an interruption [s].
 
-    Returns the tasks that failed after their retries, ``{index: {"error", "attempts"}}``; the
-    others go on. ``KeyboardInterrupt`` (Ctrl-C: SIGINT raises it in this process while the
-    run lasts, whatever a task installs, e.g. the DEM engine) and ``SystemExit`` are not
-    retried: they stop the run within about a second. The tasks that finish within ``grace``
-    seconds are stored with those that had finished; the others running then are abandoned
-    (the workers of a process pool are killed, a Dask cluster opened here is closed), the
-    queued ones dropped; then the exception propagates.
+    Returns
+    -------
+    dict of int to dict
+        The tasks that failed after their retries, ``{index: {"error", "attempts"}}``; the
+        others went on.
+
+    Raises
+    ------
+    StudyError
+        If ``retries`` is not a non-negative integer.
+    KeyboardInterrupt, SystemExit
+        Passed on after the grace time (see above).
     """
     from murus.studies.executors import ExecutorHandle, is_broken_pool, open_executor
 
@@ -664,26 +771,49 @@ def run_plan(
 ):
     """Run a plan and return its Dataset (written to ``out/result.nc`` when ``out`` is given).
 
-    executor:
+    Parameters
+    ----------
+    plan : Plan
+        The resolved study.
+    executor : str or ExecutorHandle
         ``"serial"``, ``"process"``, ``"dask"`` (see :func:`murus.studies.executors.
         open_executor`, with ``workers`` and ``scheduler``) or an open
         :class:`~murus.studies.executors.ExecutorHandle`.
-    out:
+    workers : int, optional
+        Number of workers of the executor.
+    scheduler : str, optional
+        Address of a Dask scheduler (``"tcp://HOST:PORT"``), or ``"local"``.
+    out : str or pathlib.Path, optional
         Study folder: chunks are stored as they finish and a re-run computes only the missing
         ones (module docstring).
-    retries:
+    retries : int
         A chunk that raises (or whose worker dies) is submitted again up to ``retries`` times,
         then recorded as failed (its cases are NaN, its error in ``attrs["failures"]`` and
         ``failures.json``); the other chunks go on.
-    progress:
+    progress : callable, optional
         ``progress(done, total, failed)`` after each finished chunk (counts of chunks).
-    hook:
+    hook : callable, optional
         A picklable ``hook(chunk_index)`` called in the worker before the chunk runs (fault
         injection in tests, see :mod:`murus.studies.faults`).
-    window:
+    window : int, optional
         Chunks in flight at once (default: 1 for the serial executor, so that each chunk is
         stored before the next starts; else 64 or 4 per worker, whichever is larger: enough
         to keep a Dask cluster's queues full, bounded for very long sweeps).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions: the swept parameters, in order, and ``record``. One variable per entry of
+        :data:`SUMMARY_VARS` (units in its ``units`` attribute: rotations [rad], times [s],
+        energy [J], counts), ``theta_max_over_alpha`` [-], ``failed`` (bool), ``record_scale``
+        [-], and per grid node ``alpha`` [rad], ``p`` [rad/s], ``tie_stiffness`` [N/m],
+        ``bed_stiffness`` [N/m/m], ``damper_coefficient`` [N s/m]; the attributes carry the
+        study, its digest, the limit states, the failures and the solver options.
+
+    Raises
+    ------
+    StudyError
+        If ``retries`` is invalid or ``out`` holds another study.
     """
     from murus.rocking import kernels as K
 
@@ -817,14 +947,43 @@ def _point_quantities(plan: Plan) -> dict:
 
 def write_netcdf(ds, path) -> Path:
     """Write a Dataset to NetCDF4 with the h5netcdf engine, atomically and durably
-    (:func:`murus.outputs.atomic_write`)."""
+    (:func:`murus.outputs.atomic_write`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The Dataset, e.g. that of :func:`run_plan`.
+    path : str or pathlib.Path
+        The file written (replaced if it exists).
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     path = Path(path)
     return atomic_write(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"),
                         tmp_name=process_tmp_name(path))
 
 
 def open_result(path):
-    """Read a result written by :func:`write_netcdf` into memory (the file is closed)."""
+    """Read a result written by :func:`write_netcdf` into memory (the file is closed).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The NetCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The Dataset, loaded.
+
+    Raises
+    ------
+    StudyError
+        If the file does not exist or is not a readable NetCDF result.
+    """
     import xarray as xr
 
     path = Path(path)
