@@ -17,6 +17,7 @@ from murus.rocking import (
     simulate,
     sine_pulse,
 )
+from murus.rocking import kernels as K
 from murus.rocking import winkler_kernels as WK
 from murus.rocking.winkler import (
     WinklerBase,
@@ -96,10 +97,9 @@ def test_static_state_is_an_equilibrium_of_the_dynamic_equations():
         for th in (0.3 * theta_full(SHORT, 1e9), 0.02, 0.1):
             st = static_pushover(SHORT, base, th)
             exc = rectangular_pulse(float(st["a"][0]), 1.0)
-            X = exc.vector()
-            ag, av = exc.arrays()
+            drv = K.Drive(exc.vector(), *exc.arrays())
             y = np.array([st["v"][0], th, 0.0, 0.0, 0.0, 0.0])
-            r = WK.evaluate(P, X, ag, av, 0.5, y)
+            r = WK.evaluate(P, drv, 0.5, y)
             assert abs(r[WK.Y_VD]) < 1e-9 * G
             assert abs(r[WK.Y_OM]) * SHORT.z_G < 1e-9 * G
 

@@ -287,8 +287,7 @@ def simulate(
         raise ModelError("rigid transverse walls: the wall cannot start rotating inward "
                          "(theta0 < 0 or omega0 < 0)")
     P = mdl.params()
-    X = exc.vector()
-    ag, av = exc.arrays()
+    drv = K.Drive(exc.vector(), *exc.arrays())
     if method == "event":
         if not (0.0 < rtol < 1e-2):
             raise ModelError(f"rtol must be in (0, 1e-2), got {rtol!r}")
@@ -298,9 +297,8 @@ def simulate(
         n_out = int(math.floor(t_end / step + 1e-9)) + 1
         t = np.arange(n_out) * step
 
-        def kernel(th, om, pv, imp, up, pk):
-            return K.event_core(P, X, ag, av, t_end, th0, om0, float(rtol), step, th, om, pv,
-                                imp, up, pk, int(max_steps))
+        def kernel(log):
+            return K.event_core(P, drv, t_end, th0, om0, float(rtol), step, log, int(max_steps))
     elif method == "newmark":
         if dt is None or not (math.isfinite(dt) and dt > 0.0):
             raise ModelError("method 'newmark' needs a positive time step dt")
@@ -308,9 +306,8 @@ def simulate(
         n_out = n_steps + 1
         t = np.arange(n_out) * dt
 
-        def kernel(th, om, pv, imp, up, pk):
-            return K.newmark_core(P, X, ag, av, float(n_steps * dt), th0, om0, float(dt), th, om,
-                                  pv, imp, up, pk)
+        def kernel(log):
+            return K.newmark_core(P, drv, float(n_steps * dt), th0, om0, float(dt), log)
     else:
         raise ModelError(f"unknown method {method!r}; expected 'event' or 'newmark'")
     law = mdl.restitution
@@ -321,11 +318,11 @@ def simulate(
         if getattr(law, "variant", "causal") != "iterated" or S[K.S_OVERTURNED]:
             break
         target = float(S[K.S_THETA_MAX])
-        if P[K.P_E_ABSMAX] > 0.0 and abs(target - P[K.P_E_ABSMAX]) <= 1e-9 * target:
+        if P["e_absmax"] > 0.0 and abs(target - P["e_absmax"]) <= 1e-9 * target:
             break
         if iterations > law.max_iterations or target <= 0.0:
             break
-        P[K.P_E_ABSMAX] = target
+        P["e_absmax"] = target
     gh, gv = exc.sample(t)
     n_imp = int(S[K.S_N_IMPACTS])
     n_up = int(S[K.S_N_UPLIFTS])
@@ -375,13 +372,9 @@ def _run_logged(kernel, n_out, max_impacts):
     all (the kernel is deterministic)."""
     cap = 256
     while True:
-        th = np.full(n_out, np.nan)
-        om = np.full(n_out, np.nan)
-        pv = np.full(n_out, np.nan)
-        imp = np.full((min(cap, max_impacts), 3), np.nan)
-        up = np.full((cap, 2), np.nan)
-        pk = np.full((cap, 2), np.nan)
-        S = kernel(th, om, pv, imp, up, pk)
+        log = K.new_log(n_out, min(cap, max_impacts), cap)
+        S = kernel(log)
+        _, _, th, om, pv, imp, up, pk = log
         need = max(S[K.S_N_IMPACTS], S[K.S_N_UPLIFTS], S[K.S_N_PEAKS])
         if need <= cap or cap >= max(max_impacts, 1):
             break
@@ -469,7 +462,7 @@ def simulate_batch(
     if not mdls or not excs:
         raise ModelError("simulate_batch needs at least one model and one motion")
     nm, nx = len(mdls), len(excs)
-    Pm = np.stack([m.params() for m in mdls])
+    Pm = np.array([m.params() for m in mdls], dtype=K.PARAM_DTYPE)
     Xm = np.stack([e.vector() for e in excs])
     ag_flat, av_flat, offsets, lengths = _pack_motions(excs)
     ends = np.array([e.end_time for e in excs])
@@ -500,11 +493,11 @@ def simulate_batch(
                         getattr(m.restitution, "variant", "") == "iterated"), default=0)):
         todo = todo[(raw[todo, K.S_OVERTURNED] == 0.0) & (raw[todo, K.S_THETA_MAX] > 0.0)]
         target = raw[todo, K.S_THETA_MAX]
-        moved = np.abs(target - Pc[todo, K.P_E_ABSMAX]) > 1e-9 * target
+        moved = np.abs(target - Pc["e_absmax"][todo]) > 1e-9 * target
         todo = todo[moved]
         if todo.size == 0:
             break
-        Pc[todo, K.P_E_ABSMAX] = raw[todo, K.S_THETA_MAX]
+        Pc["e_absmax"][todo] = raw[todo, K.S_THETA_MAX]
         raw[todo] = run(todo)
     return BatchResult(raw=raw.reshape(nm, nx, K.S_SIZE),
                        alpha=np.array([m.body.alpha for m in mdls]))

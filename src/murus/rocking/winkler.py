@@ -108,6 +108,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
+from murus.rocking import kernels as K
 from murus.rocking import winkler_kernels as WK
 from murus.rocking.body import RigidBlock
 from murus.rocking.excitation import as_excitation
@@ -135,7 +136,7 @@ _STATUS = {
     2: "step budget exhausted: the integration stopped early",
 }
 
-_KINEMATICS = {"centre": 0.0, "corner": 1.0}
+_KINEMATICS = {"centre": WK.KIN_CENTRE, "corner": WK.KIN_CORNER}
 
 
 class WinklerError(ValueError):
@@ -262,24 +263,24 @@ def _I_G(body: RigidBlock) -> float:
     return max(body.I_O - body.mass * body.R**2, 0.0)
 
 
-def params(body: RigidBlock, base: WinklerBase, gravity: float = G) -> np.ndarray:
-    """The parameter vector read by :mod:`murus.rocking.winkler_kernels`."""
+def params(body: RigidBlock, base: WinklerBase, gravity: float = G) -> np.void:
+    """The parameter record read by :mod:`murus.rocking.winkler_kernels` (its ``PARAMS``)."""
     body = _body(body)
     base = _base(base)
     g = _gravity(gravity)
     tw = base.contact_width(body)
-    P = np.zeros(WK.P_SIZE)
-    P[WK.W_M] = body.mass
-    P[WK.W_IG] = _I_G(body)
-    P[WK.W_ZG] = body.z_G
-    P[WK.W_HB] = 0.5 * body.width
-    P[WK.W_TW] = tw
-    P[WK.W_K] = base.stiffness
-    P[WK.W_C] = base.damping_coefficient(body)
-    P[WK.W_G] = g
-    P[WK.W_KIN] = _KINEMATICS[base.kinematics]
-    P[WK.W_DSC] = body.mass * g / (base.stiffness * tw * body.width)
-    P[WK.W_WSC] = vertical_frequency(body, base)
+    P = WK.new_params()
+    P["m"] = body.mass
+    P["ig"] = _I_G(body)
+    P["zg"] = body.z_G
+    P["hb"] = 0.5 * body.width
+    P["tw"] = tw
+    P["k"] = base.stiffness
+    P["c"] = base.damping_coefficient(body)
+    P["g"] = g
+    P["kin"] = _KINEMATICS[base.kinematics]
+    P["dsc"] = body.mass * g / (base.stiffness * tw * body.width)
+    P["wsc"] = vertical_frequency(body, base)
     return P
 
 
@@ -565,8 +566,7 @@ def simulate_winkler(
     if not (math.isfinite(step) and step > 0.0):
         raise WinklerError(f"out_dt must be positive, got {out_dt!r}")
     P = params(body, base, g)
-    X = exc.vector()
-    ag, av = exc.arrays()
+    drv = K.Drive(exc.vector(), *exc.arrays())
     y0 = np.zeros(WK.NY)
     y0[WK.Y_V] = initial_settlement(body, base, th0, g)
     y0[WK.Y_TH] = th0
@@ -578,7 +578,7 @@ def simulate_winkler(
         out = np.full((n_out, WK.O_SIZE), np.nan)
         zc = np.full((cap, 3), np.nan)
         pk = np.full((cap, 2), np.nan)
-        S = WK.winkler_core(P, X, ag, av, t_end, y0, rtol, step, out, zc, pk, int(max_steps))
+        S = WK.winkler_core(P, drv, t_end, y0, rtol, step, out, zc, pk, int(max_steps))
         need = max(S[WK.S_N_CROSS], S[WK.S_N_PEAKS])
         if need <= cap or cap >= max_events:
             break
