@@ -279,6 +279,17 @@ def lever(ag, av, P):
     return min(hb, max(P.pivot_min, bl))
 
 
+@njit(cache=True)
+def levers(ag, av, P):
+    """:func:`lever` at every sample of the ground accelerations ``ag``, ``av`` [m/s2] (arrays
+    of one length): the formula of the kernel, for the Python side (:meth:`Pivot.lever
+    <murus.rocking.restraints.Pivot.lever>`, the rocking criterion of a result)."""
+    out = np.empty(ag.shape[0])
+    for i in range(ag.shape[0]):
+        out[i] = lever(ag[i], av[i], P)
+    return out
+
+
 @njit(cache=True, inline="always")
 def inertia(bl, P):
     """Moment of inertia about a pivot of lever ``bl`` [kg m2] (parallel axes)."""

@@ -150,9 +150,7 @@ class RockingModel:
         P["ig"] = b.I_O - b.mass * b.R**2
         P["zg"] = b.z_G
         P["hb"] = 0.5 * b.width
-        P["pivot"] = float(self.pivot.code)
-        P["pivot_min"] = self.pivot.min_lever_fraction * 0.5 * b.width
-        P["pivot_factor"] = self.pivot.factor
+        self.pivot.fill(P, b)
         P["e_aspect"] = 1.0
         self.restitution.fill(P, b, self.pivot.code != 0)
         P["terms"] = 1.0 if self.restrained else 0.0
