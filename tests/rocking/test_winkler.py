@@ -203,7 +203,7 @@ def test_first_return_converges_to_the_rigid_impact_time():
     for k in STIFFNESSES:
         res = simulate_winkler(SHORT, WinklerBase(k), theta0_over_alpha=0.5, duration=0.8,
                                out_dt=1e-2, rtol=1e-9)
-        errs.append(res.first_crossing / rigid - 1.0)
+        errs.append(res.t_first_crossing / rigid - 1.0)
     errs = np.array(errs)
     assert np.all(errs > 0.0)  # the elastic pivot lies inside the base: slower fall
     assert np.all(np.diff(errs) < 0.0)
@@ -230,7 +230,7 @@ def test_centre_kinematics_tends_to_its_own_rigid_limit():
     for k in STIFFNESSES:
         res = simulate_winkler(body, WinklerBase(k, kinematics="centre"), theta0=th0,
                                duration=0.8, out_dt=1e-2, rtol=1e-9)
-        errs.append(res.first_crossing / t_centre - 1.0)
+        errs.append(res.t_first_crossing / t_centre - 1.0)
     assert np.all(np.diff(errs) < 0.0) and errs[-1] < 0.003
 
 

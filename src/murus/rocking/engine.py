@@ -10,15 +10,16 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import threads as _threads
+from murus.results import Result, deprecated_alias
 from murus.rocking import kernels as K
-from murus.rocking.excitation import Excitation, as_excitation
+from murus.rocking.excitation import Excitation, as_excitation, default_duration
 from murus.rocking.model import ModelError, as_model
-
-#: Limit states of seed 002 §4 on the normalised rotation theta/alpha.
-LIMIT_STATES = {"limited": 0.1, "moderate": 0.4}
-
-#: Default free-motion time added after the end of the input [s].
-FREE_TAIL = 5.0
+from murus.rocking.summary import (  # noqa: F401 (FREE_TAIL, LIMIT_STATES: public here too)
+    FREE_TAIL,
+    LIMIT_STATES,
+    SUMMARY,
+    values,
+)
 
 #: What each integration method is to be trusted for (VALIDATION.md, issue 15).
 METHOD_NOTES = {
@@ -38,13 +39,15 @@ _STATUS = {
 
 
 @dataclass
-class RockingResult:
+class RockingResult(Result):
     """A single time history (SI units: s, rad, rad/s, m/s², J).
 
     Arrays are on the output grid ``t``; ``pivot`` is 0 at rest, +1/-1 rocking about O/O'.
     ``impacts`` has rows ``(t, omega_before, omega_after)``; ``uplift_intervals`` rows
     ``(start, end)`` (end ``nan`` while still rocking at the end of the run); ``peaks`` rows
-    ``(t, theta)`` at each extremum of the rotation while rocking."""
+    ``(t, theta)`` at each extremum of the rotation while rocking. The scalar quantities are
+    declared in :data:`murus.rocking.summary.SUMMARY` (units, description); ``uplift_time``
+    is the deprecated name of ``t_uplift``."""
 
     t: np.ndarray
     theta: np.ndarray
@@ -64,7 +67,7 @@ class RockingResult:
     theta_pos: float
     theta_neg: float
     n_impacts: int
-    uplift_time: float | None
+    t_uplift: float | None
     overturned: bool
     t_overturn: float | None
     t_exceed_alpha: float | None
@@ -74,6 +77,13 @@ class RockingResult:
     n_steps: int
     meta: dict = field(default_factory=dict)
     lever: np.ndarray | None = None
+
+    uplift_time = deprecated_alias("t_uplift", "uplift_time")
+
+    def headline(self) -> str:
+        """``theta_max/alpha = ..., impacts = ..., overturned = ...`` (the CLI's line)."""
+        return (f"theta_max/alpha = {self.theta_max_over_alpha:.4f}, impacts = {self.n_impacts}"
+                f", overturned = {self.overturned}")
 
     def _lever(self) -> np.ndarray:
         if self.lever is not None:
@@ -86,14 +96,11 @@ class RockingResult:
 
     @property
     def limit_states(self) -> dict[str, bool]:
-        """Limit states of seed 002 reached (``theta/alpha >= 0.1`` and ``0.4``) and collapse."""
+        """Limit states reached (:data:`murus.rocking.summary.LIMIT_STATES`, EURODYN (2020),
+        §4: ``theta/alpha >= 0.1`` and ``0.4``) and collapse."""
         out = {k: bool(self.theta_max_over_alpha >= v) for k, v in LIMIT_STATES.items()}
         out["overturning"] = self.overturned
         return out
-
-    @property
-    def success(self) -> bool:
-        return self.status == 0
 
     @property
     def rocking_criterion(self) -> np.ndarray:
@@ -143,8 +150,10 @@ class RockingResult:
             "overturned": self.overturned,
             "t_overturn": self.t_overturn,
             "t_exceed_alpha": self.t_exceed_alpha,
-            "impacts": self.n_impacts,
-            "uplift_time": self.uplift_time,
+            "n_impacts": self.n_impacts,
+            "impacts": self.n_impacts,  # earlier name of n_impacts (kept for readers)
+            "t_uplift": self.t_uplift,
+            "uplift_time": self.t_uplift,  # earlier name of t_uplift (kept for readers)
             "uplift_intervals": [[_opt(a), _opt(b)] for a, b in self.uplift_intervals],
             "limit_states": self.limit_states,
             "alpha": self.alpha,
@@ -194,6 +203,12 @@ def restraint_energy(model: dict, theta: np.ndarray, pivot: np.ndarray) -> np.nd
     return E
 
 
+#: Quantities of the summary table kept as attributes of a :class:`RockingResult`.
+_RESULT_FIELDS = ("theta_max", "theta_signed_max", "t_theta_max", "theta_pos", "theta_neg",
+                  "n_impacts", "t_uplift", "overturned", "t_overturn", "t_exceed_alpha",
+                  "energy_dissipated", "status", "n_steps")
+
+
 def _opt(x) -> float | None:
     return None if math.isnan(x) else float(x)
 
@@ -202,7 +217,7 @@ def _resolve(model, motion, duration, restitution, linearised):
     mdl = as_model(model, restitution, linearised)
     exc = as_excitation(motion)
     if duration is None:
-        duration = exc.end_time + FREE_TAIL
+        duration = default_duration(exc)
     duration = float(duration)
     if not (math.isfinite(duration) and duration > 0.0):
         raise ModelError(f"duration must be positive, got {duration!r}")
@@ -243,18 +258,27 @@ def simulate(
     theta0_over_alpha: float | None = None,
     restitution=None,
     linearised: bool | None = None,
-    rtol: float = 1e-9,
+    rtol: float | None = None,
     dt: float | None = None,
     out_dt: float | None = None,
     max_impacts: int = 100_000,
     max_steps: int = 50_000_000,
-) -> RockingResult:
-    """Time-history analysis of a rocking body.
+) -> Result:
+    """Time-history analysis of a rocking body, on a rigid base or on an elastic layer.
+
+    The one front end of the rocking engines, in the manner of ``scipy.integrate.solve_ivp``:
+    it dispatches on the model. A :class:`RockingModel` or a :class:`RigidBlock` (rigid base)
+    returns a :class:`RockingResult`; a :class:`~murus.rocking.winkler.WinklerModel` (body on a
+    no-tension elastic layer) is run by :func:`~murus.rocking.winkler.simulate_winkler` and
+    returns a :class:`~murus.rocking.winkler.WinklerResult` (options of the rigid base only:
+    ``restitution``, ``linearised``, ``dt``, ``max_impacts``, ``method = "newmark"``). Both
+    results derive from :class:`murus.results.Result`.
 
     Parameters
     ----------
     model:
-        A :class:`RockingModel` or a :class:`RigidBlock` (Housner restitution by default).
+        A :class:`RockingModel` or a :class:`RigidBlock` (Housner restitution by default), or a
+        :class:`~murus.rocking.winkler.WinklerModel`.
     motion:
         A GroundMotion (``dt``, ``acc`` [m/s²], optional ``acc_v``), an excitation of
         :mod:`murus.rocking.excitation`, or ``None`` for free vibration.
@@ -271,16 +295,34 @@ def simulate(
         smooth, well-resolved responses, and check a verdict near the threshold with the
         default.
     duration:
-        End of the analysis [s]; default: end of the input plus 5 s of free motion.
+        End of the analysis [s]; default: end of the input plus 5 s of free motion, 20 s for a
+        free vibration (:func:`murus.rocking.excitation.default_duration`; the same from a case
+        file).
     theta0, omega0, theta0_over_alpha:
         Initial rotation [rad] (or as a fraction of alpha) and angular velocity [rad/s].
     rtol:
-        Relative tolerance of the event-driven integrator (absolute: ``rtol * alpha``).
+        Relative tolerance of the event-driven integrator (absolute: ``rtol * alpha``); default
+        1e-9 (rigid base), 1e-8 (elastic layer).
     dt:
         Newmark time step [s] (required for ``method="newmark"``).
     out_dt:
         Output grid step [s] for the event-driven method (default: the record's step).
     """
+    from murus.rocking.winkler import WinklerModel, simulate_winkler
+
+    if isinstance(model, WinklerModel):
+        rigid_only = {"restitution": restitution, "linearised": linearised, "dt": dt}
+        given = [k for k, v in rigid_only.items() if v is not None]
+        if method != "event" or given:
+            what = f"method {method!r}" if method != "event" else ", ".join(given)
+            raise ModelError(f"{what}: an option of the rigid base, not of a WinklerModel")
+        return simulate_winkler(model.body, model.base, motion, duration=duration,
+                                theta0=theta0, omega0=omega0,
+                                theta0_over_alpha=theta0_over_alpha, gravity=model.gravity,
+                                rtol=1e-8 if rtol is None else rtol, out_dt=out_dt,
+                                max_steps=max_steps)
+    if rtol is None:
+        rtol = 1e-9
     mdl, exc, t_end = _resolve(model, motion, duration, restitution, linearised)
     th0, om0 = _initial(theta0, omega0, theta0_over_alpha, mdl.body)
     if mdl.rigid_walls and (th0 < 0.0 or (th0 == 0.0 and om0 < 0.0)):
@@ -324,9 +366,10 @@ def simulate(
             break
         P["e_absmax"] = target
     gh, gv = exc.sample(t)
-    n_imp = int(S[K.S_N_IMPACTS])
-    n_up = int(S[K.S_N_UPLIFTS])
-    status = int(S[K.S_STATUS])
+    vals = values(SUMMARY, S)
+    n_imp = vals["n_impacts"]
+    n_up = vals["n_uplifts"]
+    status = vals["status"]
     meta = {
         "model": mdl.describe(),
         "motion": exc.describe(),
@@ -348,20 +391,8 @@ def simulate(
         alpha=mdl.body.alpha,
         p=mdl.p,
         restitution=mdl.e,
-        theta_max=float(S[K.S_THETA_MAX]),
-        theta_signed_max=float(S[K.S_THETA_AT_MAX]),
-        t_theta_max=float(S[K.S_T_THETA_MAX]),
-        theta_pos=float(S[K.S_THETA_POS]),
-        theta_neg=float(S[K.S_THETA_NEG]),
-        n_impacts=n_imp,
-        uplift_time=_opt(S[K.S_T_UPLIFT]),
-        overturned=bool(S[K.S_OVERTURNED]),
-        t_overturn=_opt(S[K.S_T_OVERTURN]),
-        t_exceed_alpha=_opt(S[K.S_T_EXCEED_ALPHA]),
-        energy_dissipated=float(S[K.S_E_DISSIPATED]),
-        status=status,
-        message=_message(status, float(S[K.S_T_FINAL]), t_end, mdl),
-        n_steps=int(S[K.S_N_STEPS]),
+        **{k: v for k, v in vals.items() if k in _RESULT_FIELDS},
+        message=_message(status, vals["t_final"], t_end, mdl),
         meta=meta,
         lever=mdl.pivot.lever(mdl.body, gh, gv, mdl.gravity) if mdl.pivot.code else None,
     )
@@ -383,18 +414,10 @@ def _run_logged(kernel, n_out, max_impacts):
 
 
 # ----------------------------------------------------------------------------- batches ----
-SUMMARY_FIELDS = {
-    "theta_max": K.S_THETA_MAX,
-    "theta_signed_max": K.S_THETA_AT_MAX,
-    "t_theta_max": K.S_T_THETA_MAX,
-    "n_impacts": K.S_N_IMPACTS,
-    "uplift_time": K.S_T_UPLIFT,
-    "overturned": K.S_OVERTURNED,
-    "t_overturn": K.S_T_OVERTURN,
-    "t_exceed_alpha": K.S_T_EXCEED_ALPHA,
-    "energy_dissipated": K.S_E_DISSIPATED,
-    "status": K.S_STATUS,
-}
+#: Slot of each summary quantity (:data:`murus.rocking.summary.SUMMARY`), and of its earlier
+#: names, in the summary vectors of a :class:`BatchResult`.
+SUMMARY_FIELDS = {**{q.name: i for i, q in enumerate(SUMMARY)},
+                  **{a: i for i, q in enumerate(SUMMARY) for a in q.aliases}}
 
 
 @dataclass
@@ -465,8 +488,8 @@ def simulate_batch(
     Pm = np.array([m.params() for m in mdls], dtype=K.PARAM_DTYPE)
     Xm = np.stack([e.vector() for e in excs])
     ag_flat, av_flat, offsets, lengths = _pack_motions(excs)
-    ends = np.array([e.end_time for e in excs])
-    t_end_m = ends + FREE_TAIL if duration is None else np.full(nx, float(duration))
+    t_end_m = (np.array([default_duration(e) for e in excs]) if duration is None
+               else np.full(nx, float(duration)))
     im, ix = np.meshgrid(np.arange(nm), np.arange(nx), indexing="ij")
     im = im.ravel()
     ix = ix.ravel()

@@ -43,6 +43,8 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit, prange
 
+from murus.rocking.summary import SUMMARY, slots
+
 # ---- the model parameters: one record of a structured dtype ------------------------------
 #: The parameters read by the kernels, declared once: (field, units, description). The kernels
 #: read them by name (``P.m``); :data:`PARAM_DTYPE` is built from this table, in this order (the
@@ -159,24 +161,25 @@ class Log(NamedTuple):
     up: np.ndarray
     pk: np.ndarray
 
-# ---- layout of the summary vector ---------------------------------------------------------
-S_THETA_MAX = 0  # max |theta| [rad]
-S_THETA_AT_MAX = 1  # signed theta at the max [rad]
-S_T_THETA_MAX = 2  # time of the max [s]
-S_N_IMPACTS = 3
-S_T_UPLIFT = 4  # first uplift [s] (nan: never)
-S_OVERTURNED = 5  # 1.0 if overturned
-S_T_OVERTURN = 6  # [s] (nan)
-S_T_EXCEED_ALPHA = 7  # first |theta| > alpha [s] (nan)
-S_E_DISSIPATED = 8  # energy lost at impacts [J]
-S_N_UPLIFTS = 9
-S_STATUS = 10  # 0 ok, 1 step size underflow, 2 step budget exhausted
-S_N_STEPS = 11
-S_T_FINAL = 12
-S_THETA_POS = 13  # max theta [rad]
-S_THETA_NEG = 14  # min theta [rad]
-S_N_PEAKS = 15
-S_SIZE = 16
+# ---- slots of the summary vector: declared once in :data:`murus.rocking.summary.SUMMARY` ---
+_SLOT = slots(SUMMARY)
+S_THETA_MAX = _SLOT["theta_max"]  # max |theta| [rad]
+S_THETA_AT_MAX = _SLOT["theta_signed_max"]  # signed theta at the max [rad]
+S_T_THETA_MAX = _SLOT["t_theta_max"]  # time of the max [s]
+S_N_IMPACTS = _SLOT["n_impacts"]
+S_T_UPLIFT = _SLOT["t_uplift"]  # first uplift [s] (nan: never)
+S_OVERTURNED = _SLOT["overturned"]  # 1.0 if overturned
+S_T_OVERTURN = _SLOT["t_overturn"]  # [s] (nan)
+S_T_EXCEED_ALPHA = _SLOT["t_exceed_alpha"]  # first |theta| > alpha [s] (nan)
+S_E_DISSIPATED = _SLOT["energy_dissipated"]  # energy lost at impacts [J]
+S_N_UPLIFTS = _SLOT["n_uplifts"]
+S_STATUS = _SLOT["status"]  # 0 ok, 1 step size underflow, 2 step budget exhausted
+S_N_STEPS = _SLOT["n_steps"]
+S_T_FINAL = _SLOT["t_final"]
+S_THETA_POS = _SLOT["theta_pos"]  # max theta [rad]
+S_THETA_NEG = _SLOT["theta_neg"]  # min theta [rad]
+S_N_PEAKS = _SLOT["n_peaks"]
+S_SIZE = len(SUMMARY)
 
 # ---- law memory (state carried by history-dependent laws of later issues) ----------------
 MEM_HALF_MAX = 0  # max |theta| since the last impact

@@ -108,10 +108,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import G
+from murus.results import Result, deprecated_alias
 from murus.rocking import kernels as K
 from murus.rocking import winkler_kernels as WK
 from murus.rocking.body import RigidBlock
-from murus.rocking.excitation import as_excitation
+from murus.rocking.excitation import as_excitation, default_duration
+from murus.rocking.summary import WINKLER_SUMMARY, values
 
 __all__ = [
     "WinklerBase",
@@ -127,8 +129,6 @@ __all__ = [
     "vertical_frequency",
 ]
 
-#: Default free-motion time added after the end of the input [s] (as :func:`simulate`).
-FREE_TAIL = 5.0
 
 _STATUS = {
     0: "ok",
@@ -387,14 +387,16 @@ def overturning_acceleration(body, base, gravity: float = G) -> float:
 
 # ================================================================== simulation =========
 @dataclass
-class WinklerResult:
+class WinklerResult(Result):
     """One time history on the elastic layer (SI units: s, m, rad, N, Pa, J).
 
     Arrays are on the output grid ``t``. ``pivot`` is the centre of pressure in body coordinates
     (``xi`` from the base centre, positive towards the corner O lowered by ``theta > 0``; nan
     without contact). ``crossings`` has rows ``(t, theta', v)`` at each ``theta = 0``;
     ``peaks`` rows ``(t, theta)``: the extreme rotation of each half cycle between crossings (the
-    first row is the initial half cycle, the last one the half cycle running at the end)."""
+    first row is the initial half cycle, the last one the half cycle running at the end). The
+    scalar quantities are declared in :data:`murus.rocking.summary.WINKLER_SUMMARY`;
+    ``first_crossing`` is the deprecated name of ``t_first_crossing``."""
 
     t: np.ndarray
     theta: np.ndarray
@@ -433,9 +435,12 @@ class WinklerResult:
     n_rejected: int
     meta: dict = field(default_factory=dict)
 
-    @property
-    def success(self) -> bool:
-        return self.status == 0
+    first_crossing = deprecated_alias("t_first_crossing", "first_crossing")
+
+    def headline(self) -> str:
+        """``theta_max/alpha = ..., zero crossings = ..., overturned = ...`` (the CLI's line)."""
+        return (f"theta_max/alpha = {self.theta_max_over_alpha:.4f}, zero crossings = "
+                f"{self.crossings.shape[0]}, overturned = {self.overturned}")
 
     @property
     def lifted_length(self) -> np.ndarray:
@@ -458,7 +463,7 @@ class WinklerResult:
         return self.theta_max / self.alpha
 
     @property
-    def first_crossing(self) -> float | None:
+    def t_first_crossing(self) -> float | None:
         """Time of the first return to ``theta = 0`` [s] (the 'impact' of the rigid model)."""
         return float(self.crossings[0, 0]) if self.crossings.shape[0] else None
 
@@ -483,8 +488,10 @@ class WinklerResult:
             "t_theta_max": self.t_theta_max,
             "overturned": self.overturned,
             "t_overturn": self.t_overturn,
-            "first_crossing": self.first_crossing,
-            "crossings": int(self.crossings.shape[0]),
+            "t_first_crossing": self.t_first_crossing,
+            "first_crossing": self.t_first_crossing,  # earlier name (kept for readers)
+            "n_crossings": int(self.crossings.shape[0]),
+            "crossings": int(self.crossings.shape[0]),  # earlier name (kept for readers)
             "peak_contact_force": self.peak_contact_force,
             "peak_pressure": self.peak_pressure,
             "peak_angular_acceleration": self.peak_angular_acceleration,
@@ -496,8 +503,36 @@ class WinklerResult:
         }
 
 
-def _opt(x) -> float | None:
-    return None if math.isnan(x) else float(x)
+@dataclass(frozen=True)
+class WinklerModel:
+    """A rigid body on a no-tension elastic (Winkler) layer: the model that
+    :func:`murus.rocking.simulate` runs with :func:`simulate_winkler`.
+
+    Parameters
+    ----------
+    body : RigidBlock
+        The body.
+    base : WinklerBase
+        The elastic layer.
+    gravity : float
+        ``g`` [m/s²].
+    """
+
+    body: RigidBlock
+    base: WinklerBase
+    gravity: float = G
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "body", _body(self.body))
+        object.__setattr__(self, "base", _base(self.base))
+        object.__setattr__(self, "gravity", _gravity(self.gravity))
+
+
+#: Quantities of the summary table kept as attributes of a :class:`WinklerResult`.
+_RESULT_FIELDS = ("theta_max", "theta_signed_max", "t_theta_max", "overturned", "t_overturn",
+                  "peak_contact_force", "t_peak_contact_force", "peak_pressure",
+                  "peak_angular_acceleration", "min_contact_length", "status", "n_steps",
+                  "n_rejected")
 
 
 def simulate_winkler(
@@ -546,7 +581,7 @@ def simulate_winkler(
     g = _gravity(gravity)
     exc = as_excitation(motion)
     if duration is None:
-        duration = exc.end_time + FREE_TAIL
+        duration = default_duration(exc)
     t_end = _number("duration", duration, positive=True)
     if theta0_over_alpha is not None:
         theta0 = float(theta0_over_alpha) * body.alpha
@@ -595,7 +630,8 @@ def simulate_winkler(
     Mtt = _I_G(body) + m * (A**2 + zg**2 * s**2)
     T = 0.5 * (m * vd**2 - 2.0 * m * zg * s * vd * om + Mtt * om**2)
     V = m * g * (v + zg * (np.cos(th) - 1.0))
-    status = int(S[WK.S_STATUS])
+    vals = values(WINKLER_SUMMARY, S)
+    status = vals["status"]
     meta = {
         "body": body.describe(),
         "base": base.describe(body),
@@ -612,13 +648,6 @@ def simulate_winkler(
         dissipated_energy=out[:, WK.O_D], input_energy=out[:, WK.O_W],
         crossings=zc[:n_zc].copy(), peaks=pk[:n_pk].copy(),
         width=body.width, alpha=body.alpha,
-        theta_max=float(S[WK.S_THETA_MAX]), theta_signed_max=float(S[WK.S_THETA_AT_MAX]),
-        t_theta_max=float(S[WK.S_T_THETA_MAX]),
-        overturned=bool(S[WK.S_OVERTURNED]), t_overturn=_opt(S[WK.S_T_OVERTURN]),
-        peak_contact_force=float(S[WK.S_F_MAX]), t_peak_contact_force=float(S[WK.S_T_F_MAX]),
-        peak_pressure=float(S[WK.S_Q_MAX]),
-        peak_angular_acceleration=float(S[WK.S_THDD_MAX]),
-        min_contact_length=float(S[WK.S_LC_MIN]),
-        status=status, message=_STATUS.get(status, "unknown"),
-        n_steps=int(S[WK.S_N_STEPS]), n_rejected=int(S[WK.S_N_REJECT]), meta=meta,
+        **{k: v for k, v in vals.items() if k in _RESULT_FIELDS},
+        message=_STATUS.get(status, "unknown"), meta=meta,
     )

@@ -27,6 +27,7 @@ import numpy as np
 from numba import njit
 
 from murus.rocking import kernels as K
+from murus.rocking.summary import WINKLER_SUMMARY, slots
 
 # ---- the model parameters: one record of a structured dtype --------------------------------
 #: The parameters read by the kernels, declared once: (field, units, description); the kernels
@@ -81,24 +82,25 @@ O_U = 10  # elastic energy of the layer [J]
 O_THDD = 11  # angular acceleration [rad/s2]
 O_SIZE = 12
 
-# ---- summary vector -----------------------------------------------------------------------------
-S_THETA_MAX = 0  # max |theta| [rad]
-S_THETA_AT_MAX = 1  # signed theta at the max
-S_T_THETA_MAX = 2
-S_OVERTURNED = 3
-S_T_OVERTURN = 4
-S_N_CROSS = 5  # crossings of theta = 0
-S_N_PEAKS = 6  # half-cycle peaks
-S_F_MAX = 7  # largest contact resultant [N] (at step ends)
-S_T_F_MAX = 8
-S_Q_MAX = 9  # largest contact pressure [Pa] (at step ends)
-S_THDD_MAX = 10  # largest |theta''| [rad/s2] (at step ends)
-S_LC_MIN = 11  # smallest contact length [m]
-S_STATUS = 12  # 0 ok, 1 step size underflow, 2 step budget exhausted
-S_N_STEPS = 13
-S_T_FINAL = 14
-S_N_REJECT = 15
-S_SIZE = 16
+# ---- slots of the summary vector: declared once in murus.rocking.summary.WINKLER_SUMMARY ---
+_SLOT = slots(WINKLER_SUMMARY)
+S_THETA_MAX = _SLOT["theta_max"]  # max |theta| [rad]
+S_THETA_AT_MAX = _SLOT["theta_signed_max"]  # signed theta at the max
+S_T_THETA_MAX = _SLOT["t_theta_max"]
+S_OVERTURNED = _SLOT["overturned"]
+S_T_OVERTURN = _SLOT["t_overturn"]
+S_N_CROSS = _SLOT["n_crossings"]  # crossings of theta = 0
+S_N_PEAKS = _SLOT["n_peaks"]  # half-cycle peaks
+S_F_MAX = _SLOT["peak_contact_force"]  # largest contact resultant [N] (at step ends)
+S_T_F_MAX = _SLOT["t_peak_contact_force"]
+S_Q_MAX = _SLOT["peak_pressure"]  # largest contact pressure [Pa] (at step ends)
+S_THDD_MAX = _SLOT["peak_angular_acceleration"]  # largest |theta''| [rad/s2] (at step ends)
+S_LC_MIN = _SLOT["min_contact_length"]  # smallest contact length [m]
+S_STATUS = _SLOT["status"]  # 0 ok, 1 step size underflow, 2 step budget exhausted
+S_N_STEPS = _SLOT["n_steps"]
+S_T_FINAL = _SLOT["t_final"]
+S_N_REJECT = _SLOT["n_rejected"]
+S_SIZE = len(WINKLER_SUMMARY)
 
 HALF_PI = 0.5 * math.pi
 
