@@ -1,8 +1,8 @@
 """Rigid-body rocking of walls and blocks (Housner's model and its extensions).
 
-Sign convention (seed 000 §3.1.1, seed 002 Figure 1): ``theta > 0`` is a clockwise rotation
-about the right corner O; a positive ground acceleration drives a positive rotation (seed 002
-eq. 1); the vertical ground acceleration is positive upward. SI units.
+Sign convention (Mordant et al. (SERIES) §3.1.1, EURODYN (2020) Figure 1): ``theta > 0`` is a
+clockwise rotation about the right corner O; a positive ground acceleration drives a positive
+rotation (EURODYN (2020) eq. 1); the vertical ground acceleration is positive upward. SI units.
 
 The names below are imported on first use (PEP 562), so that ``murus --help`` and the design
 commands do not load numba.

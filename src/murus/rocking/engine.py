@@ -105,8 +105,8 @@ class RockingResult(Result):
     @property
     def rocking_criterion(self) -> np.ndarray:
         """``RC(t) = |a_g| z_G / ((g + a_v) b_n)`` with ``b_n`` the lever of the weight about
-        the pivot: ``b/2`` on the corner (seed 000 eq. 9: ``m a_g H / (m g B/2)``), the
-        compressive-length lever with a moving pivot (eq. 11); > 1: rocking starts (without
+        the pivot: ``b/2`` on the corner (Mordant et al. (SERIES) eq. 9: ``m a_g H / (m g B/2)``),
+        the compressive-length lever with a moving pivot (eq. 11); > 1: rocking starts (without
         restraints)."""
         g = self.meta.get("model", {}).get("gravity", 9.81)
         zg = self.meta["model"]["body"]["z_G"]
@@ -288,7 +288,8 @@ def simulate(
         with the step ``dt`` and impacts located inside the step (second order). Trust the
         event-driven method for verdicts (overturning, limit states), fragility and anything
         near collapse: it agrees with a tight reference within 0.1 % on theta_max wherever the
-        response is not chaotic. Newmark reproduces seed 000's fixed-step analyses; at
+        response is not chaotic. Newmark reproduces the fixed-step analyses of Mordant et al.
+        (SERIES); at
         ``dt = 1 ms`` on FEMA P695 records it gives a wrong overturning verdict in 10 of 576
         runs (4 false, 6 missed overturns) and errs by more than 1 % on theta_max in 59 of 390
         stable cases (VALIDATION.md, "The rest rule against an accurate solver"): use it for
@@ -509,7 +510,8 @@ def simulate_batch(
                                  np.full(sel.size, float(omega0)), float(rtol), int(max_steps))
 
     raw = run(np.arange(nc))
-    # the iterated variant of seed 000 eq. 16: re-run the cases whose largest rotation moved
+    # the iterated variant of Mordant et al. (SERIES) eq. 16: re-run the cases whose largest
+    # rotation moved
     iterated = np.array([getattr(m.restitution, "variant", "") == "iterated" for m in mdls])
     todo = np.flatnonzero(iterated[im])
     for _ in range(max((m.restitution.max_iterations for m in mdls if

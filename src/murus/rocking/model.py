@@ -25,7 +25,8 @@ class ModelError(ValueError):
 
 @dataclass(frozen=True)
 class RockingModel:
-    """A rigid body rocking on a rigid base (Housner 1963; seed 000 §3.1, seed 002 eq. 1).
+    """A rigid body rocking on a rigid base (Housner 1963; Mordant et al. (SERIES) §3.1, EURODYN
+    (2020) eq. 1).
 
     Parameters
     ----------
@@ -52,12 +53,12 @@ class RockingModel:
         once (velocity below ``rest_tol * p * alpha``, or a bounce on rigid walls below
         ``rest_tol * alpha``).
     tie, transverse_walls, damper:
-        Restraints (:mod:`murus.rocking.restraints`; seed 002 eqs. 2-7).
+        Restraints (:mod:`murus.rocking.restraints`; EURODYN (2020) eqs. 2-7).
     motion_sides:
         ``"two"``: the wall rocks freely both ways; ``"one"``: inward rotations push against the
-        transverse walls (seed 002 "one-sided motion"), which must then be given.
+        transverse walls (EURODYN (2020) "one-sided motion"), which must then be given.
     pivot:
-        A :class:`Pivot` law (seed 000 §3.3.1); default Housner's corner.
+        A :class:`Pivot` law (Mordant et al. (SERIES) §3.3.1); default Housner's corner.
     """
 
     body: RigidBlock

@@ -7,7 +7,7 @@ impact (:func:`murus.rocking.kernels.restitution`).
 Seed 000 §3.3.2 lost the text of its equations 13-18 in extraction; the laws below reconstruct
 them from the physical description of the seed and the rocking literature (Housner 1963 for the
 momentum balance; the ``1 - k sin^2 alpha`` family, with ``k = 2`` for a mass on top and
-``k = 3/2`` for a uniform rectangle, as in seed 002 §4.3). What was assumed is stated on each.
+``k = 3/2`` for a uniform rectangle, as in EURODYN (2020) §4.3). What was assumed is stated on each.
 """
 
 from __future__ import annotations
@@ -30,9 +30,9 @@ class RestitutionError(ValueError):
 class Housner:
     """Housner's coefficient from conservation of angular momentum about the new pivot.
 
-    ``e = 1 - 2 m R² sin²(alpha) / I_O`` for the actual body (seed 000 eq. 10): ``cos 2 alpha``
-    for a mass at the top, ``1 - 3/2 sin²(alpha)`` for a uniform rectangle (seed 002 §4.3,
-    Housner 1963).
+    ``e = 1 - 2 m R² sin²(alpha) / I_O`` for the actual body (Mordant et al. (SERIES) eq. 10): ``cos
+    2 alpha`` for a mass at the top, ``1 - 3/2 sin²(alpha)`` for a uniform rectangle (EURODYN (2020)
+    §4.3, Housner 1963).
     """
 
     KIND: ClassVar[int] = 0
@@ -49,8 +49,8 @@ class Housner:
         return self.value(body)
 
     def fill(self, P: np.ndarray, body: RigidBlock, moving_pivot: bool) -> None:
-        """With a moving pivot (seed 000 eq. 13) the coefficient follows the lever at each
-        impact by the momentum balance about the new pivot; on the corner it is a constant."""
+        """With a moving pivot (Mordant et al. (SERIES) eq. 13) the coefficient follows the lever at
+        each impact by the momentum balance about the new pivot; on the corner it is a constant."""
         P["e"] = self.value(body)
         P["e_kind"] = K.E_MOMENTUM if moving_pivot else K.E_CONSTANT
 
@@ -58,7 +58,7 @@ class Housner:
 @dataclass(frozen=True)
 class Constant:
     """A constant coefficient ``e`` in [0, 1] given by the user (``e = 1``: elastic impacts,
-    used by seed 002 §4.2 to isolate viscous damping)."""
+    used by EURODYN (2020) §4.2 to isolate viscous damping)."""
 
     e: float
     KIND: ClassVar[int] = 0
@@ -87,7 +87,7 @@ class Constant:
 
 def momentum_restitution(body: RigidBlock, b1: float, b2: float) -> float:
     """Coefficient of restitution when the pivot moves at the impact (Housner's angular
-    momentum balance about the new pivot, seed 000 eq. 13 reconstructed) [-].
+    momentum balance about the new pivot, Mordant et al. (SERIES) eq. 13 reconstructed) [-].
 
     ``b1``, ``b2``: lever of the weight about the pivot before and after the impact [m]:
     ``e = (I_G + m z_G^2 - m b1 b2) / (I_G + m z_G^2 + m b2^2)``, i.e.
@@ -111,14 +111,15 @@ def _coef(owner: str, name: str, v, lo: float = 0.0) -> float:
 
 @dataclass(frozen=True)
 class AmplitudeDependent:
-    """The restitution laws of seed 000 §3.3.2 (eqs. 14-18, reconstructed), all of the form
+    """The restitution laws of Mordant et al. (SERIES) §3.3.2 (eqs. 14-18, reconstructed), all of
+    the form
 
     ``e_n = 1 - (k0 + k1 r_n) sin^2(alpha_n)``
 
     - eqs. 14-15 (the alternative formulation of the seed's reference [8], "different options
       are possible regarding the coefficient of sin^2 alpha"): ``k1 = 0`` and ``k0`` free;
-      ``k0 = 2`` is Housner's value for a mass on top (seed 000 eq. 10), ``k0 = 3/2`` the value
-      for a uniform rectangle, the default of :meth:`coefficient`;
+      ``k0 = 2`` is Housner's value for a mass on top (Mordant et al. (SERIES) eq. 10), ``k0 = 3/2``
+      the value for a uniform rectangle, the default of :meth:`coefficient`;
     - eq. 16, amplitude dependence ("the largest the amplitude, the stronger the impact, the
       lower the restitution"): ``r_n = theta_max,n / theta_abs,max``, the largest rotation of
       the half-cycle before the impact over the largest rotation of the response, with
@@ -134,7 +135,8 @@ class AmplitudeDependent:
       ratio ("proportional to the square of the proportion of the aspect ratios"), so that
       ``e' = sqrt(1 - f (1 - e^2))``; ``None``: off.
 
-    ``alpha_n`` is the slenderness about the current pivot (seed 000 eq. 12). Defaults
+    ``alpha_n`` is the slenderness about the current pivot (Mordant et al. (SERIES) eq. 12).
+    Defaults
     ``k0 = k1 = 1``: the largest half-cycle dissipates as Housner's top-mass wall (``k = 2``),
     small ones half as much — a starting point for calibration (``murus.identify``), not a
     published value."""

@@ -1,15 +1,15 @@
 """Restraints of a rocking wall: a horizontal tie, a spring bed (transverse walls) and a viscous
-damper (seed 002 §2, eqs. 1-7), and the pivot laws of seed 000 §3.3.1.
+damper (EURODYN (2020) §2, eqs. 1-7), and the pivot laws of Mordant et al. (SERIES) §3.3.1.
 
 Geometry: a point of the wall is given by its height ``y`` above the base and its horizontal body
 coordinate ``x`` from the middle of the base, positive towards the pivot O of positive rotations
 (the outer face, ``x = +b/2``). The wall rotates outward (``theta > 0``) against the tie and
 inward (``theta < 0``, about the pivot O' at ``x = -b/2``) against the transverse walls,
-represented by a no-tension bed of horizontal springs over the heights ``[z1, z2]`` (seed 002
+represented by a no-tension bed of horizontal springs over the heights ``[z1, z2]`` (EURODYN (2020)
 Figure 1: "one-sided" motion). By default the bed acts on the face at ``x = +b/2``, at the
-distance ``s = b`` from O', which is the geometry of seed 002 eq. 6 (reproduced exactly up to the
-factor ``cos theta`` of its springs normal to the rotated face, and with the factor ``s`` that its
-printed ``B`` term lacks for dimensional consistency); ``x = -b/2`` puts it on the pivot's face.
+distance ``s = b`` from O', which is the geometry of EURODYN (2020) eq. 6 (reproduced exactly up to
+the factor ``cos theta`` of its springs normal to the rotated face, and with the factor ``s`` that
+its printed ``B`` term lacks for dimensional consistency); ``x = -b/2`` puts it on the pivot's face.
 The moments are written out in :func:`murus.rocking.kernels.restraint_moment`. SI units: N/m,
 N/m per m of height, N s/m, m.
 """
@@ -42,13 +42,13 @@ def _num(owner: str, name: str, value, *, positive=False, allow_inf=False) -> fl
 @dataclass(frozen=True)
 class Tie:
     """A horizontal tie (steel tie rod, or the elastic part of a device) of axial stiffness
-    ``stiffness`` [N/m] anchored at ``height`` [m] and body coordinate ``x`` [m] (seed 002 eq. 2,
-    term T_K).
+    ``stiffness`` [N/m] anchored at ``height`` [m] and body coordinate ``x`` [m] (EURODYN (2020) eq.
+    2, term T_K).
 
     ``tension_only`` (default): the tie works only when the wall moves outward (a rod anchored
-    by a plate); ``False``: the bidirectional elastic tie of seed 002 Figure 2.
+    by a plate); ``False``: the bidirectional elastic tie of EURODYN (2020) Figure 2.
     ``pretension`` [N] and ``yield_force`` [N] (elastic-perfectly plastic, with the plastic
-    elongation carried along the run) are the options seed 002 leaves out."""
+    elongation carried along the run) are the options EURODYN (2020) leaves out."""
 
     stiffness: float
     height: float
@@ -82,8 +82,9 @@ class Tie:
 class SpringBed:
     """Transverse walls as a no-tension bed of horizontal springs of stiffness ``stiffness``
     per unit height [N/m/m], from ``z1`` to ``z1 + effective_height`` [m], resisting inward
-    motion (seed 002 eqs. 3-6, term T_K'; eq. 10: ``K' = E_x t / L_eff``, 4.5e8 N/m/m in §4.2).
-    ``x``: body coordinate of the face it acts on (default ``+b/2``, seed 002 eq. 6; see the
+    motion (EURODYN (2020) eqs. 3-6, term T_K'; eq. 10: ``K' = E_x t / L_eff``, 4.5e8 N/m/m in
+    §4.2).
+    ``x``: body coordinate of the face it acts on (default ``+b/2``, EURODYN (2020) eq. 6; see the
     module docstring).
 
     ``stiffness = inf``: rigid transverse walls, the limit of a stiff bed. The wall then never
@@ -119,7 +120,7 @@ class SpringBed:
 @dataclass(frozen=True)
 class Damper:
     """A horizontal linear viscous damper of coefficient ``coefficient`` [N s/m] at ``height``
-    [m] and body coordinate ``x`` [m] (seed 002 eq. 7, term T_D; eq. 13 gives the reference
+    [m] and body coordinate ``x`` [m] (EURODYN (2020) eq. 7, term T_D; eq. 13 gives the reference
     ``c_d``, :func:`murus.rocking.design.reference_damping`)."""
 
     coefficient: float
@@ -142,7 +143,8 @@ class Damper:
 
 
 # ------------------------------------------------------------------------------ pivot laws ---
-#: Readings of the zero-stress pivot of seed 000 §3.3.1 (lever arm of the weight about it).
+#: Readings of the zero-stress pivot of Mordant et al. (SERIES) §3.3.1 (lever arm of the weight
+#: about it).
 PIVOT_READINGS = {
     "corner": 0,  # b/2, Housner's corner
     "kern": 1,  # b/6
@@ -153,7 +155,8 @@ PIVOT_READINGS = {
 
 @dataclass(frozen=True)
 class Pivot:
-    """Where the wall pivots (seed 000 §3.3.1, eqs. 11-13, reconstructed: their text was lost).
+    """Where the wall pivots (Mordant et al. (SERIES) §3.3.1, eqs. 11-13, reconstructed: their text
+    was lost).
 
     ``law = "corner"`` is Housner's corner. ``law = "compressive-length"`` puts the pivot at the
     point given by the EN 1996-1-1 linear stress block of the equivalent static load at every
@@ -169,8 +172,8 @@ class Pivot:
 
     All are bounded to ``[min_lever, b/2]`` (``min_lever`` default 5 % of ``b/2``: a lever of
     zero would leave no restoring moment at all). The default reading is the one that predicts
-    rocking for tests S07-S09 of both walls of seed 000 and not for the long wall at S06
-    (VALIDATION.md). ``alpha_n``, ``R_n``, the inertia about the pivot and Housner's ``e_n``
+    rocking for tests S07-S09 of both walls of Mordant et al. (SERIES) and not for the long wall at
+    S06 (VALIDATION.md). ``alpha_n``, ``R_n``, the inertia about the pivot and Housner's ``e_n``
     follow the lever (eqs. 12-13)."""
 
     law: str = "corner"

@@ -34,8 +34,8 @@ No sliding: the horizontal position of C is prescribed, ``x_C = X(theta)``, with
   energy is ``1/2 I_O theta'^2`` with ``"corner"`` but lacks
   ``1/2 m (b z_G |sin theta| cos theta + b^2/4 sin^2 theta) theta'^2`` with ``"centre"``. Only
   ``"corner"`` tends to Housner's rigid model as ``k -> inf``: with ``"centre"``
-  the first-impact time of seed 000's short wall released from ``alpha/2`` tends to a value 1.3 %
-  shorter (8.5 % for the long wall), which a convergence study cannot remove.
+  the first-impact time of the short wall of Mordant et al. (SERIES) released from ``alpha/2`` tends
+  to a value 1.3 % shorter (8.5 % for the long wall), which a convergence study cannot remove.
 
 Position of G and of a base point at body coordinate ``xi`` in ``[-b/2, b/2]`` (positive towards
 O)::
@@ -95,7 +95,7 @@ Statics (:func:`static_pushover`): under a constant ``a_g`` the layer starts to 
 when the resultant leaves the kern, ``Mx / F = b/6``, i.e. at ``a_up -> g b / (6 z_G)`` for a stiff
 layer; with a triangular pressure on ``Lc = sqrt(2 m g / (k t_w sin theta))`` the equilibrium curve
 is ``a(theta) = g (co (b/2 - Lc/3) - z_G s) / A``, whose maximum tends to the rigid-body value
-``g tan(alpha) = g b / (2 z_G)`` (seed 000 eq. 9) as ``k`` grows.
+``g tan(alpha) = g b / (2 z_G)`` (Mordant et al. (SERIES) eq. 9) as ``k`` grows.
 
 Units: SI throughout (m, kg, s, N, Pa, rad).
 """
@@ -471,8 +471,8 @@ class WinklerResult(Result):
         """The constant coefficient of restitution with which the rigid model would lose the
         same energy in the first ``n`` impacts, per impact: from the peaks ``theta_0`` and
         ``theta_n`` of half cycles 0 and ``n``, ``e = [(cos(alpha - theta_n) - cos alpha) /
-        (cos(alpha - theta_0) - cos alpha)]^(1 / 2n)`` (energy ``x e^2`` per impact, seed 000
-        eq. 10 context)."""
+        (cos(alpha - theta_0) - cos alpha)]^(1 / 2n)`` (energy ``x e^2`` per impact, Mordant et al.
+        (SERIES) eq. 10 context)."""
         if self.peaks.shape[0] <= n:
             raise WinklerError(f"only {self.peaks.shape[0]} half cycles: no peak number {n}")
         a = self.alpha
