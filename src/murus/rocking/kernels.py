@@ -7,8 +7,8 @@ The active pivot ``s`` is part of the state: ``0`` at rest, ``+1`` rocking about
 pivot is never ``sign(theta)``, which is undefined at ``theta = 0``.
 
 - rest -> rocking: when the moment about a corner at ``theta = 0``, ``theta' = 0`` turns the body
-  away from the base (seed 000 eq. 9: ``m a_g H > m g B/2`` for the top-mass wall), in the direction
-  of that moment; the instant is located inside the step by root finding;
+  away from the base (Mordant et al. (SERIES) eq. 9: ``m a_g H > m g B/2`` for the top-mass wall),
+  in the direction of that moment; the instant is located inside the step by root finding;
 - rocking -> impact: ``theta`` crosses zero; the instant is located inside the step, the angular
   velocity is multiplied by the coefficient of restitution and the pivot switches to ``-s``;
 - impact -> rest: at the accumulation point of the cascade of ever smaller impacts (a Zeno
@@ -20,19 +20,37 @@ pivot is never ``sign(theta)``, which is undefined at ``theta = 0``.
   breakpoint of that window); otherwise the integration goes on;
 - rocking -> overturned: ``|theta|`` reaches ``pi/2``.
 
-Equation of motion (seed 000 eq. 5, seed 002 eq. 1), a sum of moment terms about the active
+Equation of motion (Mordant et al. (SERIES) eq. 5, EURODYN (2020) eq. 1), a sum of moment terms
+about the active
 pivot, ``I_O theta'' = M_gravity + M_ground (+ further terms)``::
 
     M_gravity = -m (g + a_v) R sin(s alpha - theta)
     M_ground  = +m a_g R cos(s alpha - theta)
 
-Sign convention: ``theta > 0`` clockwise; a positive ``a_g`` drives a positive rotation (seed 002
-eq. 1, where the ground term stands on the right-hand side with a plus sign); ``a_v`` is positive
-upward, so that it adds to gravity. The linearised option replaces ``sin x`` by ``x`` and
+Sign convention: ``theta > 0`` clockwise; a positive ``a_g`` drives a positive rotation (EURODYN
+(2020) eq. 1, where the ground term stands on the right-hand side with a plus sign); ``a_v`` is
+positive upward, so that it adds to gravity. The linearised option replaces ``sin x`` by ``x`` and
 ``cos x`` by 1 (the equation of the closed-form overturning solutions).
 
-New moment terms (ties, spring beds, dampers) are added in :func:`moment` with their parameters in
-new slots of ``P``; the integrators never change.
+Named data: the model parameters are one record ``P`` of :data:`PARAM_DTYPE` (fields declared
+once in :data:`PARAMS`, read by name, codes compared by name: ``PIVOT_*``, ``E_*``, ``TIE_*``,
+``X_*``); the excitation is a :class:`Drive` and what a run writes a :class:`Log` (named tuples
+numba compiles); the summary slots ``S_*`` come from the declared table
+:data:`murus.rocking.summary.SUMMARY`.
+
+A new moment term touches two places and the integrators never change: this module (its
+parameters as rows of :data:`PARAMS`, its moment in :func:`restraint_terms`) and its class in
+:mod:`murus.rocking.restraints` (validation and ``fill``, which writes those parameters; the model
+that carries it calls ``fill`` like the tie's). Both rocking engines (this one and
+:mod:`murus.rocking.winkler_kernels`) share one Dormand-Prince tableau (:data:`DP_A`, ...) and
+one Hermite bisection (:func:`hermite_bisect`); :func:`lever` serves the Python side too
+(:func:`levers`).
+
+References
+----------
+Mordant, Dietz & Degée (SERIES shaking-table tests), "Mordant et al. (SERIES)" below.
+EURODYN (2020), "Mitigation of amplified response of restrained rocking walls through horizontal
+dampers", doi:10.47964/1120.9351.20156.
 """
 
 from __future__ import annotations
@@ -108,7 +126,7 @@ E_CONSTANT = 0  # P.e at every impact (constant and Housner on the corner)
 E_MOMENTUM = 1  # angular momentum about the new pivot with the current levers (eq. 13)
 E_COEFFICIENT = 2  # 1 - (k0 + k1 r) sin^2(alpha_n) (eqs. 14-17)
 
-# pivot law codes (lever of the weight about the pivot, seed 000 §3.3.1)
+# pivot law codes (lever of the weight about the pivot, Mordant et al. (SERIES) §3.3.1)
 PIVOT_CORNER = 0  # b/2 (Housner)
 PIVOT_KERN = 1  # b/6
 PIVOT_EFFECTIVE = 2  # Lc / 2, Lc the compressed length of the linear distribution
@@ -260,7 +278,8 @@ def segment_end(t, drv, t_end):
 # ======================================================================= moment terms =====
 @njit(cache=True, inline="always")
 def lever(ag, av, P):
-    """Lever arm of the weight about the active pivot [m] (seed 000 §3.3.1, eqs. 11-12).
+    """Lever arm of the weight about the active pivot [m] (Mordant et al. (SERIES) §3.3.1, eqs.
+    11-12).
 
     The corner law gives ``b/2``. The compressive-length laws place the pivot where the linear
     no-tension stress block of the equivalent static load puts it: eccentricity
@@ -304,14 +323,14 @@ def inertia(bl, P):
 @njit(cache=True, inline="always")
 def _bed_moment(ct, st, s, bl, P):
     """Moment of a no-tension spring bed of stiffness ``k'`` per unit height on the face at body
-    coordinate ``x_b`` over heights ``[z1, z2]`` (the transverse walls of seed 002, eqs. 3-6).
+    coordinate ``x_b`` over heights ``[z1, z2]`` (the transverse walls of EURODYN (2020), eqs. 3-6).
 
     A face point at height ``z`` (pivot frame ``x0 = x_b - s b``) moves horizontally by
     ``x0 (cos th - 1) + z sin th``; the bed is compressed by ``c(z) = x0 (1 - cos th) - z sin th``
     where positive and pushes back with ``k' c``, at the lever ``y(z) = z cos th - x0 sin th``.
     The moment ``int k' c y dz`` over the compressed part is integrated in closed form. For the
     bed on the pivot's face (``x0 = 0``) it is ``k' (z2^3 - z1^3)/3 sin(-th) cos th``, the term of
-    REFERENCE.md; seed 002 eq. 6 is ``-cos th`` times this integral for a bed at the distance
+    REFERENCE.md; EURODYN (2020) eq. 6 is ``-cos th`` times this integral for a bed at the distance
     ``s`` from the pivot over ``[0, h']`` (its ``B`` term needs a factor ``s``), a difference of
     order ``th^2`` at the tiny rotations a stiff bed allows (tests/rocking/test_restraints.py)."""
     x0 = P.bed_x - s * bl
@@ -361,7 +380,7 @@ def restraint_moment(th, om, s, bl, P):
 
 @njit(cache=True, inline="always")
 def restraint_terms(ct, st, om, s, bl, P):
-    """Moments of the restraints about pivot ``s`` [N m] (seed 002 eqs. 2, 6, 7).
+    """Moments of the restraints about pivot ``s`` [N m] (EURODYN (2020) eqs. 2, 6, 7).
 
     A body point at body coordinates ``(u, y)`` (``u`` from the base centre, positive towards
     pivot +1, the outer face) sits at ``x0 = u - s b`` from the pivot; after the rotation it is at
@@ -370,7 +389,7 @@ def restraint_terms(ct, st, om, s, bl, P):
 
     - tie (eq. 2): outward anchor displacement ``d = X - x0``, force :func:`tie_force`, moment
       ``-Y F``; for a tie at ``(R_t, alpha_t)`` from the pivot this is
-      ``-K R_t^2 cos(A_t) (sin alpha_t - sin A_t)``, seed 002 eq. 2;
+      ``-K R_t^2 cos(A_t) (sin alpha_t - sin A_t)``, EURODYN (2020) eq. 2;
     - damper (eq. 7): the anchor moves at ``Y theta'``, force ``-c Y theta'``, moment
       ``-c Y^2 theta'``, i.e. ``-c R_d^2 cos^2(A_d) theta'``;
     - spring bed (eqs. 3-6): :func:`_bed_moment`.
@@ -393,8 +412,8 @@ def restraint_terms(ct, st, om, s, bl, P):
 
 @njit(cache=True, inline="always")
 def moment_at(th, om, s, bl, ag, av, P):
-    """Total moment about the active pivot ``s`` of lever ``bl`` [N m] (seed 000 eq. 5, seed
-    002 eq. 1): gravity, ground inertia and the restraints.
+    """Total moment about the active pivot ``s`` of lever ``bl`` [N m] (Mordant et al. (SERIES) eq.
+    5, EURODYN (2020) eq. 1): gravity, ground inertia and the restraints.
 
     With ``R sin(alpha) = bl`` and ``R cos(alpha) = z_G``, the terms
     ``-m (g + a_v) R sin(s alpha - th) + m a_g R cos(s alpha - th)`` are evaluated as
@@ -518,7 +537,7 @@ def locate_uplift(ta, tb, tm, drv, P):
 @njit(cache=True)
 def restitution(P, mem, om_before, t, bl):
     """Coefficient of restitution applied at an impact at time ``t`` with the pivot lever ``bl``
-    (law code ``P.e_kind``; seed 000 §3.3.2).
+    (law code ``P.e_kind``; Mordant et al. (SERIES) §3.3.2).
 
     - constant (Housner on the corner included): ``P.e``;
     - momentum: angular momentum about the new pivot, levers ``b1`` before and ``b2`` after,
@@ -996,7 +1015,8 @@ def fill_rest(j, t_to, out_dt, log, inclusive):
 @njit(cache=True)
 def start_run(P, drv, log):
     """Working copy of the parameters (a yielding tie keeps its plastic elongation there), law
-    memory with the end of the input (the switch to free vibration of seed 000 eq. 17)."""
+    memory with the end of the input (the switch to free vibration of Mordant et al. (SERIES) eq.
+    17)."""
     w = np.empty(1, PARAM_DTYPE)
     w[0] = P
     Pw = w[0]
@@ -1234,8 +1254,9 @@ def event_core(P, drv, t_end, th0, om0, rtol, out_dt, log, max_steps):
 @njit(cache=True)
 def newmark_solve(t, th, om, a0, h, s, drv, P):
     """One Newmark step (beta = 1/4, gamma = 1/2) of size ``h`` with Newton iterations on the
-    nonlinear equation of motion (seed 000 §3.1.2, eqs. 6-8 reconstructed: the standard
-    constant-average-acceleration update). Returns ``(theta, theta', theta'')`` at ``t + h``."""
+    nonlinear equation of motion (Mordant et al. (SERIES) §3.1.2, eqs. 6-8 reconstructed: the
+    standard constant-average-acceleration update). Returns ``(theta, theta', theta'')`` at ``t +
+    h``."""
     t1 = t + h
     x = th + h * om + 0.5 * h * h * a0
     d = 1e-7 * P.alpha

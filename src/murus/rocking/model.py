@@ -155,27 +155,9 @@ class RockingModel:
         P["e_aspect"] = 1.0
         self.restitution.fill(P, b, self.pivot.code != 0)
         P["terms"] = 1.0 if self.restrained else 0.0
-        if self.tie is not None:
-            t = self.tie
-            P["tie_mode"] = 1.0 if t.tension_only else 2.0
-            P["tie_k"] = t.stiffness
-            P["tie_y"] = t.height
-            P["tie_x"] = t.x
-            P["tie_p0"] = t.pretension
-            P["tie_fy"] = t.yield_force
-        if self.transverse_walls is not None:
-            w = self.transverse_walls
-            if math.isinf(w.stiffness):
-                P["stop"] = 1.0
-            else:
-                P["bed_k"] = w.stiffness
-            P["bed_z1"] = w.z1
-            P["bed_z2"] = w.z1 + w.effective_height
-            P["bed_x"] = 0.5 * b.width if w.x is None else w.x
-        if self.damper is not None:
-            P["dmp_c"] = self.damper.coefficient
-            P["dmp_y"] = self.damper.height
-            P["dmp_x"] = self.damper.x
+        for r in (self.tie, self.transverse_walls, self.damper):
+            if r is not None:
+                r.fill(P, b)
         return P
 
     def replace(self, **changes) -> RockingModel:

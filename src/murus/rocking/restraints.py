@@ -72,6 +72,18 @@ class Tie:
         if self.pretension > self.yield_force:
             raise RestraintError("tie pretension exceeds its yield force")
 
+    def fill(self, P, body) -> None:
+        """Write the tie into the kernels' parameter record ``P`` (:data:`murus.rocking.kernels.
+        PARAMS`; the moment is in :func:`murus.rocking.kernels.restraint_terms`)."""
+        from murus.rocking import kernels as K
+
+        P["tie_mode"] = float(K.TIE_TENSION if self.tension_only else K.TIE_BOTH)
+        P["tie_k"] = self.stiffness
+        P["tie_y"] = self.height
+        P["tie_x"] = self.x
+        P["tie_p0"] = self.pretension
+        P["tie_fy"] = self.yield_force
+
     def describe(self) -> dict:
         return {"stiffness": self.stiffness, "height": self.height, "x": self.x,
                 "tension_only": self.tension_only, "pretension": self.pretension,
@@ -111,6 +123,16 @@ class SpringBed:
             "transverse_walls", "effective_height", self.effective_height, positive=True))
         object.__setattr__(self, "z1", _num("transverse_walls", "z1", self.z1))
 
+    def fill(self, P, body) -> None:
+        """Write the spring bed (or the rigid walls) into the kernels' parameter record ``P``."""
+        if math.isinf(self.stiffness):
+            P["stop"] = 1.0
+        else:
+            P["bed_k"] = self.stiffness
+        P["bed_z1"] = self.z1
+        P["bed_z2"] = self.z1 + self.effective_height
+        P["bed_x"] = 0.5 * body.width if self.x is None else self.x
+
     def describe(self) -> dict:
         k = "rigid" if math.isinf(self.stiffness) else self.stiffness
         return {"stiffness": k, "effective_height": self.effective_height,
@@ -137,6 +159,12 @@ class Damper:
             object.__setattr__(self, "x", float(self.x))
         except (TypeError, ValueError):
             raise RestraintError(f"damper x must be a number, got {self.x!r}") from None
+
+    def fill(self, P, body) -> None:
+        """Write the damper into the kernels' parameter record ``P``."""
+        P["dmp_c"] = self.coefficient
+        P["dmp_y"] = self.height
+        P["dmp_x"] = self.x
 
     def describe(self) -> dict:
         return {"coefficient": self.coefficient, "height": self.height, "x": self.x}
