@@ -77,6 +77,7 @@ def test_uplift_time_is_the_closed_form_under_every_name():
         assert r.uplift_time == r.t_uplift
     assert s["t_uplift"] == s["uplift_time"] == r.t_uplift
     assert s["n_impacts"] == s["impacts"] == r.n_impacts
+    assert s["theta_pos"] == r.theta_pos and s["status"] == r.message == "ok"
     br = simulate_batch([BLOCK], [exc], duration=1.0, threads=1)
     assert br["t_uplift"][0, 0] == br["uplift_time"][0, 0] == r.t_uplift
 

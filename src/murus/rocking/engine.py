@@ -18,6 +18,7 @@ from murus.rocking.summary import (  # noqa: F401 (FREE_TAIL, LIMIT_STATES: publ
     FREE_TAIL,
     LIMIT_STATES,
     SUMMARY,
+    table_summary,
     values,
 )
 
@@ -141,31 +142,23 @@ class RockingResult(Result):
         return np.where(k > 0, cum[np.maximum(k - 1, 0)], 0.0)
 
     def summary(self) -> dict:
-        """Plain-number summary (what ``summary.json`` holds)."""
-        return {
-            "theta_max": self.theta_max,
+        """Plain-number summary (what ``summary.json`` holds): the quantities of the declared
+        table :data:`murus.rocking.summary.SUMMARY` that a result keeps (also under their
+        earlier names), then the derived ones; ``status`` is the message."""
+        out = table_summary(self, SUMMARY, _RESULT_FIELDS)
+        out.update({
             "theta_max_over_alpha": self.theta_max_over_alpha,
-            "theta_signed_max": self.theta_signed_max,
-            "t_theta_max": self.t_theta_max,
-            "overturned": self.overturned,
-            "t_overturn": self.t_overturn,
-            "t_exceed_alpha": self.t_exceed_alpha,
-            "n_impacts": self.n_impacts,
-            "impacts": self.n_impacts,  # earlier name of n_impacts (kept for readers)
-            "t_uplift": self.t_uplift,
-            "uplift_time": self.t_uplift,  # earlier name of t_uplift (kept for readers)
             "uplift_intervals": [[_opt(a), _opt(b)] for a, b in self.uplift_intervals],
             "limit_states": self.limit_states,
             "alpha": self.alpha,
             "p": self.p,
             "restitution": self.restitution,
-            "energy_dissipated": self.energy_dissipated,
             "status": self.message,
-            "n_steps": self.n_steps,
             "method": self.meta.get("solver", {}).get("method", "event"),
             "method_note": METHOD_NOTES.get(self.meta.get("solver", {}).get("method", "event")),
             "input": self.meta,
-        }
+        })
+        return out
 
 
 def restraint_energy(model: dict, theta: np.ndarray, pivot: np.ndarray) -> np.ndarray:

@@ -106,6 +106,33 @@ def values(table, S) -> dict:
     return out
 
 
+def table_summary(result, table, fields) -> dict:
+    """The entries of ``summary.json`` that come from a summary table: each quantity of
+    ``table`` kept by the result as an attribute (``fields``), under its name and its earlier
+    names (``aliases``).
+
+    Parameters
+    ----------
+    result : object
+        A result with the attributes ``fields``.
+    table : tuple of Quantity
+        :data:`SUMMARY` or :data:`WINKLER_SUMMARY`.
+    fields : tuple of str
+        The quantities the result keeps.
+
+    Returns
+    -------
+    dict
+    """
+    out = {}
+    for q in table:
+        if q.name in fields:
+            out[q.name] = getattr(result, q.name)
+            for a in q.aliases:
+                out[a] = out[q.name]
+    return out
+
+
 #: Limit states on the normalised rotation ``theta_max / alpha`` (EURODYN (2020), §4): limited
 #: and moderate rocking; overturning is the third.
 LIMIT_STATES = {"limited": 0.1, "moderate": 0.4}

@@ -113,7 +113,7 @@ from murus.rocking import kernels as K
 from murus.rocking import winkler_kernels as WK
 from murus.rocking.body import RigidBlock
 from murus.rocking.excitation import as_excitation, default_duration
-from murus.rocking.summary import WINKLER_SUMMARY, values
+from murus.rocking.summary import WINKLER_SUMMARY, table_summary, values
 
 __all__ = [
     "WinklerBase",
@@ -481,26 +481,21 @@ class WinklerResult(Result):
         return (max(en, 0.0) / e0) ** (0.5 / n)
 
     def summary(self) -> dict:
-        return {
-            "theta_max": self.theta_max,
+        """Plain-number summary (what ``summary.json`` holds): the quantities of the declared
+        table :data:`murus.rocking.summary.WINKLER_SUMMARY` that a result keeps, then the
+        derived ones; ``status`` is the message."""
+        out = table_summary(self, WINKLER_SUMMARY, _RESULT_FIELDS)
+        out.update({
             "theta_max_over_alpha": self.theta_max_over_alpha,
-            "theta_signed_max": self.theta_signed_max,
-            "t_theta_max": self.t_theta_max,
-            "overturned": self.overturned,
-            "t_overturn": self.t_overturn,
             "t_first_crossing": self.t_first_crossing,
             "first_crossing": self.t_first_crossing,  # earlier name (kept for readers)
             "n_crossings": int(self.crossings.shape[0]),
             "crossings": int(self.crossings.shape[0]),  # earlier name (kept for readers)
-            "peak_contact_force": self.peak_contact_force,
-            "peak_pressure": self.peak_pressure,
-            "peak_angular_acceleration": self.peak_angular_acceleration,
-            "min_contact_length": self.min_contact_length,
             "energy_dissipated": float(self.dissipated_energy[-1]),
             "status": self.message,
-            "n_steps": self.n_steps,
             "input": self.meta,
-        }
+        })
+        return out
 
 
 @dataclass(frozen=True)
