@@ -283,10 +283,10 @@ def lever(ag, av, P):
 
     The corner law gives ``b/2``. The compressive-length laws place the pivot where the linear
     no-tension stress block of the equivalent static load puts it: eccentricity
-    ``e = f |a_g| z_G / (g + a_v)`` (``f``: ``P_PIVOT_FACTOR``), compressed length
+    ``e = f |a_g| z_G / (g + a_v)`` (``f``: ``P.pivot_factor``), compressed length
     ``Lc = B`` for ``e <= B/6``, else ``3 (B/2 - e)`` (EN 1996-1-1, :mod:`murus.eurocode.ec6`),
     and the lever is ``B/6`` (kern), ``Lc/2`` (effective width) or ``B - 3e`` (zero-stress point,
-    neutral axis), bounded to ``[P_PIVOT_MIN, B/2]``."""
+    neutral axis), bounded to ``[P.pivot_min, B/2]``."""
     hb = P.hb
     code = P.pivot
     if code == PIVOT_CORNER:
@@ -546,7 +546,7 @@ def restitution(P, mem, om_before, t, bl):
       here ``b1 = b2 = bl``, the lever at the instant of the impact;
     - coefficient: ``e = 1 - (k0 + k1 r) sin^2(alpha_n)``, ``alpha_n = atan(bl / z_G)``, with
       ``r`` the largest rotation of the half-cycle before the impact over the largest rotation
-      so far (causal) or of the whole run (iterated, ``P_E_ABSMAX > 0``) (eqs. 14-16), and
+      so far (causal) or of the whole run (iterated, ``P.e_absmax > 0``) (eqs. 14-16), and
       ``(k0f, k1f)`` once the input has ended when a free-vibration law is set (eq. 17).
 
     The aspect-ratio factor ``f`` of eq. 18 scales the energy lost at the impact:
