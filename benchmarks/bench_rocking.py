@@ -43,8 +43,6 @@ from murus.rocking import (  # noqa: E402
 from murus.rocking import kernels as K  # noqa: E402
 
 E0 = np.empty(0)
-Z3 = np.empty((0, 3))
-Z2 = np.empty((0, 2))
 
 
 def best_of(fn, repeat=5):
@@ -93,10 +91,9 @@ def per_history(quick):
             b.mass, b.R, b.alpha, b.I_O, e, rec.dt, rec.acc, T, rtol=1e-8), repeat=1)
         tm, r = best_of(lambda mdl=mdl, rec=rec, T=T: simulate(mdl, rec, duration=T), repeat=5)
         P = mdl.params()
-        X = rec.vector()
-        tk, _ = best_of(lambda P=P, X=X, rec=rec, T=T: K.event_core(
-            P, X, rec.acc, E0, T, 0.0, 0.0, 1e-9, 1.0, E0, E0, E0, Z3, Z2, Z2, 50_000_000),
-            repeat=5)
+        drv = K.Drive(rec.vector(), rec.acc, E0)
+        tk, _ = best_of(lambda P=P, drv=drv, T=T: K.event_core(
+            P, drv, T, 0.0, 0.0, 1e-9, 1.0, K.new_log(), 50_000_000), repeat=5)
         ref = simulate(mdl, rec, duration=T, rtol=1e-12)
         # sensitivity to the input: the same record scaled by 1 + 1e-6
         pert = simulate(mdl, Record(rec.dt, rec.acc * (1 + 1e-6)), duration=T, rtol=1e-12)
@@ -158,14 +155,12 @@ def profile_one():
     P = mdl.params()
     X = Record(rec.dt, rec.acc).vector()
     e0 = np.empty(0)
-    tk, S = best_of(lambda: K.event_core(P, X, rec.acc, e0, T, 0.0, 0.0, 1e-9, 1.0, e0, e0, e0,
-                                         np.empty((0, 3)), np.empty((0, 2)), np.empty((0, 2)),
-                                         50_000_000), repeat=20)
+    tk, S = best_of(lambda: K.event_core(P, K.Drive(X, rec.acc, e0), T, 0.0, 0.0, 1e-9, 1.0,
+                                         K.new_log(), 50_000_000), repeat=20)
     # the same history with no ground motion: the cost of the scan at rest alone
     z = np.zeros_like(rec.acc)
-    tr, _ = best_of(lambda: K.event_core(P, X, z, e0, T, 0.0, 0.0, 1e-9, 1.0, e0, e0, e0,
-                                         np.empty((0, 3)), np.empty((0, 2)), np.empty((0, 2)),
-                                         50_000_000), repeat=20)
+    tr, _ = best_of(lambda: K.event_core(P, K.Drive(X, z, e0), T, 0.0, 0.0, 1e-9, 1.0,
+                                         K.new_log(), 50_000_000), repeat=20)
     return {
         "simulate_s": ts, "kernel_s": tk, "steps": int(S[K.S_N_STEPS]),
         "impacts": int(S[K.S_N_IMPACTS]), "segments": rec.npts - 1 + int(5.0 / rec.dt),

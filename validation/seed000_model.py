@@ -144,7 +144,7 @@ def onset_tables(table1) -> tuple[list[str], dict]:
                 rocks = ratio > 1.0
                 pred[(wall, test, rd)] = rocks
                 res = simulate(RockingModel(body, pivot=pivot(rd)), scaled_record(pga))
-                agree += (res.uplift_time is not None) == rocks
+                agree += (res.t_uplift is not None) == rocks
                 # the criterion of the run peaks at the same sample as |a_g|; > 1 iff ratio > 1
                 agree += (res.rocking_criterion.max() > 1.0) == rocks
                 total += 2
@@ -228,13 +228,13 @@ def fig_plain_criterion(table1, fig_dir: Path) -> tuple[str, dict]:
         for i, test in enumerate(("S07", "S08", "S09")):
             pga = table1[test][COLUMN[wall]]
             res = simulate(RockingModel(body), scaled_record(pga))
-            onset[(wall, test)] = res.uplift_time
+            onset[(wall, test)] = res.t_uplift
             ax = axs[i, j]
             ax.plot(res.t, res.rocking_criterion, lw=0.6)
             ax.axhline(1.0, color="k", lw=0.8, ls="--")
-            if res.uplift_time is not None:
-                ax.axvline(res.uplift_time, color="tab:red", lw=0.8)
-                note = f"rocking from {res.uplift_time:.2f} s"
+            if res.t_uplift is not None:
+                ax.axvline(res.t_uplift, color="tab:red", lw=0.8)
+                note = f"rocking from {res.t_uplift:.2f} s"
             else:
                 note = f"max {res.rocking_criterion.max():.3f}: no rocking"
             ax.set_title(f"{wall} wall, {test} (PGA {pga:g} g): {note}", fontsize=9)
@@ -265,10 +265,10 @@ def fig_modified_criterion(table1, fig_dir: Path) -> tuple[str, list[str]]:
         res = simulate(RockingModel(body, pivot=pivot(rd)), rec)
         lab = "eq. 9 (corner)" if rd == "corner" else f"eq. 11, {rd}"
         ax.plot(res.t, res.rocking_criterion, style, color=color, lw=lw, zorder=z, label=lab)
-        first = res.t[np.argmax(res.rocking_criterion > 1.0)] if res.uplift_time else None
+        first = res.t[np.argmax(res.rocking_criterion > 1.0)] if res.t_uplift else None
         lines.append(f"| {rd} | {res.rocking_criterion.max():.3f} | "
                      f"{'-' if first is None else f'{first:.2f}'} | "
-                     f"{'-' if res.uplift_time is None else f'{res.uplift_time:.3f}'} |")
+                     f"{'-' if res.t_uplift is None else f'{res.t_uplift:.3f}'} |")
     ax.axhline(1.0, color="k", lw=0.8, ls="--")
     ax.set_ylim(0, 3)
     ax.set_xlabel("time [s]")
@@ -287,7 +287,7 @@ def fig_modified_criterion(table1, fig_dir: Path) -> tuple[str, list[str]]:
 
 # ------------------------------------------------------------------------------ responses ---
 def _cell(res) -> str:
-    up = "-" if res.uplift_time is None else f"{res.uplift_time:.2f}"
+    up = "-" if res.t_uplift is None else f"{res.t_uplift:.2f}"
     if res.overturned:
         return f"overturns at {res.t_overturn:.2f} s; {res.n_impacts}; {up}"
     return f"{res.theta_max_over_alpha:.4f}; {res.n_impacts}; {up}"
@@ -387,9 +387,9 @@ def robustness(table1) -> tuple[list[str], dict]:
             for k, r in enumerate(rs):
                 peaks[(wall, k)].append(r.theta_max_over_alpha)
                 over[(wall, k)] += r.overturned
-            if rs[0].uplift_time is not None:
+            if rs[0].t_uplift is not None:
                 plain_rocks[wall] += 1
-                earlier[wall] += rs[1].uplift_time <= rs[0].uplift_time
+                earlier[wall] += rs[1].t_uplift <= rs[0].t_uplift
     n = len(ROBUST_SEEDS)
     lines = [f"Over {n} further records of the same recipe (seeds {min(ROBUST_SEEDS)}-"
              f"{max(ROBUST_SEEDS)}), S09: median [min, max] of the peak |theta|/alpha "
@@ -529,9 +529,9 @@ def section(fig_dir: Path | None = None) -> str:
         "criterion lifts them at S07-S09; starting from rest, the modified model always starts "
         "rocking no later than the plain one (its threshold is lower and uplift happens at the "
         "first crossing), e.g. the short wall at S07 rocks from "
-        f"{runs[('short', 'S07', 1)].uplift_time:.2f} s instead of not at all, and at S09 from "
-        f"{runs[('short', 'S09', 1)].uplift_time:.2f} s instead of "
-        f"{runs[('short', 'S09', 0)].uplift_time:.2f} s (the seed's Figure 12 reports measured "
+        f"{runs[('short', 'S07', 1)].t_uplift:.2f} s instead of not at all, and at S09 from "
+        f"{runs[('short', 'S09', 1)].t_uplift:.2f} s instead of "
+        f"{runs[('short', 'S09', 0)].t_uplift:.2f} s (the seed's Figure 12 reports measured "
         "rotation from about 2 s against a plain-model onset at about 10 s).",
         trend_text(runs, stats),
         "- Not reproduced: the measured histories (Figures 9-12, 15-20) are not available, nor "

@@ -84,7 +84,7 @@ def convergence(fig_dir: Path) -> list[str]:
     rows = []
     for k in ks:
         free = {kin: simulate_winkler(w, WinklerBase(k, kinematics=kin), theta0_over_alpha=0.5,
-                                      duration=0.8, out_dt=1e-2, rtol=1e-9).first_crossing
+                                      duration=0.8, out_dt=1e-2, rtol=1e-9).t_first_crossing
                 for kin in ("corner", "centre")}
         res = simulate_winkler(w, WinklerBase(k), pulse, duration=2.0, out_dt=1e-3, rtol=1e-9)
         peak, imp = _first_excursion(res, w, k)

@@ -141,13 +141,7 @@ def run(
         _out_error(exc)
     if not result.success:  # the outputs say so too (summary.json: status)
         cliutil.failed(f"{case}: {result.message}; partial results in {out}")
-    s = result.summary()
-    events = (f"impacts = {s['impacts']}" if "impacts" in s
-              else f"zero crossings = {s['crossings']}")
-    typer.echo(
-        f"{case.name}: theta_max/alpha = {s['theta_max_over_alpha']:.4f}, {events}"
-        f", overturned = {s['overturned']} -> {out}"
-    )
+    typer.echo(f"{case.name}: {result.headline()} -> {out}")  # dispatch on the result class
 
 
 def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
@@ -228,6 +222,7 @@ def demo(
     def write(tmp: Path) -> None:
         from murus.config import CaseError
         from murus.rocking.case import build, load_case, run_case
+        from murus.rocking.engine import RockingResult
         from murus.rocking.output import write_result_files
 
         lines = ["case,theta_max_over_alpha,impacts,overturned,uplift_time_s"]
@@ -242,9 +237,10 @@ def demo(
             sub.mkdir()
             write_result_files(res, sub)
             s = res.summary()
-            n = s.get("impacts", s.get("crossings"))
+            rigid = isinstance(res, RockingResult)  # a Winkler case counts zero crossings
+            n = s["n_impacts"] if rigid else s["n_crossings"]
             lines.append(f"{c.stem},{s['theta_max_over_alpha']:.6f},{n},"
-                         f"{s['overturned']},{s.get('uplift_time')}")
+                         f"{s['overturned']},{s['t_uplift'] if rigid else None}")
             typer.echo(f"{c.stem}: theta_max/alpha = {s['theta_max_over_alpha']:.4f}, "
                        f"impacts = {n}, overturned = {s['overturned']}")
         (tmp / "demo_summary.csv").write_text("\n".join(lines) + "\n")

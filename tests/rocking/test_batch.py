@@ -52,7 +52,7 @@ def test_batch_equals_one_by_one_bitwise():
             assert bool(row[K.S_OVERTURNED]) == r.overturned
             assert row[K.S_E_DISSIPATED] == r.energy_dissipated
             up = row[K.S_T_UPLIFT]
-            assert (math.isnan(up) and r.uplift_time is None) or up == r.uplift_time
+            assert (math.isnan(up) and r.t_uplift is None) or up == r.t_uplift
     # the cases are not trivial: some rock, some do not, one overturns
     assert (br["theta_max"] > 0).sum() >= 4
     assert br.overturned.any() and not br.overturned.all()

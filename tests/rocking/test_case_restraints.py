@@ -52,7 +52,7 @@ def test_example_cases_build_every_term():
     assert model.pivot.law == "compressive-length"
     assert model.restitution.k0_free == 0.5
     r = simulate(model, motion, **kw)
-    assert r.success and r.uplift_time is not None
+    assert r.success and r.t_uplift is not None
 
 
 def test_run_with_all_restraints_and_laws(tmp_path):

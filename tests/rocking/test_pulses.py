@@ -80,12 +80,12 @@ def test_uplift_at_g_tan_alpha():
     t = np.arange(0, 4.0, dt)
     for sign in (1.0, -1.0):
         res = simulate(BLOCK, (dt, sign * k * t), duration=3.0)
-        assert res.uplift_time * k == pytest.approx(2.4525, rel=5e-3)
-        assert res.uplift_time * k == pytest.approx(G * math.tan(BLOCK.alpha), rel=1e-9)
+        assert res.t_uplift * k == pytest.approx(2.4525, rel=5e-3)
+        assert res.t_uplift * k == pytest.approx(G * math.tan(BLOCK.alpha), rel=1e-9)
         # in the direction of the ground acceleration (EURODYN (2020), eq. 1 sign convention)
         assert np.sign(res.theta[-1]) == sign
         nm = simulate(BLOCK, (dt, sign * k * t), duration=3.0, method="newmark", dt=0.01)
-        assert nm.uplift_time == pytest.approx(res.uplift_time, rel=1e-9)
+        assert nm.t_uplift == pytest.approx(res.t_uplift, rel=1e-9)
 
 
 def test_no_uplift_below_threshold():
@@ -93,7 +93,7 @@ def test_no_uplift_below_threshold():
     t = np.arange(0, 5.0, dt)
     acc = 0.99 * G * math.tan(BLOCK.alpha) * np.sin(2 * math.pi * t)
     res = simulate(BLOCK, (dt, acc))
-    assert res.uplift_time is None and res.theta_max == 0.0 and res.n_impacts == 0
+    assert res.t_uplift is None and res.theta_max == 0.0 and res.n_impacts == 0
     assert res.rocking_criterion.max() == pytest.approx(0.99, rel=1e-3)
 
 
@@ -105,4 +105,4 @@ def test_vertical_acceleration_adds_to_gravity():
     t = np.arange(0, 6.0, dt)
     av = np.full_like(t, 0.3 * G)
     res = simulate(BLOCK, Record(dt, t.copy(), av), duration=5.0)
-    assert res.uplift_time == pytest.approx(1.3 * G * math.tan(BLOCK.alpha), rel=1e-9)
+    assert res.t_uplift == pytest.approx(1.3 * G * math.tan(BLOCK.alpha), rel=1e-9)

@@ -166,8 +166,8 @@ def test_pretension_raises_the_uplift_threshold():
     a_th = (G * HB + P0 * H / M) / ZG
     below = simulate(mdl, rectangular_pulse(a_th * (1 - 1e-6), 0.2), duration=0.3)
     above = simulate(mdl, rectangular_pulse(a_th * (1 + 1e-6), 0.2), duration=0.3)
-    assert below.uplift_time is None
-    assert above.uplift_time == pytest.approx(0.0, abs=1e-12)
+    assert below.t_uplift is None
+    assert above.t_uplift == pytest.approx(0.0, abs=1e-12)
 
 
 def test_tie_force_and_yielding():

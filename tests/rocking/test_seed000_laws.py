@@ -63,8 +63,8 @@ def test_rocking_starts_at_the_modified_criterion(reading):
     a = ONSET[reading]
     below = simulate(mdl, rectangular_pulse(a * (1 - 1e-7), 0.5), duration=0.6)
     above = simulate(mdl, rectangular_pulse(a * (1 + 1e-7), 0.5), duration=0.6)
-    assert below.uplift_time is None
-    assert above.uplift_time == pytest.approx(0.0, abs=1e-12)
+    assert below.t_uplift is None
+    assert above.t_uplift == pytest.approx(0.0, abs=1e-12)
     rc = above.rocking_criterion
     assert rc[1] == pytest.approx(1.0, rel=1e-6)
 

@@ -86,11 +86,11 @@ def test_plain_model_rocks_at_s09_only(wall):
         assert (PGA[(wall, test)] * G > _onset(wall, "corner")) is rocks
         rec = _scaled(wall, test)
         res = simulate(RockingModel(body), rec)
-        assert (res.uplift_time is not None) is rocks
+        assert (res.t_uplift is not None) is rocks
         assert bool(res.rocking_criterion.max() > 1.0) is rocks
         if rocks:
             k = int(np.argmax(np.abs(rec.acc) > _onset(wall, "corner")))
-            assert (k - 1) * rec.dt <= res.uplift_time <= k * rec.dt + 1e-9
+            assert (k - 1) * rec.dt <= res.t_uplift <= k * rec.dt + 1e-9
 
 
 @pytest.mark.parametrize("reading", ["effective-width", "kern", "neutral-axis"])
@@ -102,7 +102,7 @@ def test_modified_criterion_rocks_at_s07_to_s09(wall, reading):
     for test in ("S07", "S08", "S09"):
         assert PGA[(wall, test)] * G > _onset(wall, reading)
         res = simulate(mdl, _scaled(wall, test))
-        assert res.uplift_time is not None
+        assert res.t_uplift is not None
         assert res.rocking_criterion.max() > 1.0
 
 
@@ -114,11 +114,11 @@ def test_modified_model_starts_rocking_earlier():
     rec = _scaled("short", "S07")
     plain = simulate(RockingModel(body), rec)
     modified = simulate(RockingModel(body, pivot=Pivot("compressive-length")), rec)
-    assert plain.uplift_time is None
-    assert modified.uplift_time is not None
+    assert plain.t_uplift is None
+    assert modified.t_uplift is not None
     for wall in WALLS:
         body = series_clay_wall(wall)
         rec = _scaled(wall, "S09")
-        t_plain = simulate(RockingModel(body), rec).uplift_time
-        t_mod = simulate(RockingModel(body, pivot=Pivot("compressive-length")), rec).uplift_time
+        t_plain = simulate(RockingModel(body), rec).t_uplift
+        t_mod = simulate(RockingModel(body, pivot=Pivot("compressive-length")), rec).t_uplift
         assert t_mod <= t_plain

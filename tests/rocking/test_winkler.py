@@ -17,6 +17,7 @@ from murus.rocking import (
     simulate,
     sine_pulse,
 )
+from murus.rocking import kernels as K
 from murus.rocking import winkler_kernels as WK
 from murus.rocking.winkler import (
     WinklerBase,
@@ -97,10 +98,9 @@ def test_static_state_is_an_equilibrium_of_the_dynamic_equations():
         for th in (0.3 * theta_full(SHORT, 1e9), 0.02, 0.1):
             st = static_pushover(SHORT, base, th)
             exc = rectangular_pulse(float(st["a"][0]), 1.0)
-            X = exc.vector()
-            ag, av = exc.arrays()
+            drv = K.Drive(exc.vector(), *exc.arrays())
             y = np.array([st["v"][0], th, 0.0, 0.0, 0.0, 0.0])
-            r = WK.evaluate(P, X, ag, av, 0.5, y)
+            r = WK.evaluate(P, drv, 0.5, y)
             assert abs(r[WK.Y_VD]) < 1e-9 * G
             assert abs(r[WK.Y_OM]) * SHORT.z_G < 1e-9 * G
 
@@ -204,7 +204,7 @@ def test_first_return_converges_to_the_rigid_impact_time():
     for k in STIFFNESSES:
         res = simulate_winkler(SHORT, WinklerBase(k), theta0_over_alpha=0.5, duration=0.8,
                                out_dt=1e-2, rtol=1e-9)
-        errs.append(res.first_crossing / rigid - 1.0)
+        errs.append(res.t_first_crossing / rigid - 1.0)
     errs = np.array(errs)
     assert np.all(errs > 0.0)  # the elastic pivot lies inside the base: slower fall
     assert np.all(np.diff(errs) < 0.0)
@@ -231,7 +231,7 @@ def test_centre_kinematics_tends_to_its_own_rigid_limit():
     for k in STIFFNESSES:
         res = simulate_winkler(body, WinklerBase(k, kinematics="centre"), theta0=th0,
                                duration=0.8, out_dt=1e-2, rtol=1e-9)
-        errs.append(res.first_crossing / t_centre - 1.0)
+        errs.append(res.t_first_crossing / t_centre - 1.0)
     assert np.all(np.diff(errs) < 0.0) and errs[-1] < 0.003
 
 

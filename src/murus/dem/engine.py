@@ -66,6 +66,7 @@ import numpy as np
 
 from murus import threads as _threads
 from murus.dem import kernels as K
+from murus.results import Result
 
 __all__ = ["OVERLAP_LIMIT", "RunResult", "SettleResult", "body_sizes", "overlap_fraction",
            "Probe", "body_probe", "relative_probe", "tilt_probe", "stop_when", "stable_dt",
@@ -177,11 +178,12 @@ def stop_when(probe: Callable, op: str, value: float) -> Callable:
 
 # ---------------------------------------------------------------------- results
 @dataclass
-class SettleResult:
+class SettleResult(Result):
     """Outcome of :func:`settle`: ``converged``, the steps taken, the final unbalanced-force
     ratio [-], a one-line ``message`` and the largest overlap ``overlap`` [-] of two bodies
     (fraction of the thinner one's thickness along the contact normal,
-    :func:`overlap_fraction`)."""
+    :func:`overlap_fraction`). ``status``: ``"converged"`` or ``"not converged"``;
+    ``success``: converged (:class:`murus.results.Result`)."""
 
     converged: bool
     steps: int
@@ -189,13 +191,22 @@ class SettleResult:
     message: str = ""
     overlap: float = 0.0
 
+    @property
+    def status(self) -> str:
+        return "converged" if self.converged else "not converged"
+
+    @property
+    def success(self) -> bool:
+        return bool(self.converged)
+
 
 @dataclass
-class RunResult:
+class RunResult(Result):
     """History of a dynamic run. ``t`` [s]; ``values[name]`` sampled with it (probes and the
     energy terms ``energy.*``); status: completed | stopped (a stop condition) | interrupted |
     max_steps | unstable (non-finite positions) | interpenetration (two bodies overlap by more
-    than :data:`OVERLAP_LIMIT` of their size); :attr:`ok` for the first two."""
+    than :data:`OVERLAP_LIMIT` of their size); :attr:`ok` (or :attr:`success`,
+    :class:`murus.results.Result`) for the first two."""
 
     t: np.ndarray
     values: dict = field(default_factory=dict)
@@ -213,6 +224,11 @@ class RunResult:
     def ok(self) -> bool:
         """True when the run reached its end or its stop condition."""
         return self.status in OK_STATUSES
+
+    @property
+    def success(self) -> bool:
+        """True when the run reached its end or its stop condition (:attr:`ok`)."""
+        return self.ok
 
 
 # ---------------------------------------------------------------------- time step

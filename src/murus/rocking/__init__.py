@@ -46,6 +46,7 @@ _EXPORTS = {
     "simulate_batch": "engine",
     "WinklerBase": "winkler",
     "WinklerError": "winkler",
+    "WinklerModel": "winkler",
     "WinklerResult": "winkler",
     "simulate_winkler": "winkler",
     "critical_amplitude": "analysis",

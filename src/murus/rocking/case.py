@@ -307,8 +307,10 @@ def build(case: RockingCase, path: Path, text: str):
         kwargs["rtol"] = case.solver.rtol
     if m.theta0_over_alpha is not None:
         kwargs["theta0_over_alpha"] = m.theta0_over_alpha
-    if kwargs["duration"] is None and kind == "free":
-        kwargs["duration"] = 20.0
+    if kwargs["duration"] is None and kind == "free":  # the default of simulate() too
+        from murus.rocking.summary import FREE_VIBRATION_DURATION
+
+        kwargs["duration"] = FREE_VIBRATION_DURATION
     if case.solver.method == "newmark" and kwargs["duration"] is None:
         kwargs["duration"] = motion.end_time + 5.0
     if case.solver.duration is not None and not math.isfinite(case.solver.duration):

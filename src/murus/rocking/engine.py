@@ -10,16 +10,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from murus import threads as _threads
+from murus.results import Result, deprecated_alias
 from murus.rocking import kernels as K
-from murus.rocking.defaults import RTOL
-from murus.rocking.excitation import Excitation, as_excitation
+from murus.rocking.defaults import RTOL, WINKLER_RTOL
+from murus.rocking.excitation import Excitation, as_excitation, default_duration
 from murus.rocking.model import ModelError, as_model
-
-#: Limit states of seed 002 §4 on the normalised rotation theta/alpha.
-LIMIT_STATES = {"limited": 0.1, "moderate": 0.4}
-
-#: Default free-motion time added after the end of the input [s].
-FREE_TAIL = 5.0
+from murus.rocking.summary import (  # noqa: F401 (FREE_TAIL, LIMIT_STATES: public here too)
+    FREE_TAIL,
+    LIMIT_STATES,
+    SUMMARY,
+    table_summary,
+    values,
+)
 
 #: What each integration method is to be trusted for (VALIDATION.md, issue 15).
 METHOD_NOTES = {
@@ -39,13 +41,15 @@ _STATUS = {
 
 
 @dataclass
-class RockingResult:
+class RockingResult(Result):
     """A single time history (SI units: s, rad, rad/s, m/s², J).
 
     Arrays are on the output grid ``t``; ``pivot`` is 0 at rest, +1/-1 rocking about O/O'.
     ``impacts`` has rows ``(t, omega_before, omega_after)``; ``uplift_intervals`` rows
     ``(start, end)`` (end ``nan`` while still rocking at the end of the run); ``peaks`` rows
-    ``(t, theta)`` at each extremum of the rotation while rocking."""
+    ``(t, theta)`` at each extremum of the rotation while rocking. The scalar quantities are
+    declared in :data:`murus.rocking.summary.SUMMARY` (units, description); ``uplift_time``
+    is the deprecated name of ``t_uplift``."""
 
     t: np.ndarray
     theta: np.ndarray
@@ -65,7 +69,7 @@ class RockingResult:
     theta_pos: float
     theta_neg: float
     n_impacts: int
-    uplift_time: float | None
+    t_uplift: float | None
     overturned: bool
     t_overturn: float | None
     t_exceed_alpha: float | None
@@ -75,6 +79,13 @@ class RockingResult:
     n_steps: int
     meta: dict = field(default_factory=dict)
     lever: np.ndarray | None = None
+
+    uplift_time = deprecated_alias("t_uplift", "uplift_time")
+
+    def headline(self) -> str:
+        """``theta_max/alpha = ..., impacts = ..., overturned = ...`` (the CLI's line)."""
+        return (f"theta_max/alpha = {self.theta_max_over_alpha:.4f}, impacts = {self.n_impacts}"
+                f", overturned = {self.overturned}")
 
     def _lever(self) -> np.ndarray:
         if self.lever is not None:
@@ -87,20 +98,17 @@ class RockingResult:
 
     @property
     def limit_states(self) -> dict[str, bool]:
-        """Limit states of seed 002 reached (``theta/alpha >= 0.1`` and ``0.4``) and collapse."""
+        """Limit states reached (:data:`murus.rocking.summary.LIMIT_STATES`, EURODYN (2020),
+        §4: ``theta/alpha >= 0.1`` and ``0.4``) and collapse."""
         out = {k: bool(self.theta_max_over_alpha >= v) for k, v in LIMIT_STATES.items()}
         out["overturning"] = self.overturned
         return out
 
     @property
-    def success(self) -> bool:
-        return self.status == 0
-
-    @property
     def rocking_criterion(self) -> np.ndarray:
         """``RC(t) = |a_g| z_G / ((g + a_v) b_n)`` with ``b_n`` the lever of the weight about
-        the pivot: ``b/2`` on the corner (seed 000 eq. 9: ``m a_g H / (m g B/2)``), the
-        compressive-length lever with a moving pivot (eq. 11); > 1: rocking starts (without
+        the pivot: ``b/2`` on the corner (Mordant et al. (SERIES) eq. 9: ``m a_g H / (m g B/2)``),
+        the compressive-length lever with a moving pivot (eq. 11); > 1: rocking starts (without
         restraints)."""
         g = self.meta.get("model", {}).get("gravity", 9.81)
         zg = self.meta["model"]["body"]["z_G"]
@@ -135,29 +143,23 @@ class RockingResult:
         return np.where(k > 0, cum[np.maximum(k - 1, 0)], 0.0)
 
     def summary(self) -> dict:
-        """Plain-number summary (what ``summary.json`` holds)."""
-        return {
-            "theta_max": self.theta_max,
+        """Plain-number summary (what ``summary.json`` holds): the quantities of the declared
+        table :data:`murus.rocking.summary.SUMMARY` that a result keeps (also under their
+        earlier names), then the derived ones; ``status`` is the message."""
+        out = table_summary(self, SUMMARY, _RESULT_FIELDS)
+        out.update({
             "theta_max_over_alpha": self.theta_max_over_alpha,
-            "theta_signed_max": self.theta_signed_max,
-            "t_theta_max": self.t_theta_max,
-            "overturned": self.overturned,
-            "t_overturn": self.t_overturn,
-            "t_exceed_alpha": self.t_exceed_alpha,
-            "impacts": self.n_impacts,
-            "uplift_time": self.uplift_time,
             "uplift_intervals": [[_opt(a), _opt(b)] for a, b in self.uplift_intervals],
             "limit_states": self.limit_states,
             "alpha": self.alpha,
             "p": self.p,
             "restitution": self.restitution,
-            "energy_dissipated": self.energy_dissipated,
             "status": self.message,
-            "n_steps": self.n_steps,
             "method": self.meta.get("solver", {}).get("method", "event"),
             "method_note": METHOD_NOTES.get(self.meta.get("solver", {}).get("method", "event")),
             "input": self.meta,
-        }
+        })
+        return out
 
 
 def restraint_energy(model: dict, theta: np.ndarray, pivot: np.ndarray) -> np.ndarray:
@@ -195,6 +197,12 @@ def restraint_energy(model: dict, theta: np.ndarray, pivot: np.ndarray) -> np.nd
     return E
 
 
+#: Quantities of the summary table kept as attributes of a :class:`RockingResult`.
+_RESULT_FIELDS = ("theta_max", "theta_signed_max", "t_theta_max", "theta_pos", "theta_neg",
+                  "n_impacts", "t_uplift", "overturned", "t_overturn", "t_exceed_alpha",
+                  "energy_dissipated", "status", "n_steps")
+
+
 def _opt(x) -> float | None:
     return None if math.isnan(x) else float(x)
 
@@ -203,7 +211,7 @@ def _resolve(model, motion, duration, restitution, linearised):
     mdl = as_model(model, restitution, linearised)
     exc = as_excitation(motion)
     if duration is None:
-        duration = exc.end_time + FREE_TAIL
+        duration = default_duration(exc)
     duration = float(duration)
     if not (math.isfinite(duration) and duration > 0.0):
         raise ModelError(f"duration must be positive, got {duration!r}")
@@ -244,18 +252,27 @@ def simulate(
     theta0_over_alpha: float | None = None,
     restitution=None,
     linearised: bool | None = None,
-    rtol: float = RTOL,
+    rtol: float | None = None,
     dt: float | None = None,
     out_dt: float | None = None,
     max_impacts: int = 100_000,
     max_steps: int = 50_000_000,
-) -> RockingResult:
-    """Time-history analysis of a rocking body.
+) -> Result:
+    """Time-history analysis of a rocking body, on a rigid base or on an elastic layer.
+
+    The one front end of the rocking engines, in the manner of ``scipy.integrate.solve_ivp``:
+    it dispatches on the model. A :class:`RockingModel` or a :class:`RigidBlock` (rigid base)
+    returns a :class:`RockingResult`; a :class:`~murus.rocking.winkler.WinklerModel` (body on a
+    no-tension elastic layer) is run by :func:`~murus.rocking.winkler.simulate_winkler` and
+    returns a :class:`~murus.rocking.winkler.WinklerResult` (options of the rigid base only:
+    ``restitution``, ``linearised``, ``dt``, ``max_impacts``, ``method = "newmark"``). Both
+    results derive from :class:`murus.results.Result`.
 
     Parameters
     ----------
     model:
-        A :class:`RockingModel` or a :class:`RigidBlock` (Housner restitution by default).
+        A :class:`RockingModel` or a :class:`RigidBlock` (Housner restitution by default), or a
+        :class:`~murus.rocking.winkler.WinklerModel`.
     motion:
         A GroundMotion (``dt``, ``acc`` [m/s²], optional ``acc_v``), an excitation of
         :mod:`murus.rocking.excitation`, or ``None`` for free vibration.
@@ -265,33 +282,51 @@ def simulate(
         with the step ``dt`` and impacts located inside the step (second order). Trust the
         event-driven method for verdicts (overturning, limit states), fragility and anything
         near collapse: it agrees with a tight reference within 0.1 % on theta_max wherever the
-        response is not chaotic. Newmark reproduces seed 000's fixed-step analyses; at
+        response is not chaotic. Newmark reproduces the fixed-step analyses of Mordant et al.
+        (SERIES); at
         ``dt = 1 ms`` on FEMA P695 records it gives a wrong overturning verdict in 10 of 576
         runs (4 false, 6 missed overturns) and errs by more than 1 % on theta_max in 59 of 390
         stable cases (VALIDATION.md, "The rest rule against an accurate solver"): use it for
         smooth, well-resolved responses, and check a verdict near the threshold with the
         default.
     duration:
-        End of the analysis [s]; default: end of the input plus 5 s of free motion.
+        End of the analysis [s]; default: end of the input plus 5 s of free motion, 20 s for a
+        free vibration (:func:`murus.rocking.excitation.default_duration`; the same from a case
+        file).
     theta0, omega0, theta0_over_alpha:
         Initial rotation [rad] (or as a fraction of alpha) and angular velocity [rad/s].
     rtol:
-        Relative tolerance of the event-driven integrator (absolute: ``rtol * alpha``);
-        default :data:`murus.rocking.model.RTOL` (1e-11, where verdicts and impact counts agree
-        with an accurate reference).
+        Relative tolerance of the event-driven integrator (absolute: ``rtol * alpha``); default
+        :data:`murus.rocking.defaults.RTOL` (1e-11, where verdicts and impact counts agree with an
+        accurate reference) on a rigid base, :data:`~murus.rocking.defaults.WINKLER_RTOL` (1e-9)
+        on an elastic layer.
     dt:
         Newmark time step [s] (required for ``method="newmark"``).
     out_dt:
         Output grid step [s] for the event-driven method (default: the record's step).
     """
+    from murus.rocking.winkler import WinklerModel, simulate_winkler
+
+    if isinstance(model, WinklerModel):
+        rigid_only = {"restitution": restitution, "linearised": linearised, "dt": dt}
+        given = [k for k, v in rigid_only.items() if v is not None]
+        if method != "event" or given:
+            what = f"method {method!r}" if method != "event" else ", ".join(given)
+            raise ModelError(f"{what}: an option of the rigid base, not of a WinklerModel")
+        return simulate_winkler(model.body, model.base, motion, duration=duration,
+                                theta0=theta0, omega0=omega0,
+                                theta0_over_alpha=theta0_over_alpha, gravity=model.gravity,
+                                rtol=WINKLER_RTOL if rtol is None else rtol, out_dt=out_dt,
+                                max_steps=max_steps)
+    if rtol is None:
+        rtol = RTOL
     mdl, exc, t_end = _resolve(model, motion, duration, restitution, linearised)
     th0, om0 = _initial(theta0, omega0, theta0_over_alpha, mdl.body)
     if mdl.rigid_walls and (th0 < 0.0 or (th0 == 0.0 and om0 < 0.0)):
         raise ModelError("rigid transverse walls: the wall cannot start rotating inward "
                          "(theta0 < 0 or omega0 < 0)")
     P = mdl.params()
-    X = exc.vector()
-    ag, av = exc.arrays()
+    drv = K.Drive(exc.vector(), *exc.arrays())
     if method == "event":
         if not (0.0 < rtol < 1e-2):
             raise ModelError(f"rtol must be in (0, 1e-2), got {rtol!r}")
@@ -301,9 +336,8 @@ def simulate(
         n_out = int(math.floor(t_end / step + 1e-9)) + 1
         t = np.arange(n_out) * step
 
-        def kernel(th, om, pv, imp, up, pk):
-            return K.event_core(P, X, ag, av, t_end, th0, om0, float(rtol), step, th, om, pv,
-                                imp, up, pk, int(max_steps))
+        def kernel(log):
+            return K.event_core(P, drv, t_end, th0, om0, float(rtol), step, log, int(max_steps))
     elif method == "newmark":
         if dt is None or not (math.isfinite(dt) and dt > 0.0):
             raise ModelError("method 'newmark' needs a positive time step dt")
@@ -311,9 +345,8 @@ def simulate(
         n_out = n_steps + 1
         t = np.arange(n_out) * dt
 
-        def kernel(th, om, pv, imp, up, pk):
-            return K.newmark_core(P, X, ag, av, float(n_steps * dt), th0, om0, float(dt), th, om,
-                                  pv, imp, up, pk)
+        def kernel(log):
+            return K.newmark_core(P, drv, float(n_steps * dt), th0, om0, float(dt), log)
     else:
         raise ModelError(f"unknown method {method!r}; expected 'event' or 'newmark'")
     law = mdl.restitution
@@ -324,15 +357,16 @@ def simulate(
         if getattr(law, "variant", "causal") != "iterated" or S[K.S_OVERTURNED]:
             break
         target = float(S[K.S_THETA_MAX])
-        if P[K.P_E_ABSMAX] > 0.0 and abs(target - P[K.P_E_ABSMAX]) <= 1e-9 * target:
+        if P["e_absmax"] > 0.0 and abs(target - P["e_absmax"]) <= 1e-9 * target:
             break
         if iterations > law.max_iterations or target <= 0.0:
             break
-        P[K.P_E_ABSMAX] = target
+        P["e_absmax"] = target
     gh, gv = exc.sample(t)
-    n_imp = int(S[K.S_N_IMPACTS])
-    n_up = int(S[K.S_N_UPLIFTS])
-    status = int(S[K.S_STATUS])
+    vals = values(SUMMARY, S)
+    n_imp = vals["n_impacts"]
+    n_up = vals["n_uplifts"]
+    status = vals["status"]
     meta = {
         "model": mdl.describe(),
         "motion": exc.describe(),
@@ -354,20 +388,8 @@ def simulate(
         alpha=mdl.body.alpha,
         p=mdl.p,
         restitution=mdl.e,
-        theta_max=float(S[K.S_THETA_MAX]),
-        theta_signed_max=float(S[K.S_THETA_AT_MAX]),
-        t_theta_max=float(S[K.S_T_THETA_MAX]),
-        theta_pos=float(S[K.S_THETA_POS]),
-        theta_neg=float(S[K.S_THETA_NEG]),
-        n_impacts=n_imp,
-        uplift_time=_opt(S[K.S_T_UPLIFT]),
-        overturned=bool(S[K.S_OVERTURNED]),
-        t_overturn=_opt(S[K.S_T_OVERTURN]),
-        t_exceed_alpha=_opt(S[K.S_T_EXCEED_ALPHA]),
-        energy_dissipated=float(S[K.S_E_DISSIPATED]),
-        status=status,
-        message=_message(status, float(S[K.S_T_FINAL]), t_end, mdl),
-        n_steps=int(S[K.S_N_STEPS]),
+        **{k: v for k, v in vals.items() if k in _RESULT_FIELDS},
+        message=_message(status, vals["t_final"], t_end, mdl),
         meta=meta,
         lever=mdl.pivot.lever(mdl.body, gh, gv, mdl.gravity) if mdl.pivot.code else None,
     )
@@ -378,13 +400,9 @@ def _run_logged(kernel, n_out, max_impacts):
     all (the kernel is deterministic)."""
     cap = 256
     while True:
-        th = np.full(n_out, np.nan)
-        om = np.full(n_out, np.nan)
-        pv = np.full(n_out, np.nan)
-        imp = np.full((min(cap, max_impacts), 3), np.nan)
-        up = np.full((cap, 2), np.nan)
-        pk = np.full((cap, 2), np.nan)
-        S = kernel(th, om, pv, imp, up, pk)
+        log = K.new_log(n_out, min(cap, max_impacts), cap)
+        S = kernel(log)
+        _, _, th, om, pv, imp, up, pk = log
         need = max(S[K.S_N_IMPACTS], S[K.S_N_UPLIFTS], S[K.S_N_PEAKS])
         if need <= cap or cap >= max(max_impacts, 1):
             break
@@ -393,18 +411,10 @@ def _run_logged(kernel, n_out, max_impacts):
 
 
 # ----------------------------------------------------------------------------- batches ----
-SUMMARY_FIELDS = {
-    "theta_max": K.S_THETA_MAX,
-    "theta_signed_max": K.S_THETA_AT_MAX,
-    "t_theta_max": K.S_T_THETA_MAX,
-    "n_impacts": K.S_N_IMPACTS,
-    "uplift_time": K.S_T_UPLIFT,
-    "overturned": K.S_OVERTURNED,
-    "t_overturn": K.S_T_OVERTURN,
-    "t_exceed_alpha": K.S_T_EXCEED_ALPHA,
-    "energy_dissipated": K.S_E_DISSIPATED,
-    "status": K.S_STATUS,
-}
+#: Slot of each summary quantity (:data:`murus.rocking.summary.SUMMARY`), and of its earlier
+#: names, in the summary vectors of a :class:`BatchResult`.
+SUMMARY_FIELDS = {**{q.name: i for i, q in enumerate(SUMMARY)},
+                  **{a: i for i, q in enumerate(SUMMARY) for a in q.aliases}}
 
 
 @dataclass
@@ -472,11 +482,11 @@ def simulate_batch(
     if not mdls or not excs:
         raise ModelError("simulate_batch needs at least one model and one motion")
     nm, nx = len(mdls), len(excs)
-    Pm = np.stack([m.params() for m in mdls])
+    Pm = np.array([m.params() for m in mdls], dtype=K.PARAM_DTYPE)
     Xm = np.stack([e.vector() for e in excs])
     ag_flat, av_flat, offsets, lengths = _pack_motions(excs)
-    ends = np.array([e.end_time for e in excs])
-    t_end_m = ends + FREE_TAIL if duration is None else np.full(nx, float(duration))
+    t_end_m = (np.array([default_duration(e) for e in excs]) if duration is None
+               else np.full(nx, float(duration)))
     im, ix = np.meshgrid(np.arange(nm), np.arange(nx), indexing="ij")
     im = im.ravel()
     ix = ix.ravel()
@@ -496,18 +506,19 @@ def simulate_batch(
                                  np.full(sel.size, float(omega0)), float(rtol), int(max_steps))
 
     raw = run(np.arange(nc))
-    # the iterated variant of seed 000 eq. 16: re-run the cases whose largest rotation moved
+    # the iterated variant of Mordant et al. (SERIES) eq. 16: re-run the cases whose largest
+    # rotation moved
     iterated = np.array([getattr(m.restitution, "variant", "") == "iterated" for m in mdls])
     todo = np.flatnonzero(iterated[im])
     for _ in range(max((m.restitution.max_iterations for m in mdls if
                         getattr(m.restitution, "variant", "") == "iterated"), default=0)):
         todo = todo[(raw[todo, K.S_OVERTURNED] == 0.0) & (raw[todo, K.S_THETA_MAX] > 0.0)]
         target = raw[todo, K.S_THETA_MAX]
-        moved = np.abs(target - Pc[todo, K.P_E_ABSMAX]) > 1e-9 * target
+        moved = np.abs(target - Pc["e_absmax"][todo]) > 1e-9 * target
         todo = todo[moved]
         if todo.size == 0:
             break
-        Pc[todo, K.P_E_ABSMAX] = raw[todo, K.S_THETA_MAX]
+        Pc["e_absmax"][todo] = raw[todo, K.S_THETA_MAX]
         raw[todo] = run(todo)
     return BatchResult(raw=raw.reshape(nm, nx, K.S_SIZE),
                        alpha=np.array([m.body.alpha for m in mdls]))

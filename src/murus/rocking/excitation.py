@@ -247,6 +247,43 @@ def free_vibration():
     return HarmonicPulse(0.0, 0.0, 0.0, 0.0, 0.0, name="free")
 
 
+def is_free(exc) -> bool:
+    """Whether an excitation is a free vibration (:func:`free_vibration`: no input at all).
+
+    Parameters
+    ----------
+    exc : Record or HarmonicPulse
+        The excitation.
+
+    Returns
+    -------
+    bool
+    """
+    return isinstance(exc, HarmonicPulse) and exc.duration == 0.0 and exc.amplitude == 0.0
+
+
+def default_duration(exc) -> float:
+    """Default end of a run [s]: the end of the input plus :data:`FREE_TAIL` (5 s) of free
+    motion, or :data:`FREE_VIBRATION_DURATION` (20 s) for a free vibration (no input), the
+    same from the API and from a case file.
+
+    Parameters
+    ----------
+    exc : Excitation
+        The input (:func:`murus.rocking.excitation.as_excitation`).
+
+    Returns
+    -------
+    float
+        The duration [s].
+    """
+    from murus.rocking.summary import FREE_TAIL, FREE_VIBRATION_DURATION
+
+    if is_free(exc):
+        return FREE_VIBRATION_DURATION
+    return exc.end_time + FREE_TAIL
+
+
 def _check_pulse(amplitude, frequency, cycles):
     if not math.isfinite(amplitude):
         raise ExcitationError(f"pulse amplitude must be finite, got {amplitude!r}")

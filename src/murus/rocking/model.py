@@ -138,47 +138,28 @@ class RockingModel:
         b = self.body
         return math.sqrt(b.mass * self.gravity * b.R / b.I_O)
 
-    def params(self) -> np.ndarray:
-        """The parameter vector ``P`` read by the kernels."""
+    def params(self) -> np.void:
+        """The parameter record ``P`` read by the kernels (:data:`murus.rocking.kernels.PARAMS`,
+        fields set by name)."""
         b = self.body
-        P = np.zeros(K.P_SIZE)
-        P[K.P_I] = b.I_O
-        P[K.P_M] = b.mass
-        P[K.P_R] = b.R
-        P[K.P_ALPHA] = b.alpha
-        P[K.P_G] = self.gravity
-        P[K.P_LINEAR] = 1.0 if self.linearised else 0.0
-        P[K.P_REST_TOL] = self.rest_tol
-        P[K.P_IG] = b.I_O - b.mass * b.R**2
-        P[K.P_ZG] = b.z_G
-        P[K.P_HB] = 0.5 * b.width
-        P[K.P_PIVOT] = float(self.pivot.code)
-        P[K.P_PIVOT_MIN] = self.pivot.min_lever_fraction * 0.5 * b.width
-        P[K.P_PIVOT_FACTOR] = self.pivot.factor
-        P[K.P_E_ASPECT] = 1.0
+        P = K.new_params()
+        P["i_o"] = b.I_O
+        P["m"] = b.mass
+        P["r"] = b.R
+        P["alpha"] = b.alpha
+        P["g"] = self.gravity
+        P["linear"] = 1.0 if self.linearised else 0.0
+        P["rest_tol"] = self.rest_tol
+        P["ig"] = b.I_O - b.mass * b.R**2
+        P["zg"] = b.z_G
+        P["hb"] = 0.5 * b.width
+        self.pivot.fill(P, b)
+        P["e_aspect"] = 1.0
         self.restitution.fill(P, b, self.pivot.code != 0)
-        P[K.P_TERMS] = 1.0 if self.restrained else 0.0
-        if self.tie is not None:
-            t = self.tie
-            P[K.P_TIE_MODE] = 1.0 if t.tension_only else 2.0
-            P[K.P_TIE_K] = t.stiffness
-            P[K.P_TIE_Y] = t.height
-            P[K.P_TIE_X] = t.x
-            P[K.P_TIE_P0] = t.pretension
-            P[K.P_TIE_FY] = t.yield_force
-        if self.transverse_walls is not None:
-            w = self.transverse_walls
-            if math.isinf(w.stiffness):
-                P[K.P_STOP] = 1.0
-            else:
-                P[K.P_BED_K] = w.stiffness
-            P[K.P_BED_Z1] = w.z1
-            P[K.P_BED_Z2] = w.z1 + w.effective_height
-            P[K.P_BED_X] = 0.5 * b.width if w.x is None else w.x
-        if self.damper is not None:
-            P[K.P_DMP_C] = self.damper.coefficient
-            P[K.P_DMP_Y] = self.damper.height
-            P[K.P_DMP_X] = self.damper.x
+        P["terms"] = 1.0 if self.restrained else 0.0
+        for r in (self.tie, self.transverse_walls, self.damper):
+            if r is not None:
+                r.fill(P, b)
         return P
 
     def replace(self, **changes) -> RockingModel:

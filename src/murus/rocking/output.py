@@ -34,7 +34,9 @@ def timeseries_csv(result) -> str:
     """Columns: t [s], ag [m/s2], av [m/s2], rc [-], theta [rad], theta_over_alpha [-],
     omega [rad/s], pivot [-1, 0, 1]; on a Winkler base: t, ag, av, theta, theta_over_alpha,
     omega, v [m], contact_length [m], centre_of_pressure [m], contact_force [N]."""
-    if hasattr(result, "contact_length"):
+    from murus.rocking.winkler import WinklerResult
+
+    if isinstance(result, WinklerResult):  # dispatch on the result class
         return _winkler_csv(result)
     cols = np.column_stack([
         result.t, result.ag, result.av, result.rocking_criterion, result.theta,
@@ -85,8 +87,9 @@ def write_result_files(result, folder: Path, figure: bool = True) -> None:
         import matplotlib.pyplot as plt
 
         from murus.rocking.plots import plot_response, plot_winkler
+        from murus.rocking.winkler import WinklerResult
 
-        ax = plot_winkler(result) if hasattr(result, "contact_length") else plot_response(result)
+        ax = plot_winkler(result) if isinstance(result, WinklerResult) else plot_response(result)
         fig = ax[0].figure
         fig.savefig(folder / "response.png", dpi=120)
         plt.close(fig)

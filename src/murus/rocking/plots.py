@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from murus import G
+from murus.rocking.summary import LIMIT_STATES
 
 
 def _axes(ax, n=1):
@@ -32,9 +33,9 @@ def plot_response(result, axes=None):
     ax[1].set_ylabel("RC [-]")
     ax[1].legend(loc="upper right", fontsize=8)
     ax[2].plot(t, result.theta / result.alpha, lw=0.9, color="k")
-    for v, name in ((0.1, "limited"), (0.4, "moderate")):
+    for name, v in LIMIT_STATES.items():
         for sgn in (1, -1):
-            ax[2].axhline(sgn * v, color="tab:orange" if v == 0.1 else "tab:red", lw=0.6,
+            ax[2].axhline(sgn * v, color="tab:orange" if name == "limited" else "tab:red", lw=0.6,
                           ls=":", label=f"theta/alpha = {v} ({name})" if sgn == 1 else None)
     if result.overturned:
         ax[2].axvline(result.t_overturn, color="tab:red", lw=1.0, label="overturning")

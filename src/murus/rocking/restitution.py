@@ -54,8 +54,8 @@ class Housner:
         """With a moving pivot (Mordant et al. (SERIES), eq. 13) the coefficient follows the lever
         at each impact by the momentum balance about the new pivot; on the corner it is a
         constant."""
-        P[K.P_E] = self.value(body)
-        P[K.P_E_KIND] = K.E_MOMENTUM if moving_pivot else K.E_CONSTANT
+        P["e"] = self.value(body)
+        P["e_kind"] = K.E_MOMENTUM if moving_pivot else K.E_CONSTANT
 
 
 @dataclass(frozen=True)
@@ -90,8 +90,8 @@ class Constant:
         return self.e
 
     def fill(self, P: np.ndarray, body: RigidBlock, moving_pivot: bool) -> None:
-        P[K.P_E] = self.e
-        P[K.P_E_KIND] = K.E_CONSTANT
+        P["e"] = self.e
+        P["e_kind"] = K.E_CONSTANT
 
 
 def momentum_restitution(body: RigidBlock, b1: float, b2: float) -> float:
@@ -224,15 +224,15 @@ class AmplitudeDependent:
         return self.value(body)
 
     def fill(self, P: np.ndarray, body: RigidBlock, moving_pivot: bool) -> None:
-        P[K.P_E] = self.value(body)
-        P[K.P_E_KIND] = K.E_COEFFICIENT
-        P[K.P_E_K0] = self.k0
-        P[K.P_E_K1] = self.k1
+        P["e"] = self.value(body)
+        P["e_kind"] = K.E_COEFFICIENT
+        P["e_k0"] = self.k0
+        P["e_k1"] = self.k1
         if self.free_law:
-            P[K.P_E_FREE] = 1.0
-            P[K.P_E_K0F] = self.k0 if self.k0_free is None else self.k0_free
-            P[K.P_E_K1F] = self.k1 if self.k1_free is None else self.k1_free
-        P[K.P_E_ASPECT] = self.aspect_factor(body)
+            P["e_free"] = 1.0
+            P["e_k0f"] = self.k0 if self.k0_free is None else self.k0_free
+            P["e_k1f"] = self.k1 if self.k1_free is None else self.k1_free
+        P["e_aspect"] = self.aspect_factor(body)
 
     def describe(self) -> dict:
         return {"k0": self.k0, "k1": self.k1, "k0_free": self.k0_free, "k1_free": self.k1_free,

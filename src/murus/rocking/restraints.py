@@ -95,6 +95,18 @@ class Tie:
         if self.pretension > self.yield_force:
             raise RestraintError("tie pretension exceeds its yield force")
 
+    def fill(self, P, body) -> None:
+        """Write the tie into the kernels' parameter record ``P`` (:data:`murus.rocking.kernels.
+        PARAMS`; the moment is in :func:`murus.rocking.kernels.restraint_terms`)."""
+        from murus.rocking import kernels as K
+
+        P["tie_mode"] = float(K.TIE_TENSION if self.tension_only else K.TIE_BOTH)
+        P["tie_k"] = self.stiffness
+        P["tie_y"] = self.height
+        P["tie_x"] = self.x
+        P["tie_p0"] = self.pretension
+        P["tie_fy"] = self.yield_force
+
     def describe(self) -> dict:
         return {"stiffness": self.stiffness, "height": self.height, "x": self.x,
                 "tension_only": self.tension_only, "pretension": self.pretension,
@@ -150,6 +162,16 @@ class SpringBed:
             "transverse_walls", "effective_height", self.effective_height, positive=True))
         object.__setattr__(self, "z1", _num("transverse_walls", "z1", self.z1))
 
+    def fill(self, P, body) -> None:
+        """Write the spring bed (or the rigid walls) into the kernels' parameter record ``P``."""
+        if math.isinf(self.stiffness):
+            P["stop"] = 1.0
+        else:
+            P["bed_k"] = self.stiffness
+        P["bed_z1"] = self.z1
+        P["bed_z2"] = self.z1 + self.effective_height
+        P["bed_x"] = 0.5 * body.width if self.x is None else self.x
+
     def describe(self) -> dict:
         k = "rigid" if math.isinf(self.stiffness) else self.stiffness
         return {"stiffness": k, "effective_height": self.effective_height,
@@ -190,6 +212,12 @@ class Damper:
             object.__setattr__(self, "x", float(self.x))
         except (TypeError, ValueError):
             raise RestraintError(f"damper x must be a number, got {self.x!r}") from None
+
+    def fill(self, P, body) -> None:
+        """Write the damper into the kernels' parameter record ``P``."""
+        P["dmp_c"] = self.coefficient
+        P["dmp_y"] = self.height
+        P["dmp_x"] = self.x
 
     def describe(self) -> dict:
         return {"coefficient": self.coefficient, "height": self.height, "x": self.x}
@@ -270,22 +298,43 @@ class Pivot:
         return 0 if self.law == "corner" else PIVOT_READINGS[self.reading]
 
     def lever(self, body, a_g, a_v=0.0, g: float = G):
-        """Lever of the weight about the pivot [m] for ground accelerations [m/s²] (NumPy),
-        the same formula as the kernel's :func:`murus.rocking.kernels.lever`."""
+        """Lever of the weight about the pivot [m] for ground accelerations ``a_g``, ``a_v``
+        [m/s²] (scalars or arrays), evaluated by the kernel's own formula
+        (:func:`murus.rocking.kernels.lever`).
+
+        Parameters
+        ----------
+        body : RigidBlock
+            The body (its width [m] and height of the centre of gravity [m]).
+        a_g, a_v : float or array_like
+            Horizontal and vertical ground accelerations [m/s²].
+        g : float
+            Gravity [m/s²].
+
+        Returns
+        -------
+        float or numpy.ndarray
+            The lever [m], of the shape of ``a_g``.
+        """
         import numpy as np
 
-        hb = 0.5 * body.width
-        if self.code == 0:
-            return np.full(np.shape(a_g), hb) if np.ndim(a_g) else hb
-        B = body.width
-        if self.code == 1:
-            bl = np.full(np.shape(a_g), B / 6.0)
-        else:
-            e = self.factor * np.abs(a_g) * body.z_G / (g + np.asarray(a_v))
-            lc = np.where(e <= B / 6.0, B, 3.0 * (hb - e))
-            bl = 0.5 * lc if self.code == 2 else lc - hb
-        out = np.clip(bl, self.min_lever_fraction * hb, hb)
-        return float(out) if np.ndim(out) == 0 else out
+        from murus.rocking import kernels as K
+
+        P = K.new_params()
+        P["hb"] = 0.5 * body.width
+        P["zg"] = body.z_G
+        P["g"] = g
+        self.fill(P, body)
+        ag = np.asarray(a_g, dtype=float)
+        av = np.broadcast_to(np.asarray(a_v, dtype=float), ag.shape)
+        out = K.levers(np.ascontiguousarray(ag.ravel()), np.ascontiguousarray(av.ravel()), P)
+        return float(out[0]) if ag.ndim == 0 else out.reshape(ag.shape)
+
+    def fill(self, P, body) -> None:
+        """Write the pivot law into the kernels' parameter record ``P``."""
+        P["pivot"] = float(self.code)
+        P["pivot_min"] = self.min_lever_fraction * 0.5 * body.width
+        P["pivot_factor"] = self.factor
 
     def describe(self) -> dict:
         return {"law": self.law, "reading": self.reading if self.law != "corner" else None,

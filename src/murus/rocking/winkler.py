@@ -34,8 +34,8 @@ No sliding: the horizontal position of C is prescribed, ``x_C = X(theta)``, with
   energy is ``1/2 I_O theta'^2`` with ``"corner"`` but lacks
   ``1/2 m (b z_G |sin theta| cos theta + b^2/4 sin^2 theta) theta'^2`` with ``"centre"``. Only
   ``"corner"`` tends to Housner's rigid model as ``k -> inf``: with ``"centre"``
-  the first-impact time of seed 000's short wall released from ``alpha/2`` tends to a value 1.3 %
-  shorter (8.5 % for the long wall), which a convergence study cannot remove.
+  the first-impact time of the short wall of Mordant et al. (SERIES) released from ``alpha/2`` tends
+  to a value 1.3 % shorter (8.5 % for the long wall), which a convergence study cannot remove.
 
 Position of G and of a base point at body coordinate ``xi`` in ``[-b/2, b/2]`` (positive towards
 O)::
@@ -95,7 +95,7 @@ Statics (:func:`static_pushover`): under a constant ``a_g`` the layer starts to 
 when the resultant leaves the kern, ``Mx / F = b/6``, i.e. at ``a_up -> g b / (6 z_G)`` for a stiff
 layer; with a triangular pressure on ``Lc = sqrt(2 m g / (k t_w sin theta))`` the equilibrium curve
 is ``a(theta) = g (co (b/2 - Lc/3) - z_G s) / A``, whose maximum tends to the rigid-body value
-``g tan(alpha) = g b / (2 z_G)`` (seed 000 eq. 9) as ``k`` grows.
+``g tan(alpha) = g b / (2 z_G)`` (Mordant et al. (SERIES) eq. 9) as ``k`` grows.
 
 Units: SI throughout (m, kg, s, N, Pa, rad).
 """
@@ -109,10 +109,13 @@ import numpy as np
 
 from murus import G
 from murus.errors import MurusError
+from murus.results import Result, deprecated_alias
+from murus.rocking import kernels as K
 from murus.rocking import winkler_kernels as WK
 from murus.rocking.body import RigidBlock
 from murus.rocking.defaults import WINKLER_RTOL
-from murus.rocking.excitation import as_excitation
+from murus.rocking.excitation import as_excitation, default_duration
+from murus.rocking.summary import WINKLER_SUMMARY, table_summary, values
 
 __all__ = [
     "WinklerBase",
@@ -128,8 +131,6 @@ __all__ = [
     "vertical_frequency",
 ]
 
-#: Default free-motion time added after the end of the input [s] (as :func:`simulate`).
-FREE_TAIL = 5.0
 
 _STATUS = {
     0: "ok",
@@ -137,7 +138,7 @@ _STATUS = {
     2: "step budget exhausted: the integration stopped early",
 }
 
-_KINEMATICS = {"centre": 0.0, "corner": 1.0}
+_KINEMATICS = {"centre": WK.KIN_CENTRE, "corner": WK.KIN_CORNER}
 
 
 class WinklerError(MurusError, ValueError):
@@ -264,24 +265,24 @@ def _I_G(body: RigidBlock) -> float:
     return max(body.I_O - body.mass * body.R**2, 0.0)
 
 
-def params(body: RigidBlock, base: WinklerBase, gravity: float = G) -> np.ndarray:
-    """The parameter vector read by :mod:`murus.rocking.winkler_kernels`."""
+def params(body: RigidBlock, base: WinklerBase, gravity: float = G) -> np.void:
+    """The parameter record read by :mod:`murus.rocking.winkler_kernels` (its ``PARAMS``)."""
     body = _body(body)
     base = _base(base)
     g = _gravity(gravity)
     tw = base.contact_width(body)
-    P = np.zeros(WK.P_SIZE)
-    P[WK.W_M] = body.mass
-    P[WK.W_IG] = _I_G(body)
-    P[WK.W_ZG] = body.z_G
-    P[WK.W_HB] = 0.5 * body.width
-    P[WK.W_TW] = tw
-    P[WK.W_K] = base.stiffness
-    P[WK.W_C] = base.damping_coefficient(body)
-    P[WK.W_G] = g
-    P[WK.W_KIN] = _KINEMATICS[base.kinematics]
-    P[WK.W_DSC] = body.mass * g / (base.stiffness * tw * body.width)
-    P[WK.W_WSC] = vertical_frequency(body, base)
+    P = WK.new_params()
+    P["m"] = body.mass
+    P["ig"] = _I_G(body)
+    P["zg"] = body.z_G
+    P["hb"] = 0.5 * body.width
+    P["tw"] = tw
+    P["k"] = base.stiffness
+    P["c"] = base.damping_coefficient(body)
+    P["g"] = g
+    P["kin"] = _KINEMATICS[base.kinematics]
+    P["dsc"] = body.mass * g / (base.stiffness * tw * body.width)
+    P["wsc"] = vertical_frequency(body, base)
     return P
 
 
@@ -388,14 +389,16 @@ def overturning_acceleration(body, base, gravity: float = G) -> float:
 
 # ================================================================== simulation =========
 @dataclass
-class WinklerResult:
+class WinklerResult(Result):
     """One time history on the elastic layer (SI units: s, m, rad, N, Pa, J).
 
     Arrays are on the output grid ``t``. ``pivot`` is the centre of pressure in body coordinates
     (``xi`` from the base centre, positive towards the corner O lowered by ``theta > 0``; nan
     without contact). ``crossings`` has rows ``(t, theta', v)`` at each ``theta = 0``;
     ``peaks`` rows ``(t, theta)``: the extreme rotation of each half cycle between crossings (the
-    first row is the initial half cycle, the last one the half cycle running at the end)."""
+    first row is the initial half cycle, the last one the half cycle running at the end). The
+    scalar quantities are declared in :data:`murus.rocking.summary.WINKLER_SUMMARY`;
+    ``first_crossing`` is the deprecated name of ``t_first_crossing``."""
 
     t: np.ndarray
     theta: np.ndarray
@@ -434,9 +437,12 @@ class WinklerResult:
     n_rejected: int
     meta: dict = field(default_factory=dict)
 
-    @property
-    def success(self) -> bool:
-        return self.status == 0
+    first_crossing = deprecated_alias("t_first_crossing", "first_crossing")
+
+    def headline(self) -> str:
+        """``theta_max/alpha = ..., zero crossings = ..., overturned = ...`` (the CLI's line)."""
+        return (f"theta_max/alpha = {self.theta_max_over_alpha:.4f}, zero crossings = "
+                f"{self.crossings.shape[0]}, overturned = {self.overturned}")
 
     @property
     def lifted_length(self) -> np.ndarray:
@@ -459,7 +465,7 @@ class WinklerResult:
         return self.theta_max / self.alpha
 
     @property
-    def first_crossing(self) -> float | None:
+    def t_first_crossing(self) -> float | None:
         """Time of the first return to ``theta = 0`` [s] (the 'impact' of the rigid model)."""
         return float(self.crossings[0, 0]) if self.crossings.shape[0] else None
 
@@ -467,8 +473,8 @@ class WinklerResult:
         """The constant coefficient of restitution with which the rigid model would lose the
         same energy in the first ``n`` impacts, per impact: from the peaks ``theta_0`` and
         ``theta_n`` of half cycles 0 and ``n``, ``e = [(cos(alpha - theta_n) - cos alpha) /
-        (cos(alpha - theta_0) - cos alpha)]^(1 / 2n)`` (energy ``x e^2`` per impact, seed 000
-        eq. 10 context)."""
+        (cos(alpha - theta_0) - cos alpha)]^(1 / 2n)`` (energy ``x e^2`` per impact, Mordant et al.
+        (SERIES) eq. 10 context)."""
         if self.peaks.shape[0] <= n:
             raise WinklerError(f"only {self.peaks.shape[0]} half cycles: no peak number {n}")
         a = self.alpha
@@ -477,28 +483,53 @@ class WinklerResult:
         return (max(en, 0.0) / e0) ** (0.5 / n)
 
     def summary(self) -> dict:
-        return {
-            "theta_max": self.theta_max,
+        """Plain-number summary (what ``summary.json`` holds): the quantities of the declared
+        table :data:`murus.rocking.summary.WINKLER_SUMMARY` that a result keeps, then the
+        derived ones; ``status`` is the message."""
+        out = table_summary(self, WINKLER_SUMMARY, _RESULT_FIELDS)
+        out.update({
             "theta_max_over_alpha": self.theta_max_over_alpha,
-            "theta_signed_max": self.theta_signed_max,
-            "t_theta_max": self.t_theta_max,
-            "overturned": self.overturned,
-            "t_overturn": self.t_overturn,
-            "first_crossing": self.first_crossing,
-            "crossings": int(self.crossings.shape[0]),
-            "peak_contact_force": self.peak_contact_force,
-            "peak_pressure": self.peak_pressure,
-            "peak_angular_acceleration": self.peak_angular_acceleration,
-            "min_contact_length": self.min_contact_length,
+            "t_first_crossing": self.t_first_crossing,
+            "first_crossing": self.t_first_crossing,  # earlier name (kept for readers)
+            "n_crossings": int(self.crossings.shape[0]),
+            "crossings": int(self.crossings.shape[0]),  # earlier name (kept for readers)
             "energy_dissipated": float(self.dissipated_energy[-1]),
             "status": self.message,
-            "n_steps": self.n_steps,
             "input": self.meta,
-        }
+        })
+        return out
 
 
-def _opt(x) -> float | None:
-    return None if math.isnan(x) else float(x)
+@dataclass(frozen=True)
+class WinklerModel:
+    """A rigid body on a no-tension elastic (Winkler) layer: the model that
+    :func:`murus.rocking.simulate` runs with :func:`simulate_winkler`.
+
+    Parameters
+    ----------
+    body : RigidBlock
+        The body.
+    base : WinklerBase
+        The elastic layer.
+    gravity : float
+        ``g`` [m/s²].
+    """
+
+    body: RigidBlock
+    base: WinklerBase
+    gravity: float = G
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "body", _body(self.body))
+        object.__setattr__(self, "base", _base(self.base))
+        object.__setattr__(self, "gravity", _gravity(self.gravity))
+
+
+#: Quantities of the summary table kept as attributes of a :class:`WinklerResult`.
+_RESULT_FIELDS = ("theta_max", "theta_signed_max", "t_theta_max", "overturned", "t_overturn",
+                  "peak_contact_force", "t_peak_contact_force", "peak_pressure",
+                  "peak_angular_acceleration", "min_contact_length", "status", "n_steps",
+                  "n_rejected")
 
 
 def simulate_winkler(
@@ -547,7 +578,7 @@ def simulate_winkler(
     g = _gravity(gravity)
     exc = as_excitation(motion)
     if duration is None:
-        duration = exc.end_time + FREE_TAIL
+        duration = default_duration(exc)
     t_end = _number("duration", duration, positive=True)
     if theta0_over_alpha is not None:
         theta0 = float(theta0_over_alpha) * body.alpha
@@ -567,8 +598,7 @@ def simulate_winkler(
     if not (math.isfinite(step) and step > 0.0):
         raise WinklerError(f"out_dt must be positive, got {out_dt!r}")
     P = params(body, base, g)
-    X = exc.vector()
-    ag, av = exc.arrays()
+    drv = K.Drive(exc.vector(), *exc.arrays())
     y0 = np.zeros(WK.NY)
     y0[WK.Y_V] = initial_settlement(body, base, th0, g)
     y0[WK.Y_TH] = th0
@@ -580,7 +610,7 @@ def simulate_winkler(
         out = np.full((n_out, WK.O_SIZE), np.nan)
         zc = np.full((cap, 3), np.nan)
         pk = np.full((cap, 2), np.nan)
-        S = WK.winkler_core(P, X, ag, av, t_end, y0, rtol, step, out, zc, pk, int(max_steps))
+        S = WK.winkler_core(P, drv, t_end, y0, rtol, step, out, zc, pk, int(max_steps))
         need = max(S[WK.S_N_CROSS], S[WK.S_N_PEAKS])
         if need <= cap or cap >= max_events:
             break
@@ -597,7 +627,8 @@ def simulate_winkler(
     Mtt = _I_G(body) + m * (A**2 + zg**2 * s**2)
     T = 0.5 * (m * vd**2 - 2.0 * m * zg * s * vd * om + Mtt * om**2)
     V = m * g * (v + zg * (np.cos(th) - 1.0))
-    status = int(S[WK.S_STATUS])
+    vals = values(WINKLER_SUMMARY, S)
+    status = vals["status"]
     meta = {
         "body": body.describe(),
         "base": base.describe(body),
@@ -614,13 +645,6 @@ def simulate_winkler(
         dissipated_energy=out[:, WK.O_D], input_energy=out[:, WK.O_W],
         crossings=zc[:n_zc].copy(), peaks=pk[:n_pk].copy(),
         width=body.width, alpha=body.alpha,
-        theta_max=float(S[WK.S_THETA_MAX]), theta_signed_max=float(S[WK.S_THETA_AT_MAX]),
-        t_theta_max=float(S[WK.S_T_THETA_MAX]),
-        overturned=bool(S[WK.S_OVERTURNED]), t_overturn=_opt(S[WK.S_T_OVERTURN]),
-        peak_contact_force=float(S[WK.S_F_MAX]), t_peak_contact_force=float(S[WK.S_T_F_MAX]),
-        peak_pressure=float(S[WK.S_Q_MAX]),
-        peak_angular_acceleration=float(S[WK.S_THDD_MAX]),
-        min_contact_length=float(S[WK.S_LC_MIN]),
-        status=status, message=_STATUS.get(status, "unknown"),
-        n_steps=int(S[WK.S_N_STEPS]), n_rejected=int(S[WK.S_N_REJECT]), meta=meta,
+        **{k: v for k, v in vals.items() if k in _RESULT_FIELDS},
+        message=_STATUS.get(status, "unknown"), meta=meta,
     )

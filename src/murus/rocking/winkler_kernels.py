@@ -26,21 +26,38 @@ import math
 import numpy as np
 from numba import njit
 
+from murus._jit import guard_cache as _guard_cache
 from murus.rocking import kernels as K
+from murus.rocking.summary import WINKLER_SUMMARY, slots
 
-# ---- layout of the parameter vector P ------------------------------------------------------
-W_M = 0  # mass [kg]
-W_IG = 1  # moment of inertia about G [kg m2]
-W_ZG = 2  # height of G above the base [m]
-W_HB = 3  # half width b/2 [m]
-W_TW = 4  # out-of-plane width of the contact [m]
-W_K = 5  # layer stiffness per unit area [N/m3]
-W_C = 6  # layer damping per unit area [N s/m3]
-W_G = 7  # gravity [m/s2]
-W_KIN = 8  # horizontal kinematics: 0 base centre fixed, 1 corner on the rotation side fixed
-W_DSC = 9  # penetration scale for the error control [m] (static settlement m g / (k t_w b))
-W_WSC = 10  # circular frequency scale for the velocity error [rad/s]
-P_SIZE = 12
+# ---- the model parameters: one record of a structured dtype --------------------------------
+#: The parameters read by the kernels, declared once: (field, units, description); the kernels
+#: read them by name (``P.m``), :data:`PARAM_DTYPE` is built from this table.
+PARAMS = (
+    ("m", "kg", "mass"),
+    ("ig", "kg m2", "moment of inertia about G"),
+    ("zg", "m", "height of G above the base"),
+    ("hb", "m", "half width b/2"),
+    ("tw", "m", "out-of-plane width of the contact"),
+    ("k", "N/m3", "layer stiffness per unit area"),
+    ("c", "N s/m3", "layer damping per unit area"),
+    ("g", "m/s2", "gravity"),
+    ("kin", "-", "horizontal kinematics code (KIN_* below)"),
+    ("dsc", "m", "penetration scale for the error control (static settlement m g / (k t_w b))"),
+    ("wsc", "rad/s", "circular frequency scale for the velocity error"),
+    ("spare_11", "-", "unused"),
+)
+PARAM_DTYPE = np.dtype([(name, np.float64) for name, _, _ in PARAMS])
+
+# horizontal kinematics codes
+KIN_CENTRE = 0  # base centre fixed
+KIN_CORNER = 1  # corner on the rotation side fixed
+
+
+def new_params() -> np.void:
+    """A zeroed parameter record (:data:`PARAMS`); fields are set by name."""
+    return np.zeros(1, PARAM_DTYPE)[0]
+
 
 # ---- state -----------------------------------------------------------------------------------
 Y_V = 0
@@ -66,40 +83,32 @@ O_U = 10  # elastic energy of the layer [J]
 O_THDD = 11  # angular acceleration [rad/s2]
 O_SIZE = 12
 
-# ---- summary vector -----------------------------------------------------------------------------
-S_THETA_MAX = 0  # max |theta| [rad]
-S_THETA_AT_MAX = 1  # signed theta at the max
-S_T_THETA_MAX = 2
-S_OVERTURNED = 3
-S_T_OVERTURN = 4
-S_N_CROSS = 5  # crossings of theta = 0
-S_N_PEAKS = 6  # half-cycle peaks
-S_F_MAX = 7  # largest contact resultant [N] (at step ends)
-S_T_F_MAX = 8
-S_Q_MAX = 9  # largest contact pressure [Pa] (at step ends)
-S_THDD_MAX = 10  # largest |theta''| [rad/s2] (at step ends)
-S_LC_MIN = 11  # smallest contact length [m]
-S_STATUS = 12  # 0 ok, 1 step size underflow, 2 step budget exhausted
-S_N_STEPS = 13
-S_T_FINAL = 14
-S_N_REJECT = 15
-S_SIZE = 16
+# ---- slots of the summary vector: declared once in murus.rocking.summary.WINKLER_SUMMARY ---
+_SLOT = slots(WINKLER_SUMMARY)
+S_THETA_MAX = _SLOT["theta_max"]  # max |theta| [rad]
+S_THETA_AT_MAX = _SLOT["theta_signed_max"]  # signed theta at the max
+S_T_THETA_MAX = _SLOT["t_theta_max"]
+S_OVERTURNED = _SLOT["overturned"]
+S_T_OVERTURN = _SLOT["t_overturn"]
+S_N_CROSS = _SLOT["n_crossings"]  # crossings of theta = 0
+S_N_PEAKS = _SLOT["n_peaks"]  # half-cycle peaks
+S_F_MAX = _SLOT["peak_contact_force"]  # largest contact resultant [N] (at step ends)
+S_T_F_MAX = _SLOT["t_peak_contact_force"]
+S_Q_MAX = _SLOT["peak_pressure"]  # largest contact pressure [Pa] (at step ends)
+S_THDD_MAX = _SLOT["peak_angular_acceleration"]  # largest |theta''| [rad/s2] (at step ends)
+S_LC_MIN = _SLOT["min_contact_length"]  # smallest contact length [m]
+S_STATUS = _SLOT["status"]  # 0 ok, 1 step size underflow, 2 step budget exhausted
+S_N_STEPS = _SLOT["n_steps"]
+S_T_FINAL = _SLOT["t_final"]
+S_N_REJECT = _SLOT["n_rejected"]
+S_SIZE = len(WINKLER_SUMMARY)
 
 HALF_PI = 0.5 * math.pi
 
-# Dormand-Prince 5(4) tableau (nodes, stages, error weights = 5th minus 4th order weights)
-_C = np.array([0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0])
-_A = np.array([
-    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
-    [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
-    [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
-])
-_E = np.array([71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0,
-               22.0 / 525.0, -1.0 / 40.0])
+# The Dormand-Prince 5(4) tableau of both rocking engines (:mod:`murus.rocking.kernels`)
+_C = K.DP_C
+_A = K.DP_A
+_E = K.DP_E
 
 
 # ========================================================================= contact ======
@@ -139,10 +148,10 @@ def contact(v, th, vd, om, P):
     int delta'^2`` on the active interval plus ``-k t_w int delta delta'`` where the layer is
     compressed but the body leaves it faster than the damper lets it recover (``q`` clipped at
     0; there ``delta' < -k delta / c < 0``, so both parts are >= 0)."""
-    hb = P[W_HB]
-    k = P[W_K]
-    c = P[W_C]
-    tw = P[W_TW]
+    hb = P.hb
+    k = P.k
+    c = P.c
+    tw = P.tw
     s = math.sin(th)
     co = math.cos(th)
     d0 = -v
@@ -186,14 +195,14 @@ def lever(th, side, P):
     ``X = (b/2) side (1 - cos theta)`` (the corner on the side of the rotation fixed), where
     ``side = sgn(theta)`` is carried by the integrator so that each step sees one smooth branch
     (``A'`` jumps at ``theta = 0``)."""
-    zg = P[W_ZG]
+    zg = P.zg
     s = math.sin(th)
     co = math.cos(th)
     A = zg * co
     Ap = -zg * s
-    if P[W_KIN] != 0.0:
-        A += P[W_HB] * side * s
-        Ap += P[W_HB] * side * co
+    if P.kin == KIN_CORNER:
+        A += P.hb * side * s
+        Ap += P.hb * side * co
     return A, Ap
 
 
@@ -203,13 +212,13 @@ def side_of(th):
 
 
 @njit(cache=True)
-def rates(t, tm, y, X, ag, av, P, side, out):
+def rates(t, tm, y, drv, P, side, out):
     """Time derivative of the state (the 2x2 Lagrange equations of :mod:`murus.rocking.winkler`,
     solved in closed form) written into ``out``."""
-    gh, gv = K.ground(t, tm, X, ag, av)
-    m = P[W_M]
-    zg = P[W_ZG]
-    ge = P[W_G] + gv
+    gh, gv = K.ground(t, tm, drv)
+    m = P.m
+    zg = P.zg
+    ge = P.g + gv
     v = y[Y_V]
     th = y[Y_TH]
     vd = y[Y_VD]
@@ -218,7 +227,7 @@ def rates(t, tm, y, X, ag, av, P, side, out):
     co = math.cos(th)
     F, Mx, _, _, _, Dp = contact(v, th, vd, om, P)
     A, Ap = lever(th, side, P)
-    Mtt = P[W_IG] + m * (A * A + zg * zg * s * s)
+    Mtt = P.ig + m * (A * A + zg * zg * s * s)
     dMtt = 2.0 * m * (A * Ap + zg * zg * s * co)
     Mvt = -m * zg * s
     rv = -m * ge + F + m * zg * co * om * om
@@ -233,16 +242,16 @@ def rates(t, tm, y, X, ag, av, P, side, out):
 
 
 @njit(cache=True)
-def evaluate(P, X, ag, av, t, y):
+def evaluate(P, drv, t, y):
     """Rates of the state ``y`` at time ``t`` (a convenience for tests and static checks)."""
     out = np.empty(NY)
-    rates(t, t, y, X, ag, av, P, side_of(y[Y_TH]), out)
+    rates(t, t, y, drv, P, side_of(y[Y_TH]), out)
     return out
 
 
 # ======================================================================= integrator ======
 @njit(cache=True)
-def dp_step(t, y, h, tm, X, ag, av, P, side, ks, ytmp):
+def dp_step(t, y, h, tm, drv, P, side, ks, ytmp):
     """One Dormand-Prince 5(4) step from ``y`` with ``ks[0] = f(t, y)``; leaves the stages in
     ``ks`` (``ks[6] = f(t + h, y_new)``), the new state in ``ytmp`` and returns nothing."""
     for st in range(1, 7):
@@ -251,13 +260,13 @@ def dp_step(t, y, h, tm, X, ag, av, P, side, ks, ytmp):
             for j in range(st):
                 acc += _A[st, j] * ks[j, i]
             ytmp[i] = y[i] + h * acc
-        rates(t + _C[st] * h, tm, ytmp, X, ag, av, P, side, ks[st])
+        rates(t + _C[st] * h, tm, ytmp, drv, P, side, ks[st])
 
 
 @njit(cache=True, inline="always")
 def penetration(y, P):
     """Largest penetration of the base [m] (negative when lifted)."""
-    e = P[W_HB] * abs(math.sin(y[Y_TH]))
+    e = P.hb * abs(math.sin(y[Y_TH]))
     return -y[Y_V] + e
 
 
@@ -276,10 +285,10 @@ def error_norm(h, y, yn, ks, rtol, P):
         et += w * ks[j, Y_TH]
         evd += w * ks[j, Y_VD]
         eom += w * ks[j, Y_OM]
-    hb = P[W_HB]
-    sc = rtol * max(P[W_DSC], penetration(y, P), penetration(yn, P))
+    hb = P.hb
+    sc = rtol * max(P.dsc, penetration(y, P), penetration(yn, P))
     e_pos = h * (abs(ev) + hb * abs(et)) / sc
-    e_vel = h * (abs(evd) + hb * abs(eom)) / (sc * P[W_WSC])
+    e_vel = h * (abs(evd) + hb * abs(eom)) / (sc * P.wsc)
     return max(e_pos, e_vel)
 
 
@@ -306,25 +315,18 @@ def interp_state(u, h, y, yn, k0, k6, out):
 
 @njit(cache=True)
 def theta_root(level, h, y, yn, k0, k6):
-    """Fraction ``u`` where ``theta - level`` of the interpolant changes sign (bisection; the
-    sign differs at the two ends)."""
-    lo = 0.0
-    hi = 1.0
+    """Fraction ``u`` where ``theta - level`` of the interpolant changes sign (the shared
+    bisection :func:`murus.rocking.kernels.hermite_bisect`; the sign differs at the two
+    ends)."""
     f0 = y[Y_TH] - level
-    for _ in range(60):
-        u = 0.5 * (lo + hi)
-        th, _ = K.hermite5(u, h, y[Y_TH], y[Y_OM], k0[Y_OM], yn[Y_TH], yn[Y_OM], k6[Y_OM])
-        if (th - level) * f0 > 0.0:
-            lo = u
-        else:
-            hi = u
-        if hi - lo < 1e-14:
-            break
+    sense = 1.0 if f0 > 0.0 else (-1.0 if f0 < 0.0 else 0.0)
+    _, hi = K.hermite_bisect(sense, level, 1e-14, h, y[Y_TH], y[Y_OM], k0[Y_OM], yn[Y_TH],
+                             yn[Y_OM], k6[Y_OM])
     return hi
 
 
 @njit(cache=True)
-def write_output(j, tj, yj, X, ag, av, P, side, out, kbuf):
+def write_output(j, tj, yj, drv, P, side, out, kbuf):
     """One row of the output history at time ``tj``."""
     for i in range(NY):
         out[j, i] = yj[i]
@@ -334,7 +336,7 @@ def write_output(j, tj, yj, X, ag, av, P, side, out, kbuf):
     out[j, O_XP] = Mx / F if F > 0.0 else np.nan
     out[j, O_QMAX] = qm
     out[j, O_U] = U
-    rates(tj, tj, yj, X, ag, av, P, side, kbuf)
+    rates(tj, tj, yj, drv, P, side, kbuf)
     out[j, O_THDD] = kbuf[Y_OM]
 
 
@@ -347,7 +349,7 @@ def new_summary():
 
 
 @njit(cache=True)
-def locate_crossing(t, y, h, tm, X, ag, av, P, side, ks, yn):
+def locate_crossing(t, y, h, tm, drv, P, side, ks, yn):
     """Step size ``tau`` in (0, h] at which ``theta`` reaches 0: first guess from the Hermite
     interpolant of the accepted step, then Newton iterations on fresh steps of size ``tau``
     (whose derivative is ``theta'`` itself) inside the kept bracket. Leaves the step of size
@@ -356,7 +358,7 @@ def locate_crossing(t, y, h, tm, X, ag, av, P, side, ks, yn):
     hi = h
     tau = theta_root(0.0, h, y, yn, ks[0], ks[6]) * h
     for _ in range(40):
-        dp_step(t, y, tau, tm, X, ag, av, P, side, ks, yn)
+        dp_step(t, y, tau, tm, drv, P, side, ks, yn)
         f = side * yn[Y_TH]
         if f > 0.0:
             lo = tau
@@ -372,12 +374,12 @@ def locate_crossing(t, y, h, tm, X, ag, av, P, side, ks, yn):
             tau = nt
             break
         tau = nt
-    dp_step(t, y, tau, tm, X, ag, av, P, side, ks, yn)
+    dp_step(t, y, tau, tm, drv, P, side, ks, yn)
     return tau
 
 
 @njit(cache=True)
-def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
+def winkler_core(P, drv, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
     """Integrate one history from the state ``y0`` to ``t_end``.
 
     The history is written on the grid ``j * out_dt`` into ``out`` (rows: time, columns ``O_*``;
@@ -387,7 +389,6 @@ def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
     row is the initial half cycle), up to their capacity; the summary counts them all. Returns
     the summary vector."""
     S = new_summary()
-    n_rec = ag.shape[0]
     nzc = zc.shape[0]
     npk = pk.shape[0]
     nout = out.shape[0]
@@ -397,7 +398,7 @@ def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
     yi = np.zeros(NY)
     kbuf = np.zeros(NY)
     t = 0.0
-    h = 0.05 / P[W_WSC]
+    h = 0.05 / P.wsc
     steps = 0
     rejects = 0
     j = 0
@@ -414,11 +415,11 @@ def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
         if steps + rejects >= max_steps:
             S[S_STATUS] = 2.0
             break
-        tb = K.segment_end(t, X, n_rec, t_end)
+        tb = K.segment_end(t, drv, t_end)
         tm = 0.5 * (t + tb)
         if y[Y_TH] != 0.0:
             side = side_of(y[Y_TH])
-        rates(t, tm, y, X, ag, av, P, side, ks[0])
+        rates(t, tm, y, drv, P, side, ks[0])
         if y[Y_TH] == 0.0 and not flipped:
             # leaving theta = 0: the branch of the motion (theta'' does not depend on it when
             # theta' = 0)
@@ -433,7 +434,7 @@ def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
         if hh <= 1e-14 * (1.0 + t):
             S[S_STATUS] = 1.0
             break
-        dp_step(t, y, hh, tm, X, ag, av, P, side, ks, yn)
+        dp_step(t, y, hh, tm, drv, P, side, ks, yn)
         err = error_norm(hh, y, yn, ks, rtol, P)
         if not (err <= 1.0):
             rejects += 1
@@ -450,7 +451,7 @@ def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
                     flipped = True
                     continue
             else:
-                hh = locate_crossing(t, y, hh, tm, X, ag, av, P, side, ks, yn)
+                hh = locate_crossing(t, y, hh, tm, drv, P, side, ks, yn)
                 yn[Y_TH] = 0.0
                 crossing = True
         flipped = False
@@ -462,7 +463,7 @@ def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
             while j < nout and j * out_dt <= t + u * hh:
                 uj = max(0.0, (j * out_dt - t) / hh)
                 interp_state(uj, hh, y, yn, ks[0], ks[6], yi)
-                write_output(j, j * out_dt, yi, X, ag, av, P, side, out, kbuf)
+                write_output(j, j * out_dt, yi, drv, P, side, out, kbuf)
                 j += 1
             t = t + u * hh
             S[S_OVERTURNED] = 1.0
@@ -524,7 +525,7 @@ def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
         while j < nout and j * out_dt <= t + hh:
             uj = max(0.0, (j * out_dt - t) / hh)
             interp_state(uj, hh, y, yn, ks[0], ks[6], yi)
-            write_output(j, j * out_dt, yi, X, ag, av, P, side, out, kbuf)
+            write_output(j, j * out_dt, yi, drv, P, side, out, kbuf)
             j += 1
         at_break = hh >= hmax
         t = t + hh if not at_break else tb
@@ -541,9 +542,14 @@ def winkler_core(P, X, ag, av, t_end, y0, rtol, out_dt, out, zc, pk, max_steps):
             pk[ip, 1] = ext_v
         S[S_N_PEAKS] = ip + 1
         while j < nout:  # grid points beyond the last step by round-off only
-            write_output(j, t, y, X, ag, av, P, side, out, kbuf)
+            write_output(j, t, y, drv, P, side, out, kbuf)
             j += 1
     S[S_N_STEPS] = steps
     S[S_N_REJECT] = rejects
     S[S_T_FINAL] = t
     return S
+
+
+# numba's cache checks only this file: flush it when the kernels it inlines or the summary
+# layout change
+_guard_cache(globals(), deps=("murus.rocking.kernels", "murus.rocking.summary"))

@@ -31,12 +31,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from murus.rocking.summary import LIMIT_STATES as _ROCKING_LIMIT_STATES
+
 __all__ = ["FragilityFit", "fit_msa", "fit_ida", "fisher_covariance", "fragility_curve",
            "LIMIT_STATES", "exceedance", "fit_fragility", "fragility", "restraint_configs",
            "plot_fragility"]
 
-#: name -> threshold on theta_max / alpha (None: overturning).
-LIMIT_STATES = {"limited": 0.1, "moderate": 0.4, "overturning": None}
+#: name -> threshold on theta_max / alpha (None: overturning); the rocking limit states are
+#: declared once in :data:`murus.rocking.summary.LIMIT_STATES`.
+LIMIT_STATES = {**_ROCKING_LIMIT_STATES, "overturning": None}
 
 _B_MIN, _B_MAX = 1.0 / 5.0, 1.0 / 0.01  # beta in [0.01, 5]
 

@@ -21,13 +21,15 @@ import warnings
 import numpy as np
 
 from murus.rocking.defaults import RTOL
+from murus.rocking.summary import LIMIT_STATES as _ROCKING_LIMIT_STATES
 from murus.studies.records import RecordSet
 
 __all__ = ["rocking_spectrum", "spectrum_case", "plot_rocking_spectrum", "plot_overturning_map",
            "LIMIT_STATES"]
 
-#: Limit states of EURODYN (2020), §4 on theta_max / alpha.
-LIMIT_STATES = {"limited": 0.1, "moderate": 0.4}
+#: Limit states on theta_max / alpha (declared once: :data:`murus.rocking.summary.LIMIT_STATES`,
+#: EURODYN (2020), §4).
+LIMIT_STATES = _ROCKING_LIMIT_STATES
 
 #: The 50 stiffness ratios of EURODYN (2020), §4.1 (0 <= K <= K_d).
 TIE_STIFFNESS_RATIOS = np.linspace(0.0, 1.0, 50)

@@ -49,6 +49,7 @@ import numpy as np
 from murus.errors import MurusError
 from murus.outputs import atomic_write, process_tmp_name
 from murus.rocking.defaults import RTOL
+from murus.rocking.summary import LIMIT_STATES, SUMMARY
 from murus.studies.records import RecordSet
 
 __all__ = ["Dim", "Point", "Plan", "ChunkTask", "run_chunk", "run_plan", "run_tasks",
@@ -63,22 +64,15 @@ class StudyError(MurusError, ValueError):
     """An invalid study or results folder (one-line message)."""
 
 
-# (name, index in the kernel summary, units, long name)
-SUMMARY_VARS = (
-    ("theta_max", 0, "rad", "largest absolute rotation"),
-    ("theta_signed_max", 1, "rad", "signed rotation at the largest absolute rotation"),
-    ("t_theta_max", 2, "s", "time of the largest absolute rotation"),
-    ("n_impacts", 3, "1", "number of impacts"),
-    ("uplift_time", 4, "s", "time of first uplift (NaN: never)"),
-    ("overturned", 5, "1", "1 if the wall overturned, 0 if not (NaN: failed case)"),
-    ("t_overturn", 6, "s", "time of overturning (NaN: none)"),
-    ("t_exceed_alpha", 7, "s", "first time |theta| > alpha (NaN: never)"),
-    ("energy_dissipated", 8, "J", "energy dissipated at impacts"),
-    ("status", 10, "1", "0 ok, 1 step size underflow, 2 step budget exhausted"),
-    ("n_steps", 11, "1", "Runge-Kutta steps"),
-    ("theta_pos", 13, "rad", "largest positive rotation"),
-    ("theta_neg", 14, "rad", "largest negative rotation"),
-)
+# (name, index in the kernel summary, units, long name): the Dataset variables of the summary,
+# read from the one declared table (murus.rocking.summary.SUMMARY)
+SUMMARY_VARS = tuple((q.name, i, q.units, q.description) for i, q in enumerate(SUMMARY)
+                     if q.dataset)
+
+#: Earlier names of Dataset variables, still written (and added on reading an older file):
+#: earlier name -> name.
+RENAMED_VARS = {a: q.name for q in SUMMARY if q.dataset for a in q.aliases
+                if a == "uplift_time"}
 
 
 @dataclass(frozen=True)
@@ -896,6 +890,9 @@ def to_dataset(plan: Plan, raw: np.ndarray, failures: dict, digest: str):
     for name, k, units, long in SUMMARY_VARS:
         data[name] = xr.Variable(dims, raw[..., k].reshape(full),
                                  {"units": units, "long_name": long})
+    for old, name in RENAMED_VARS.items():
+        data[old] = data[name].copy(deep=False)
+        data[old].attrs = {**data[name].attrs, "deprecated": f"earlier name of {name}"}
     data["theta_max_over_alpha"] = xr.Variable(
         dims, (raw[..., 0] / alpha[:, None]).reshape(full),
         {"units": "1", "long_name": "largest absolute rotation over the slenderness angle alpha"})
@@ -916,7 +913,7 @@ def to_dataset(plan: Plan, raw: np.ndarray, failures: dict, digest: str):
         "study": json.dumps(plan.spec, sort_keys=True, default=str),
         "digest": digest,
         "murus_version": murus.__version__,
-        "limit_states": json.dumps({"limited": 0.1, "moderate": 0.4}),
+        "limit_states": json.dumps(LIMIT_STATES),
         "failures": json.dumps({str(k): v for k, v in failures.items()}),
         "n_failed_chunks": len(failures),
         "solver": json.dumps({"method": "event", "rtol": plan.rtol, "duration": plan.duration}),
@@ -991,9 +988,13 @@ def open_result(path):
         raise StudyError(f"{path}: no such result file")
     try:
         with xr.open_dataset(path, engine="h5netcdf") as ds:
-            return ds.load()
+            ds = ds.load()
     except (OSError, ValueError) as exc:
         raise StudyError(f"{path.name}: not a readable NetCDF result ({_one_line(exc)})") from None
+    for old, name in RENAMED_VARS.items():  # a file of an earlier version
+        if old in ds and name not in ds:
+            ds[name] = ds[old]
+    return ds
 
 
 def grid_points(dims: Sequence[Dim]):
