@@ -58,7 +58,8 @@ def worker(tree: Path, out: Path, full: bool) -> None:
     for f in sorted((tree / "examples" / "dem").glob("*.toml")):
         case, path, text = load_case(f)
         if not full:
-            case.dem.duration = min(case.dem.duration or 0.5, 0.5)
+            dem = case.dem.model_copy(update={"duration": min(case.dem.duration or 0.5, 0.5)})
+            case = case.model_copy(update={"dem": dem})
         built = build(case, path, text)
         cr = run_case(built)
         for k, a in _state(built.model).items():
