@@ -122,14 +122,11 @@ def pack(cls, obj):
 # Positions of the fields that the kernels write inside a parallel (``prange``) loop. numba
 # drops a write through a named-tuple attribute there (``c.sf[k] = x`` inside the loop body
 # has no effect: numba issues #5872 and #7135, still open in numba 0.68), while a write through
-# the field's position (``c[IC_SF][k] = x``) is kept; reads by attribute are unaffected.
+# the field's position (``bodies[IB_BPOS][b, 0] = x``) is kept; reads by attribute are
+# unaffected. (The contact loop takes bare arrays for another reason: kernels.process_pair.)
 IB_BPOS = Bodies._fields.index("bpos")
 IB_BANG = Bodies._fields.index("bang")
 IB_BVEL = Bodies._fields.index("bvel")
 IB_BOMG = Bodies._fields.index("bomg")
 IB_BSNAP = Bodies._fields.index("bsnap")
 IS_WV = Shapes._fields.index("wv")
-IC_PBOND = Contacts._fields.index("pbond")
-IC_SID = Contacts._fields.index("sid")
-IC_SF = Contacts._fields.index("sf")
-IC_SBR = Contacts._fields.index("sbr")

@@ -72,10 +72,6 @@ from murus.dem._kdata import (
     IB_BPOS,
     IB_BSNAP,
     IB_BVEL,
-    IC_PBOND,
-    IC_SBR,
-    IC_SF,
-    IC_SID,
     IS_WV,
     Contacts,
     Frame,
@@ -564,11 +560,8 @@ def collide_pd(wv, a0, na, ra, cx, cy, rd, reach):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def collide_dd(a, b, shapes, reach):
+def collide_dd(a, b, wv, svs, srad, reach):
     """Sub-contact of discs a < b, as returned by :func:`collide_pp`."""
-    wv = shapes.wv
-    svs = shapes.svs
-    srad = shapes.srad
     ia = svs[a]
     ib = svs[b]
     dx = wv[ib, 0] - wv[ia, 0]
@@ -586,20 +579,15 @@ def collide_dd(a, b, shapes, reach):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def collide(a, b, shapes, reach):
+def collide(a, b, wv, svs, svn, skind, srad, reach):
     """Sub-contacts of shapes a < b, as returned by :func:`collide_pp` (the key of a point is a
     global vertex index: the disc centre for a disc)."""
-    wv = shapes.wv
-    svs = shapes.svs
-    svn = shapes.svn
-    skind = shapes.skind
-    srad = shapes.srad
     ka = skind[a]
     kb = skind[b]
     if ka == 0 and kb == 0:
         return collide_pp(wv, svs[a], svn[a], srad[a], svs[b], svn[b], srad[b], reach)
     if ka == 1 and kb == 1:
-        return collide_dd(a, b, shapes, reach)
+        return collide_dd(a, b, wv, svs, srad, reach)
     if ka == 0:
         ic = svs[b]
         c, px, py, nx, ny, g, tr = collide_pd(wv, svs[a], svn[a], srad[a], wv[ic, 0],
@@ -616,15 +604,14 @@ def collide(a, b, shapes, reach):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _joint_law(o, k, c, pb, jprops, jp, rolling, reff, pt, pm, cst):
+def _joint_law(o, k, sf, sbr, pb, jprops, jp, rolling, reff, pt, pm, cst):
     """Joint law of one new sub-contact ``pt`` (:class:`SubContact`) matched to the old slot
-    ``o`` of pair k of ``c`` (:class:`Contacts`; -1: new), with joint row ``jp`` of
+    ``o`` of pair k (slot records ``sf``, broken flags ``sbr``: :class:`Contacts`; -1: new),
+    with joint row ``jp`` of
     ``jprops``, rolling resistance when ``rolling`` (effective radius ``reff`` [m]), the
     motion ``pm`` (:class:`PairMotion`) of the pair's bodies and ``cst = (thick, reach, dt)``.
     Returns ``(keep, broken, pb, fn, fs, mr, kna, ksa, kra, d_slip, d_roll, d_break)`` with
     ``pb`` the pair's bond flag after the step (reads the old slot, writes nothing)."""
-    sf = c.sf
-    sbr = c.sbr
     thick, reach, dt = cst
     px = pt.px
     py = pt.py
@@ -727,15 +714,12 @@ def _joint_law(o, k, c, pb, jprops, jp, rolling, reff, pt, pm, cst):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _store(k, slot, c, key, broken, fsm, stiff, pt, pm):
+def _store(k, slot, sid, sf, sbr, key, broken, fsm, stiff, pt, pm):
     """Write a sub-contact (key ``key``, broken flag, forces ``fsm = (fn, fs, mr)``,
     stiffnesses ``stiff = (kna, ksa, kra)``, point ``pt``: :class:`SubContact`) to slot
-    ``slot`` of pair k of ``c`` (:class:`Contacts`); returns its force on body b and its
-    moments about the centroids of b and a (``pm``: :class:`PairMotion`) ``(fx, fy, mb, ma)``."""
-    # written inside the contact loop: by position (murus.dem._kdata)
-    sid = c[IC_SID]
-    sf = c[IC_SF]
-    sbr = c[IC_SBR]
+    ``slot`` of pair k (``sid``, ``sf``, ``sbr``: :class:`Contacts`); returns its force on body
+    b and its moments about the centroids of b and a (``pm``: :class:`PairMotion`)
+    ``(fx, fy, mb, ma)``."""
     fn, fs, mr = fsm
     kna, ksa, kra = stiff
     px = pt.px
@@ -795,36 +779,32 @@ def _released(k, o, sf):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def process_pair(k, c, pw, shapes, bodies, jprops, dt, thick, reach, discs):
-    """Narrow phase and joint law of pair k of ``c`` (:class:`Contacts`, of the
-    :class:`Shapes` ``shapes`` of the :class:`Bodies` ``bodies``; joint rows ``jprops``;
-    time step ``dt`` [s], thickness ``thick`` [m], largest kept gap ``reach`` [m]): updates
-    its two slots in place and writes the
+def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
+                 bpos, bvel, bomg, jprops, dt, thick, reach, discs):
+    """Narrow phase and joint law of pair k (the arrays of :class:`Contacts`, then of
+    :class:`Shapes` and :class:`Bodies`, unpacked by :func:`_contacts_parallel`; joint rows
+    ``jprops``; time step ``dt`` [s], thickness ``thick`` [m], largest kept gap ``reach``
+    [m]): updates its two slots in place and writes the
     energy dissipated in the step (slip, rolling, breaking/opening) and the resultant of its
     sub-contacts on body b with its moments about both centroids to ``pw[k]`` (``W_*``).
     Returns the number of sub-contacts kept. Allocates nothing (scalars only): it runs once
     per candidate pair and step, in a parallel loop. ``discs`` (a constant where it is inlined):
-    the pair is known to be two discs (one sub-contact at most, no branch on shape kinds)."""
-    pairs = c.pairs
-    # written inside the contact loop: by position (murus.dem._kdata)
-    sid = c[IC_SID]
-    sf = c[IC_SF]
-    skind = shapes.skind
-    srad = shapes.srad
-    sbody = shapes.sbody
-    bpos = bodies.bpos
-    bvel = bodies.bvel
-    bomg = bodies.bomg
+    the pair is known to be two discs (one sub-contact at most, no branch on shape kinds).
+
+    Bare arrays, not the named structures: the parallel loop that inlines this function keeps
+    numba's ``noalias`` code generation only when no array of its body is read out of a tuple
+    (numba gives it up as soon as the loop body aliases an argument), and that code is twice as
+    fast (benchmarks/ab_dem.py)."""
     a = pairs[k, 0]
     b = pairs[k, 1]
     s0 = sid[k, 0]
     s1 = sid[k, 1]
     if discs:
         (cnt, id0, px0, py0, nx0, ny0, g0, l0,
-         id1, px1, py1, nx1, ny1, g1, l1) = collide_dd(a, b, shapes, reach)
+         id1, px1, py1, nx1, ny1, g1, l1) = collide_dd(a, b, wv, svs, srad, reach)
     else:
         (cnt, id0, px0, py0, nx0, ny0, g0, l0,
-         id1, px1, py1, nx1, ny1, g1, l1) = collide(a, b, shapes, reach)
+         id1, px1, py1, nx1, ny1, g1, l1) = collide(a, b, wv, svs, svn, skind, srad, reach)
     if cnt == 0 and s0 < 0 and s1 < 0:  # apart, and no sub-contact to release
         pw[k, W_SLIP] = 0.0
         pw[k, W_ROLL] = 0.0
@@ -869,7 +849,7 @@ def process_pair(k, c, pw, shapes, bodies, jprops, dt, thick, reach, discs):
     if cnt >= 1:
         ba = sbody[a]
         bb = sbody[b]
-        jp = c.pj[k]
+        jp = pj[k]
         muroll = jprops[jp, J_MUROLL]
         rolling = muroll > 0.0 and (discs or skind[a] == 1 or skind[b] == 1)
         reff = 0.0
@@ -883,37 +863,37 @@ def process_pair(k, c, pw, shapes, bodies, jprops, dt, thick, reach, discs):
         pm = PairMotion(bvel[ba, 0], bvel[ba, 1], bomg[ba], bpos[ba, 0], bpos[ba, 1],
                         bvel[bb, 0], bvel[bb, 1], bomg[bb], bpos[bb, 0], bpos[bb, 1])
         cst = (thick, reach, dt)
-        pb = c.pbond[k]
+        pb = pbond[k]
         pt0 = SubContact(px0, py0, nx0, ny0, g0, l0)
         # both laws read the old slots before either is written
         (keep0, br0, pb, fn0, fs0, mr0, kna0, ksa0, kra0, ds, dr, db) = _joint_law(
-            m0, k, c, pb, jprops, jp, rolling, reff, pt0, pm, cst)
+            m0, k, sf, sbr, pb, jprops, jp, rolling, reff, pt0, pm, cst)
         d_slip += ds
         d_roll += dr
         d_break += db
         pt1 = SubContact(px1, py1, nx1, ny1, g1, l1)
         if not discs and cnt >= 2:
             (keep1, br1, pb, fn1, fs1, mr1, kna1, ksa1, kra1, ds, dr, db) = _joint_law(
-                m1, k, c, pb, jprops, jp, rolling, reff, pt1, pm, cst)
+                m1, k, sf, sbr, pb, jprops, jp, rolling, reff, pt1, pm, cst)
             d_slip += ds
             d_roll += dr
             d_break += db
-        c[IC_PBOND][k] = pb
+        pbond[k] = pb
         slot = 0
         rfx = 0.0
         rfy = 0.0
         rmb = 0.0
         rma = 0.0
         if keep0:
-            fx, fy, mb, ma = _store(k, 0, c, id0, br0, (fn0, fs0, mr0), (kna0, ksa0, kra0),
-                                    pt0, pm)
+            fx, fy, mb, ma = _store(k, 0, sid, sf, sbr, id0, br0, (fn0, fs0, mr0),
+                                    (kna0, ksa0, kra0), pt0, pm)
             rfx += fx
             rfy += fy
             rmb += mb
             rma += ma
             slot = 1
         if not discs and keep1:
-            fx, fy, mb, ma = _store(k, slot, c, id1, br1, (fn1, fs1, mr1),
+            fx, fy, mb, ma = _store(k, slot, sid, sf, sbr, id1, br1, (fn1, fs1, mr1),
                                     (kna1, ksa1, kra1), pt1, pm)
             rfx += fx
             rfy += fy
@@ -929,7 +909,7 @@ def process_pair(k, c, pw, shapes, bodies, jprops, dt, thick, reach, discs):
         nkeep = 0
     for o in range(nkeep, 2):
         sid[k, o] = -1
-        c[IC_SBR][k, o] = 0
+        sbr[k, o] = 0
     pw[k, W_SLIP] = d_slip
     pw[k, W_ROLL] = d_roll
     pw[k, W_BREAK] = d_break
@@ -937,28 +917,45 @@ def process_pair(k, c, pw, shapes, bodies, jprops, dt, thick, reach, discs):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _process(k, c, pw, shapes, bodies, jprops, dt, thick, reach):
+def _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody, bpos, bvel,
+             bomg, jprops, dt, thick, reach):
     """:func:`process_pair`, in its copy specialised to two discs when both shapes of pair k
     are discs."""
-    skind = shapes.skind
-    if skind[c.pairs[k, 0]] == 1 and skind[c.pairs[k, 1]] == 1:
-        return process_pair(k, c, pw, shapes, bodies, jprops, dt, thick, reach, True)
-    return process_pair(k, c, pw, shapes, bodies, jprops, dt, thick, reach, False)
+    if skind[pairs[k, 0]] == 1 and skind[pairs[k, 1]] == 1:
+        return process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
+                            sbody, bpos, bvel, bomg, jprops, dt, thick, reach, True)
+    return process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
+                        bpos, bvel, bomg, jprops, dt, thick, reach, False)
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
 def _contacts_parallel(c, pw, shapes, bodies, jprops, dt, thick, reach, nact):
     """The contact loop (:func:`process_pair` of every pair of ``c``), parallel over the
-    pairs; ``nact[k]`` the number of sub-contacts kept by pair k."""
-    for k in prange(c.pairs.shape[0]):
-        nact[k] = _process(k, c, pw, shapes, bodies, jprops, dt, thick, reach)
+    pairs; ``nact[k]`` the number of sub-contacts kept by pair k. The structures are unpacked
+    here, outside the loop (:func:`process_pair`)."""
+    pairs, pj, pbond, sid, sf, sbr = c
+    wv = shapes.wv
+    svs = shapes.svs
+    svn = shapes.svn
+    skind = shapes.skind
+    srad = shapes.srad
+    sbody = shapes.sbody
+    bpos = bodies.bpos
+    bvel = bodies.bvel
+    bomg = bodies.bomg
+    for k in prange(pairs.shape[0]):
+        nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
+                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach)
 
 
 @njit(cache=True, error_model="numpy")
 def _contacts_serial(c, pw, shapes, bodies, jprops, dt, thick, reach, nact):
     """:func:`_contacts_parallel` on one thread."""
-    for k in range(c.pairs.shape[0]):
-        nact[k] = _process(k, c, pw, shapes, bodies, jprops, dt, thick, reach)
+    pairs, pj, pbond, sid, sf, sbr = c
+    for k in range(pairs.shape[0]):
+        nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, shapes.wv, shapes.svs,
+                           shapes.svn, shapes.skind, shapes.srad, shapes.sbody, bodies.bpos,
+                           bodies.bvel, bodies.bomg, jprops, dt, thick, reach)
 
 
 #: number of fixed blocks of the parallel body loops: their partial sums are combined in a fixed
