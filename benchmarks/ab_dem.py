@@ -6,7 +6,8 @@ harmonic ramp, (b) the same wall with backfill discs; each settled once (in the 
 saved, then run from that state in subprocesses with ``PYTHONPATH=<tree>/src``, in the order
 A B B A A B ..., on 1 thread and on the default number of threads. Each subprocess loads the
 numba cache, runs a short warm-up, then times ``reps`` runs of ``steps`` steps from a copy of the
-state; the script reports the median of the per-process best times and the ratio AFTER/BEFORE.
+state; the script reports the median of the per-process best times and the ratio AFTER/BEFORE,
+and whether the final states of all the runs of a case are bitwise identical.
 
 ``python benchmarks/ab_dem.py BEFORE_TREE AFTER_TREE [--discs N] [--rounds R]``
 """
@@ -14,6 +15,7 @@ state; the script reports the median of the per-process best times and the ratio
 from __future__ import annotations
 
 import copy
+import hashlib
 import json
 import os
 import statistics
@@ -57,7 +59,10 @@ def worker(path: Path, steps: int, threads: int, reps: int) -> None:
         t0 = time.perf_counter()
         m.run(duration=steps * m.dt, sample_dt=steps * m.dt, threads=threads)
         walls.append(time.perf_counter() - t0)
-    print(json.dumps({"walls": walls}))
+    h = hashlib.sha1()
+    for a in (m.bpos, m.bang, m.bvel, m.bomg, m.sf, m.sid, m.E, m.C):
+        h.update(a.tobytes())
+    print(json.dumps({"walls": walls, "digest": h.hexdigest()}))
 
 
 def main(before: Path, after: Path, discs: int, rounds: int) -> None:
@@ -69,9 +74,10 @@ def main(before: Path, after: Path, discs: int, rounds: int) -> None:
                        check=True)
         res = {}
         load0 = os.getloadavg()
-        for case, steps in (("a", 20000), ("b", 300)):
+        for case, steps in (("a", 40000), ("b", 1000)):
             for th in (1, ndef):
                 best = {"before": [], "after": []}
+                digests = set()
                 order = ["before", "after", "after", "before"] * ((rounds + 1) // 2)
                 for side in order[:2 * rounds]:
                     tree = before if side == "before" else after
@@ -81,14 +87,18 @@ def main(before: Path, after: Path, discs: int, rounds: int) -> None:
                         [sys.executable, __file__, "--worker", str(tmp / f"{case}.npz"),
                          str(steps), str(th), "3"], env=env, check=True, capture_output=True,
                         text=True).stdout
-                    best[side].append(min(json.loads(out.splitlines()[-1])["walls"]))
+                    rec = json.loads(out.splitlines()[-1])
+                    best[side].append(min(rec["walls"]))
+                    digests.add(rec["digest"])
                 mb = statistics.median(best["before"])
                 ma = statistics.median(best["after"])
                 res[f"{case} {th} thread(s)"] = {"steps": steps, "before_s": best["before"],
                                                  "after_s": best["after"],
-                                                 "ratio_after_over_before": ma / mb}
+                                                 "ratio_after_over_before": ma / mb,
+                                                 "same_final_state": len(digests) == 1}
                 print(f"case {case}, {th} thread(s), {steps} steps: before {mb:.3f} s, "
-                      f"after {ma:.3f} s, ratio {ma / mb:.3f}", flush=True)
+                      f"after {ma:.3f} s, ratio {ma / mb:.3f}, same final state: "
+                      f"{len(digests) == 1}", flush=True)
         res["load"] = {"start": load0, "end": os.getloadavg()}
         print(json.dumps(res, indent=1))
 
