@@ -14,7 +14,11 @@ Adding a field to the DEM state touches two places:
 
 The kernels then read it by name; :func:`pack` hands it over and :meth:`Model.save` /
 :meth:`Model.load` store and restore it (``Model._ARRAYS`` is built from
-:data:`STATE_ARRAYS`).
+:data:`STATE_ARRAYS`). Two caveats: a field that the per-pair contact body
+(:func:`murus.dem.kernels.process_pair`) reads is also unpacked by name in
+:func:`murus.dem.kernels._contacts_parallel` and passed to it (bare arrays keep that loop's
+speed), and a checkpoint written before the field existed loads only if the field is listed in
+``Model._ZERO_IF_MISSING``.
 
 Layouts of the small float records (slot records ``F_*``, joint properties ``J_*``, parameters
 ``P_*``, energies ``E_*``, counters ``C_*``, statistics ``S_*``, pair records ``W_*``, partial

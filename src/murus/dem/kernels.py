@@ -7,7 +7,13 @@ The kernels take the arrays grouped in the named tuples of :mod:`murus.dem._kdat
 :class:`~murus.dem._kdata.Joints`, candidate pairs :class:`~murus.dem._kdata.Contacts`, step
 inputs :class:`~murus.dem._kdata.Drive` read per step as a :class:`~murus.dem._kdata.Frame`) and
 read them by name; small float records have the declared layouts ``F_*``, ``J_*``, ``P_*``,
-``E_*``, ``C_*``, ``S_*``, ``W_*``, ``Q_*`` below.
+``E_*``, ``C_*``, ``S_*``, ``W_*``, ``Q_*`` below. One exception: the per-pair body of the
+parallel contact loop (:func:`process_pair`) takes the arrays bare, unpacked from the
+structures by :func:`_contacts_parallel` outside the loop, because numba compiles a parallel
+loop whose body reads arrays out of a tuple without its ``noalias`` attributes (2.1 times
+slower); and inside a parallel loop the kernels write a structure's array through its field
+position (``bodies[IB_BPOS]``), because numba drops a write through a named-tuple attribute
+there (numba issues #5872, #7135).
 
 - bodies ``b``: ``bpos (nb, 2)`` centroid [m], ``bang`` angle [rad, counter-clockwise],
   ``bvel (nb, 2)`` [m/s] and ``bomg`` [rad/s] at the half step ``t - dt/2``, ``bmass`` [kg],
