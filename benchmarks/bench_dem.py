@@ -27,6 +27,7 @@ import numpy as np
 from numba import njit
 
 from murus.dem import Joint, Model
+from murus.dem import _kdata as kd
 from murus.dem import kernels as K
 from murus.motion.synthetic import ramp_velocity
 
@@ -119,27 +120,22 @@ def build_wall(backfill: int = 0, seed: int = 0) -> tuple[Model, dict]:
 
 # timing loops inside numba: no Python dispatch overhead (~10-30 us for 20+ array arguments)
 @njit(cache=False)  # never a stale cache of the kernels it calls
-def _loop_rebuild(reps, wv, svs, svn, srad, sbody, bkin, margin, pairs, sid, sf, sbr, pbond, ns,
-                  jtab, sgroup):
+def _loop_rebuild(reps, shapes, bkin, margin, contacts, jtab):
     for _ in range(reps):
-        newp = K.broad_phase(wv, svs, svn, srad, sbody, bkin, margin)
-        K.transfer(pairs, sid, sf, sbr, pbond, newp, ns, jtab, sgroup, 0)
+        newp = K.broad_phase(shapes, bkin, margin)
+        K.transfer(contacts, newp, shapes.sgroup, jtab, 0)
 
 
 @njit(cache=False)  # never a stale cache of the kernels it calls
-def _loop_serial(reps, pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad, sbody,
-                 bpos, bvel, bomg, jprops, dt, thick, reach, nact):
+def _loop_serial(reps, c, dis, shapes, bodies, jprops, dt, thick, reach, nact):
     for _ in range(reps):
-        K._contacts_serial(pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad,
-                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact)
+        K._contacts_serial(c, dis, shapes, bodies, jprops, dt, thick, reach, nact)
 
 
 @njit(cache=False)  # never a stale cache of the kernels it calls
-def _loop_parallel(reps, pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad, sbody,
-                   bpos, bvel, bomg, jprops, dt, thick, reach, nact):
+def _loop_parallel(reps, c, dis, shapes, bodies, jprops, dt, thick, reach, nact):
     for _ in range(reps):
-        K._contacts_parallel(pairs, pj, pbond, sid, sf, sbr, dis, wv, svs, svn, skind, srad,
-                             sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact)
+        K._contacts_parallel(c, dis, shapes, bodies, jprops, dt, thick, reach, nact)
 
 
 @njit(cache=False)  # never a stale cache of the kernels it calls
@@ -149,24 +145,19 @@ def _loop_sum(reps, pairs, sbody, nact, pw, E, fb):
 
 
 @njit(cache=False)  # never a stale cache of the kernels it calls
-def _loop_update(reps, par, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                 bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv):
+def _loop_update(reps, par, P, fr, fb, bodies, shapes, part, bsp, bsh):
     for _ in range(reps):
         if par:
-            K._update_bodies_par(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                                 bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv,
-                                 wv)
+            K._update_bodies_par(P, fr, fb, bodies, shapes, part, bsp, bsh)
         else:
-            K._update_bodies_ser(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                                 bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv,
-                                 wv)
+            K._update_bodies_ser(P, fr, fb, bodies, shapes, part, bsp, bsh)
 
 
 def _contact_args(m: Model) -> tuple:
     n = m.pairs.shape[0]
-    return (m.pairs, m.pj, m.pbond.copy(), m.sid.copy(), m.sf.copy(), m.sbr.copy(),
-            np.zeros((n, K.NW)), m.wv, m.svs, m.svn, m.skind, m.srad, m.sbody, m.bpos, m.bvel,
-            m.bomg, m.jprops, m.dt, m.thickness, m.P[K.P_REACH], np.zeros(n, np.int64))
+    c = kd.Contacts(m.pairs, m.pj, m.pbond.copy(), m.sid.copy(), m.sf.copy(), m.sbr.copy())
+    return (c, np.zeros((n, K.NW)), kd.pack(kd.Shapes, m), kd.pack(kd.Bodies, m), m.jprops,
+            m.dt, m.thickness, m.P[K.P_REACH], np.zeros(n, np.int64))
 
 
 def _timed(loop, args, reps, repeat=3):
@@ -188,26 +179,25 @@ def kernel_split(m: Model, step_time: float, rebuild_rate: float, parallel: bool
     use_par = parallel and n >= m.P[K.P_PARMIN]
     out = {}
     c = _contact_args(m)
-    t_rb = _timed(_loop_rebuild, (m.wv, m.svs, m.svn, m.srad, m.sbody, m.bkin, m.margin,
-                                  m.pairs, c[3], c[4], c[5], c[2], m.sbody.size, m.jtab,
-                                  m.sgroup), max(3, reps // 10))
+    t_rb = _timed(_loop_rebuild, (c[2], m.bkin, m.margin, c[0], m.jtab), max(3, reps // 10))
     out["broad phase + transfer (per rebuild)"] = t_rb
     out["broad phase + transfer (amortised per step)"] = t_rb * rebuild_rate
     out["narrow phase + joint law (contact loop)"] = _timed(_loop_parallel, c, reps)
-    pw, nact = c[6], c[20]
+    pw, nact = c[1], c[8]
     fb = np.zeros((m.nbody, 3))
     out["pair resultants to the bodies + dissipation sums"] = _timed(
         _loop_sum, (m.pairs, m.sbody, nact, pw, np.zeros(K.NE), fb), reps)
     st = [x.copy() for x in (m.bpos, m.bang, m.bvel, m.bomg)]
     P = m.P.copy()
     P[[K.P_DT, K.P_ALOCAL, K.P_AMASS, K.P_DREL]] = (1e-12, 0.0, 0.0, 1.0)
-    fr = np.array([0.0, 0.0, 0.0, 0.0, 0.0, -9.81, 0.0, 0.0])  # base at rest, gravity
+    fr = kd.Frame(0.0, 0.0, 0.0, 0.0, 0.0, -9.81, 0.0, 0.0)  # base at rest, gravity
     bsp, bsh = K.incidence(m.sbody, m.nbody)
+    bodies = kd.Bodies(*st, m.bmass, m.binert, m.bkin, m.brad, m.blast.copy(), m.bsnap.copy(),
+                       m.bpresc, m.bext)
+    shapes = kd.pack(kd.Shapes, m)._replace(wv=m.wv.copy())
     out["body update (central differences, damping, energy, rebuild test, world vertices)"] = (
-        _timed(_loop_update, (use_par, P, fr, m.bpresc, fb, m.bext, *st, m.bmass, m.binert,
-                              m.bkin, m.brad, m.blast.copy(), m.bsnap.copy(),
-                              np.zeros((K.NBLK, 6)), bsp, bsh, m.sbody, m.svs, m.svn, m.lv,
-                              m.wv.copy()), reps))
+        _timed(_loop_update, (use_par, P, fr, fb, bodies, shapes, np.zeros((K.NBLK, K.NQ)),
+                              bsp, bsh), reps))
     parts = sum(v for k, v in out.items() if k != "broad phase + transfer (per rebuild)")
     out["remainder (step bookkeeping, Python layer of Model.run)"] = step_time - parts
     return out

@@ -16,8 +16,9 @@ advance the model time; it ends with zero velocities and (by default) takes the 
 the reference of displacements and energies.
 
 Dynamic runs: mass-proportional damping ``alpha_M = 2 xi omega = 4 pi xi f`` (fraction ``xi`` of
-critical at frequency ``f``, seed 001 §2) on the velocity relative to the base motion, so that
-it does not brake a rigid-body collapse; optional local damping on the same relative velocity.
+critical at frequency ``f``, Savalle et al. (2022), §2) on the velocity relative to the base
+motion, so that it does not brake a rigid-body collapse; optional local damping on the same
+relative velocity.
 
 Energy balance (all terms in J, from the reference state): kinetic (half-step velocities),
 gravitational ``-m g . x``, elastic ``0.5 Fn²/(kn A) + 0.5 Fs²/(ks A) + 0.5 Mr²/kr``; work of the
@@ -65,6 +66,7 @@ import numba
 import numpy as np
 
 from murus import threads as _threads
+from murus.dem import _kdata as kd
 from murus.dem import kernels as K
 from murus.results import Result
 
@@ -235,13 +237,13 @@ class RunResult(Result):
 def detect(m) -> None:
     """Contact detection and forces at the current positions without moving (dt = 0)."""
     m.build()
-    K.world_vertices(m.bpos, m.bang, m.sbody, m.svs, m.svn, m.lv, m.wv)
+    shapes = kd.pack(kd.Shapes, m)
+    K.world_vertices(m.bpos, m.bang, shapes)
     n = m.pairs.shape[0]
     dis = np.zeros((n, K.NW))
     nact = np.zeros(n, np.int64)
-    K._contacts_serial(m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr, dis, m.wv, m.svs, m.svn,
-                       m.skind, m.srad, m.sbody, m.bpos, m.bvel, m.bomg, m.jprops, 0.0,
-                       m.thickness, m.P[K.P_REACH], nact)
+    K._contacts_serial(kd.pack(kd.Contacts, m), dis, shapes, kd.pack(kd.Bodies, m), m.jprops,
+                       0.0, m.thickness, m.P[K.P_REACH], nact)
     m.snapshot()
 
 
@@ -488,19 +490,20 @@ def _chunk(m, n: int, moving: bool) -> None:
         gov, nth1 = None, 1
     else:
         nth1 = nth
+    bodies = kd.pack(kd.Bodies, m)
+    shapes = kd.pack(kd.Shapes, m)
+    joints = kd.pack(kd.Joints, m)
     s = 0
     try:
         while s < n:
             k, th = gov.next(n - s) if gov is not None else (n - s, nth1)
             numba.set_num_threads(th)
             t0 = _time.perf_counter()
-            out = K.run_chunk(k, m.P, m.E, m.C, m.S, vhalf[s:s + k], vfull[s:s + k],
-                              grav[s:s + k], gdot[s:s + k], m.bpresc, m.bpos, m.bang,
-                              m.bvel, m.bomg, m.bmass, m.binert, m.bkin, m.brad, m.blast,
-                              m.bsnap, m.sbody, m.skind, m.svs, m.svn, m.srad, m.sgroup, m.lv,
-                              m.wv, m.jprops, m.jtab, m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr,
-                              m.bext)
-            m.pairs, m.pj, m.pbond, m.sid, m.sf, m.sbr = out
+            drive = kd.Drive(vfull[s:s + k], vhalf[s:s + k], grav[s:s + k], gdot[s:s + k])
+            out = K.run_chunk(k, m.P, m.E, m.C, m.S, drive, bodies, shapes, joints,
+                              kd.pack(kd.Contacts, m))
+            for name, a in zip(kd.Contacts._fields, out, strict=True):
+                setattr(m, name, a)
             if gov is not None:
                 gov.record(th, k, _time.perf_counter() - t0)
             s += k

@@ -2,6 +2,19 @@
 
 Storage (structure of arrays, built by :mod:`murus.dem.model`)
 ---------------------------------------------------------------
+The kernels take the arrays grouped in the named tuples of :mod:`murus.dem._kdata` (bodies
+:class:`~murus.dem._kdata.Bodies`, shapes :class:`~murus.dem._kdata.Shapes`, joints
+:class:`~murus.dem._kdata.Joints`, candidate pairs :class:`~murus.dem._kdata.Contacts`, step
+inputs :class:`~murus.dem._kdata.Drive` read per step as a :class:`~murus.dem._kdata.Frame`) and
+read them by name; small float records have the declared layouts ``F_*``, ``J_*``, ``P_*``,
+``E_*``, ``C_*``, ``S_*``, ``W_*``, ``Q_*`` below. One exception: the per-pair body of the
+parallel contact loop (:func:`process_pair`) takes the arrays bare, unpacked from the
+structures by :func:`_contacts_parallel` outside the loop, because numba compiles a parallel
+loop whose body reads arrays out of a tuple without its ``noalias`` attributes (2.1 times
+slower); and inside a parallel loop the kernels write a structure's array through its field
+position (``bodies[IB_BPOS]``), because numba drops a write through a named-tuple attribute
+there (numba issues #5872, #7135).
+
 - bodies ``b``: ``bpos (nb, 2)`` centroid [m], ``bang`` angle [rad, counter-clockwise],
   ``bvel (nb, 2)`` [m/s] and ``bomg`` [rad/s] at the half step ``t - dt/2``, ``bmass`` [kg],
   ``binert`` [kg m²] about the centroid, ``bkin`` (0 dynamic, 1 fixed, 2 moved by the base
@@ -30,8 +43,8 @@ normal along the line joining them. Tributary length of a sub-contact: half the 
 of the cores plus the rounding (an edge-to-edge interface of length L: two points with L/2 each;
 a vertex on a face: half the incident edge), so that the contact stiffness is ``kn L t``.
 
-Joint law (seed 001 eqs. 3-4, UDEC "Coulomb slip" joint model)
---------------------------------------------------------------
+Joint law (Savalle et al. (2022), eqs. 3-4; UDEC "Coulomb slip" joint model)
+----------------------------------------------------------------------------
 Per sub-contact, tributary area ``A = L t``: normal force ``Fn = -kn A g`` (g the gap, negative
 in penetration; the total form of eq. 3, identical to the incremental form for a spring born at
 zero gap, and exactly conservative); shear force incremental, ``Fs <- Fs - ks A du_s`` with
@@ -42,8 +55,8 @@ points from shape a to shape b, the tangent ``t = (-ny, nx)``; ``Fn > 0`` is com
 force on b is ``Fn n + Fs t``. Discs carry a rolling moment ``Mr <- Mr - kr dtheta_rel``
 with ``kr = ks A r_eff²`` limited by ``mu_r r_eff Fn`` (elastic-plastic rolling resistance).
 
-Integration (seed 001 eq. 2, central differences / leapfrog)
------------------------------------------------------------
+Integration (Savalle et al. (2022), eq. 2; central differences / leapfrog)
+-------------------------------------------------------------------------
 ``v(t + dt/2) = v(t - dt/2) + a(t) dt``, ``x(t + dt) = x(t) + v(t + dt/2) dt`` for the two
 translations and the rotation. Damping: Cundall's local non-viscous damping, a force
 ``-alpha |F| sign(v)`` per degree of freedom; mass-proportional (Rayleigh) damping
@@ -58,6 +71,20 @@ import math
 
 import numpy as np
 from numba import njit, prange
+
+from murus._jit import guard_cache as _guard_cache
+from murus.dem._kdata import (
+    IB_BANG,
+    IB_BOMG,
+    IB_BPOS,
+    IB_BSNAP,
+    IB_BVEL,
+    IS_WV,
+    Contacts,
+    Frame,
+    PairMotion,
+    SubContact,
+)
 
 # ---- slot record fields --------------------------------------------------------------------
 F_FN = 0  # normal force [N], > 0 compression
@@ -122,6 +149,15 @@ W_MB = 5  # its moment about the centroid of body b [N m]
 W_MA = 6  # its moment about the centroid of body a [N m] (the reaction on a is the opposite)
 NW = 8
 
+# ---- partial sums of a block of bodies (``part[blk, Q_*]``, written by the body update) ----
+Q_UNBAL = 0  # max unbalanced force of a dynamic body [N]
+Q_WDAMP = 1  # work of the damping forces [J]
+Q_WBASE = 2  # work of the kinematic bodies [J]
+Q_WEXT = 3  # work of the external forces [J]
+Q_NEED = 4  # 1.0: a body has moved far enough to rebuild the pair list
+Q_WTILT = 5  # work of a time-varying gravity [J]
+NQ = 6
+
 # ---- chunk statistics --------------------------------------------------------------------------
 S_UNBAL = 0  # max unbalanced force of a dynamic body at the last step [N]
 S_MEANF = 1  # mean contact force magnitude over active sub-contacts [N]
@@ -139,21 +175,25 @@ def _clamp01(x):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _shape_vertices(s, bpos, bang, sbody, svs, svn, lv, wv):
-    """World coordinates of the local vertices of shape s."""
-    b = sbody[s]
+def _shape_vertices(s, bpos, bang, shapes):
+    """World coordinates of the local vertices of shape s (``shapes``: :class:`Shapes`)."""
+    svs = shapes.svs
+    lv = shapes.lv
+    wv = shapes[IS_WV]  # written inside the body loop: by position (murus.dem._kdata)
+    b = shapes.sbody[s]
     c = math.cos(bang[b])
     sn = math.sin(bang[b])
-    for k in range(svs[s], svs[s] + svn[s]):
+    for k in range(svs[s], svs[s] + shapes.svn[s]):
         wv[k, 0] = bpos[b, 0] + c * lv[k, 0] - sn * lv[k, 1]
         wv[k, 1] = bpos[b, 1] + sn * lv[k, 0] + c * lv[k, 1]
 
 
 @njit(cache=True, error_model="numpy")
-def world_vertices(bpos, bang, sbody, svs, svn, lv, wv):
-    """World coordinates of every local vertex (polygon cores, disc centres)."""
-    for s in range(sbody.size):
-        _shape_vertices(s, bpos, bang, sbody, svs, svn, lv, wv)
+def world_vertices(bpos, bang, shapes):
+    """World coordinates ``shapes.wv`` of every local vertex (polygon cores, disc centres) of
+    the bodies at ``bpos`` [m], ``bang`` [rad]."""
+    for s in range(shapes.sbody.size):
+        _shape_vertices(s, bpos, bang, shapes)
 
 
 @njit(cache=True, error_model="numpy")
@@ -174,10 +214,15 @@ def incidence(owner, nb):
 
 
 @njit(cache=True, error_model="numpy")
-def broad_phase(wv, svs, svn, srad, sbody, bkin, margin):
-    """Candidate pairs (a < b) by sort and sweep on the bounding boxes inflated by ``margin``,
-    sorted by the key a * ns + b. Pairs of one body and pairs of two non-dynamic bodies are
-    left out."""
+def broad_phase(shapes, bkin, margin):
+    """Candidate pairs (a < b) of ``shapes`` (:class:`Shapes`) by sort and sweep on the
+    bounding boxes inflated by ``margin`` [m], sorted by the key a * ns + b. Pairs of one body
+    and pairs of two non-dynamic bodies (``bkin``) are left out."""
+    wv = shapes.wv
+    svs = shapes.svs
+    svn = shapes.svn
+    srad = shapes.srad
+    sbody = shapes.sbody
     ns = sbody.size
     box = np.empty((ns, 4))
     for s in range(ns):
@@ -227,9 +272,17 @@ def broad_phase(wv, svs, svn, srad, sbody, bkin, margin):
 
 
 @njit(cache=True, error_model="numpy")
-def transfer(old_pairs, old_sid, old_sf, old_sbr, old_pbond, new_pairs, ns, jtab, sgroup,
-             bond_new):
-    """Carry the sub-contact state of the pairs present in both lists (merge on sorted keys)."""
+def transfer(old, new_pairs, sgroup, jtab, bond_new):
+    """The :class:`Contacts` of the pair list ``new_pairs``, carrying the sub-contact state of
+    the pairs present in both it and ``old`` (merge on sorted keys); the joint of a pair from
+    the groups ``sgroup`` of its shapes and the table ``jtab``; new pairs start bonded when
+    ``bond_new`` is 1."""
+    old_pairs = old.pairs
+    old_sid = old.sid
+    old_sf = old.sf
+    old_sbr = old.sbr
+    old_pbond = old.pbond
+    ns = sgroup.size
     n = new_pairs.shape[0]
     nold = old_pairs.shape[0]
     sid = np.full((n, 2), -1, np.int64)
@@ -254,7 +307,7 @@ def transfer(old_pairs, old_sid, old_sf, old_sbr, old_pbond, new_pairs, ns, jtab
                     sf[k, o, f] = old_sf[i, o, f]
         else:
             pbond[k] = bond_new
-    return sid, sf, sbr, pbond, pj
+    return Contacts(new_pairs, pj, pbond, sid, sf, sbr)
 
 
 # ---- narrow phase ----------------------------------------------------------------------------
@@ -558,12 +611,21 @@ def collide(a, b, wv, svs, svn, skind, srad, reach):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _joint_law(o, k, sf, sbr, pb, jprops, jp, rolling, reff,
-               px, py, nx, ny, gap, trib, thick, reach, dt,
-               vax, vay, wa, xa, ya, vbx, vby, wb, xb, yb):
-    """Joint law of one new sub-contact matched to the old slot ``o`` of pair k (-1: new).
+def _joint_law(o, k, sf, sbr, pb, jprops, jp, rolling, reff, pt, pm, cst):
+    """Joint law of one new sub-contact ``pt`` (:class:`SubContact`) matched to the old slot
+    ``o`` of pair k (slot records ``sf``, broken flags ``sbr``: :class:`Contacts`; -1: new),
+    with joint row ``jp`` of
+    ``jprops``, rolling resistance when ``rolling`` (effective radius ``reff`` [m]), the
+    motion ``pm`` (:class:`PairMotion`) of the pair's bodies and ``cst = (thick, reach, dt)``.
     Returns ``(keep, broken, pb, fn, fs, mr, kna, ksa, kra, d_slip, d_roll, d_break)`` with
     ``pb`` the pair's bond flag after the step (reads the old slot, writes nothing)."""
+    thick, reach, dt = cst
+    px = pt.px
+    py = pt.py
+    nx = pt.nx
+    ny = pt.ny
+    gap = pt.gap
+    trib = pt.trib
     d_slip = 0.0
     d_roll = 0.0
     d_break = 0.0
@@ -615,8 +677,10 @@ def _joint_law(o, k, sf, sbr, pb, jprops, jp, rolling, reff,
         mr = 0.0
     else:
         # relative velocity of b with respect to a at the contact point
-        rvx = (vbx - wb * (py - yb)) - (vax - wa * (py - ya))
-        rvy = (vby + wb * (px - xb)) - (vay + wa * (px - xa))
+        wa = pm.wa
+        wb = pm.wb
+        rvx = (pm.vbx - wb * (py - pm.yb)) - (pm.vax - wa * (py - pm.ya))
+        rvy = (pm.vby + wb * (px - pm.xb)) - (pm.vay + wa * (px - pm.xa))
         dus = (-ny * rvx + nx * rvy) * dt
         fs_t = fs - ksa * dus
         fmax = cA + fn * tanphi
@@ -657,10 +721,18 @@ def _joint_law(o, k, sf, sbr, pb, jprops, jp, rolling, reff,
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _store(k, slot, sid, sf, sbr, key, broken, fn, fs, mr, px, py, nx, ny, kna, ksa, kra, gap,
-           xa, ya, xb, yb):
-    """Write a sub-contact to slot ``slot`` of pair k; returns its force on body b and its
-    moments about the centroids of b and a ``(fx, fy, mb, ma)``."""
+def _store(k, slot, sid, sf, sbr, key, broken, fsm, stiff, pt, pm):
+    """Write a sub-contact (key ``key``, broken flag, forces ``fsm = (fn, fs, mr)``,
+    stiffnesses ``stiff = (kna, ksa, kra)``, point ``pt``: :class:`SubContact`) to slot
+    ``slot`` of pair k (``sid``, ``sf``, ``sbr``: :class:`Contacts`); returns its force on body
+    b and its moments about the centroids of b and a (``pm``: :class:`PairMotion`)
+    ``(fx, fy, mb, ma)``."""
+    fn, fs, mr = fsm
+    kna, ksa, kra = stiff
+    px = pt.px
+    py = pt.py
+    nx = pt.nx
+    ny = pt.ny
     sid[k, slot] = key
     sbr[k, slot] = broken
     sf[k, slot, F_FN] = fn
@@ -673,10 +745,11 @@ def _store(k, slot, sid, sf, sbr, key, broken, fn, fs, mr, px, py, nx, ny, kna, 
     sf[k, slot, F_KNA] = kna
     sf[k, slot, F_KSA] = ksa
     sf[k, slot, F_KRA] = kra
-    sf[k, slot, F_GAP] = gap
+    sf[k, slot, F_GAP] = pt.gap
     fx = fn * nx - fs * ny
     fy = fn * ny + fs * nx
-    return (fx, fy, (px - xb) * fy - (py - yb) * fx + mr, (px - xa) * fy - (py - ya) * fx + mr)
+    return (fx, fy, (px - pm.xb) * fy - (py - pm.yb) * fx + mr,
+            (px - pm.xa) * fy - (py - pm.ya) * fx + mr)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -715,12 +788,20 @@ def _released(k, o, sf):
 @njit(cache=True, error_model="numpy", inline="always")
 def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
                  bpos, bvel, bomg, jprops, dt, thick, reach, discs):
-    """Narrow phase and joint law of pair k: updates its two slots in place and writes the
+    """Narrow phase and joint law of pair k (the arrays of :class:`Contacts`, then of
+    :class:`Shapes` and :class:`Bodies`, unpacked by :func:`_contacts_parallel`; joint rows
+    ``jprops``; time step ``dt`` [s], thickness ``thick`` [m], largest kept gap ``reach``
+    [m]): updates its two slots in place and writes the
     energy dissipated in the step (slip, rolling, breaking/opening) and the resultant of its
     sub-contacts on body b with its moments about both centroids to ``pw[k]`` (``W_*``).
     Returns the number of sub-contacts kept. Allocates nothing (scalars only): it runs once
     per candidate pair and step, in a parallel loop. ``discs`` (a constant where it is inlined):
-    the pair is known to be two discs (one sub-contact at most, no branch on shape kinds)."""
+    the pair is known to be two discs (one sub-contact at most, no branch on shape kinds).
+
+    Bare arrays, not the named structures: the parallel loop that inlines this function keeps
+    numba's ``noalias`` code generation only when no array of its body is read out of a tuple
+    (numba gives it up as soon as the loop body aliases an argument), and that code is twice as
+    fast (benchmarks/ab_dem.py)."""
     a = pairs[k, 0]
     b = pairs[k, 1]
     s0 = sid[k, 0]
@@ -786,30 +867,21 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
                 reff = srad[a]
             else:
                 reff = srad[b]
-        vax = bvel[ba, 0]
-        vay = bvel[ba, 1]
-        wa = bomg[ba]
-        vbx = bvel[bb, 0]
-        vby = bvel[bb, 1]
-        wb = bomg[bb]
-        xa = bpos[ba, 0]
-        ya = bpos[ba, 1]
-        xb = bpos[bb, 0]
-        yb = bpos[bb, 1]
+        pm = PairMotion(bvel[ba, 0], bvel[ba, 1], bomg[ba], bpos[ba, 0], bpos[ba, 1],
+                        bvel[bb, 0], bvel[bb, 1], bomg[bb], bpos[bb, 0], bpos[bb, 1])
+        cst = (thick, reach, dt)
         pb = pbond[k]
+        pt0 = SubContact(px0, py0, nx0, ny0, g0, l0)
         # both laws read the old slots before either is written
         (keep0, br0, pb, fn0, fs0, mr0, kna0, ksa0, kra0, ds, dr, db) = _joint_law(
-            m0, k, sf, sbr, pb, jprops, jp, rolling, reff,
-            px0, py0, nx0, ny0, g0, l0, thick, reach, dt,
-            vax, vay, wa, xa, ya, vbx, vby, wb, xb, yb)
+            m0, k, sf, sbr, pb, jprops, jp, rolling, reff, pt0, pm, cst)
         d_slip += ds
         d_roll += dr
         d_break += db
+        pt1 = SubContact(px1, py1, nx1, ny1, g1, l1)
         if not discs and cnt >= 2:
             (keep1, br1, pb, fn1, fs1, mr1, kna1, ksa1, kra1, ds, dr, db) = _joint_law(
-                m1, k, sf, sbr, pb, jprops, jp, rolling, reff,
-                px1, py1, nx1, ny1, g1, l1, thick, reach, dt,
-                vax, vay, wa, xa, ya, vbx, vby, wb, xb, yb)
+                m1, k, sf, sbr, pb, jprops, jp, rolling, reff, pt1, pm, cst)
             d_slip += ds
             d_roll += dr
             d_break += db
@@ -820,16 +892,16 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         rmb = 0.0
         rma = 0.0
         if keep0:
-            fx, fy, mb, ma = _store(k, 0, sid, sf, sbr, id0, br0, fn0, fs0, mr0, px0, py0, nx0,
-                                    ny0, kna0, ksa0, kra0, g0, xa, ya, xb, yb)
+            fx, fy, mb, ma = _store(k, 0, sid, sf, sbr, id0, br0, (fn0, fs0, mr0),
+                                    (kna0, ksa0, kra0), pt0, pm)
             rfx += fx
             rfy += fy
             rmb += mb
             rma += ma
             slot = 1
         if not discs and keep1:
-            fx, fy, mb, ma = _store(k, slot, sid, sf, sbr, id1, br1, fn1, fs1, mr1, px1, py1,
-                                    nx1, ny1, kna1, ksa1, kra1, g1, xa, ya, xb, yb)
+            fx, fy, mb, ma = _store(k, slot, sid, sf, sbr, id1, br1, (fn1, fs1, mr1),
+                                    (kna1, ksa1, kra1), pt1, pm)
             rfx += fx
             rfy += fy
             rmb += mb
@@ -864,19 +936,33 @@ def _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, s
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
-def _contacts_parallel(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
-                       bpos, bvel, bomg, jprops, dt, thick, reach, nact):
+def _contacts_parallel(c, pw, shapes, bodies, jprops, dt, thick, reach, nact):
+    """The contact loop (:func:`process_pair` of every pair of ``c``), parallel over the
+    pairs; ``nact[k]`` the number of sub-contacts kept by pair k. The structures are unpacked
+    here, outside the loop (:func:`process_pair`)."""
+    pairs, pj, pbond, sid, sf, sbr = c
+    wv = shapes.wv
+    svs = shapes.svs
+    svn = shapes.svn
+    skind = shapes.skind
+    srad = shapes.srad
+    sbody = shapes.sbody
+    bpos = bodies.bpos
+    bvel = bodies.bvel
+    bomg = bodies.bomg
     for k in prange(pairs.shape[0]):
         nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
                            sbody, bpos, bvel, bomg, jprops, dt, thick, reach)
 
 
 @njit(cache=True, error_model="numpy")
-def _contacts_serial(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
-                     bpos, bvel, bomg, jprops, dt, thick, reach, nact):
+def _contacts_serial(c, pw, shapes, bodies, jprops, dt, thick, reach, nact):
+    """:func:`_contacts_parallel` on one thread."""
+    pairs, pj, pbond, sid, sf, sbr = c
     for k in range(pairs.shape[0]):
-        nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
-                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach)
+        nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, shapes.wv, shapes.svs,
+                           shapes.svn, shapes.skind, shapes.srad, shapes.sbody, bodies.bpos,
+                           bodies.bvel, bodies.bomg, jprops, dt, thick, reach)
 
 
 #: number of fixed blocks of the parallel body loops: their partial sums are combined in a fixed
@@ -920,9 +1006,15 @@ def _sum_pairs(pairs, sbody, nact, pw, E, fb):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _advance(b, dt, sx, sy, sw, vx, vy, w, bpos, bang, bvel, bomg, bsnap):
-    """Body b: snapshot of the state at the time of the forces (position, angle and the
-    velocities ``sx, sy, sw`` at that time), then the new half-step velocity and the move."""
+def _advance(b, dt, sx, sy, sw, vx, vy, w, bodies):
+    """Body b of ``bodies`` (:class:`Bodies`): snapshot of the state at the time of the forces
+    (position, angle and the velocities ``sx, sy, sw`` at that time), then the new half-step
+    velocity ``vx, vy, w`` and the move over ``dt``."""
+    # written inside the body loop: by position (murus.dem._kdata)
+    bpos = bodies[IB_BPOS]
+    bang = bodies[IB_BANG]
+    bvel = bodies[IB_BVEL]
+    bsnap = bodies[IB_BSNAP]
     bsnap[b, 0] = bpos[b, 0]
     bsnap[b, 1] = bpos[b, 1]
     bsnap[b, 2] = bang[b]
@@ -931,21 +1023,31 @@ def _advance(b, dt, sx, sy, sw, vx, vy, w, bpos, bang, bvel, bomg, bsnap):
     bsnap[b, 5] = sw
     bvel[b, 0] = vx
     bvel[b, 1] = vy
-    bomg[b] = w
+    bodies[IB_BOMG][b] = w
     bpos[b, 0] += vx * dt
     bpos[b, 1] += vy * dt
     bang[b] += w * dt
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _update_block(blk, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert, bkin,
-                  brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv):
-    """Central-difference update (module doc) of the bodies of block ``blk`` (of ``NBLK``)
-    under the contact resultants ``fb``, then the world coordinates of the shapes of each body
-    (``bsp``, ``bsh``: :func:`incidence` of ``sbody``) for the next step;
-    ``fr`` the step's base velocities and gravity (:func:`_frame`);
-    ``part[blk] = (max unbalanced force, damping work, base work, external work, rebuild
-    needed, work of the tilt)``."""
+def _update_block(blk, P, fr, fb, bodies, shapes, part, bsp, bsh):
+    """Central-difference update (module doc) of the :class:`Bodies` of block ``blk`` (of
+    ``NBLK``) under the contact resultants ``fb``, then the world coordinates of the
+    :class:`Shapes` of each body (``bsp``, ``bsh``: :func:`incidence` of ``shapes.sbody``) for
+    the next step; ``fr`` the step's base velocities and gravity (:class:`Frame`);
+    ``part[blk, Q_*]`` the block's partial sums (max unbalanced force, damping work, base
+    work, external work, rebuild needed, work of the tilt)."""
+    bpos = bodies.bpos
+    bang = bodies.bang
+    bvel = bodies.bvel
+    bomg = bodies.bomg
+    bmass = bodies.bmass
+    binert = bodies.binert
+    bkin = bodies.bkin
+    brad = bodies.brad
+    blast = bodies.blast
+    bpresc = bodies.bpresc
+    bext = bodies.bext
     nb = bmass.size
     dt = P[P_DT]
     alocal = P[P_ALOCAL]
@@ -953,12 +1055,12 @@ def _update_block(blk, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, b
     drel = P[P_DREL]
     margin = P[P_MARGIN]
     cm = 0.5 * amass * dt
-    ubx = fr[0]
-    uby = fr[1]
-    gx = fr[4]
-    gy = fr[5]
-    gdx = fr[6]
-    gdy = fr[7]
+    ubx = fr.vx
+    uby = fr.vy
+    gx = fr.gx
+    gy = fr.gy
+    gdx = fr.gdx
+    gdy = fr.gdy
     # the frame of the damping: the base (drel = 1) or the fixed frame (drel = 0)
     dbx = drel * ubx
     dby = drel * uby
@@ -1011,71 +1113,68 @@ def _update_block(blk, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, b
                                + (dmz - amass * I * wm) * wm)
                 wext += dt * (bext[b, 0] * vmx + bext[b, 1] * vmy + bext[b, 2] * wm)
                 wtilt -= dt * m * (bpos[b, 0] * gdx + bpos[b, 1] * gdy)
-                _advance(b, dt, vmx, vmy, wm, vx1, vy1, w1, bpos, bang, bvel, bomg, bsnap)
+                _advance(b, dt, vmx, vmy, wm, vx1, vy1, w1, bodies)
             elif kin >= 2:
                 # moved by the base motion (2) or at its prescribed velocity (3): its work on
                 # the system is -(F . v + M omega), with v at the time of the forces
                 if kin == 2:
                     vfx = ubx
                     vfy = uby
-                    vhx = fr[2]
-                    vhy = fr[3]
+                    vhx = fr.vhx
+                    vhy = fr.vhy
                     om = 0.0
                 else:
                     vfx = vhx = bpresc[b, 0]
                     vfy = vhy = bpresc[b, 1]
                     om = bpresc[b, 2]
                 wbase -= dt * (fb[b, 0] * vfx + fb[b, 1] * vfy + fb[b, 2] * om)
-                _advance(b, dt, vfx, vfy, om, vhx, vhy, om, bpos, bang, bvel, bomg, bsnap)
+                _advance(b, dt, vfx, vfy, om, vhx, vhy, om, bodies)
             # rebuild test for the next step (as :func:`_moved`)
             dx = bpos[b, 0] - blast[b, 0]
             dy = bpos[b, 1] - blast[b, 1]
             if math.sqrt(dx * dx + dy * dy) + abs(bang[b] - blast[b, 2]) * brad[b] > half:
                 need = 1.0
             for j in range(bsp[b], bsp[b + 1]):
-                _shape_vertices(bsh[j], bpos, bang, sbody, svs, svn, lv, wv)
-        part[blk, 0] = unbal
-        part[blk, 1] = wdamp
-        part[blk, 2] = wbase
-        part[blk, 3] = wext
-        part[blk, 4] = need
-        part[blk, 5] = wtilt
+                _shape_vertices(bsh[j], bpos, bang, shapes)
+        part[blk, Q_UNBAL] = unbal
+        part[blk, Q_WDAMP] = wdamp
+        part[blk, Q_WBASE] = wbase
+        part[blk, Q_WEXT] = wext
+        part[blk, Q_NEED] = need
+        part[blk, Q_WTILT] = wtilt
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
-def _update_bodies_par(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                       bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv):
+def _update_bodies_par(P, fr, fb, bodies, shapes, part, bsp, bsh):
+    """:func:`_update_block` of every block, parallel over the blocks."""
     for blk in prange(NBLK):
-        _update_block(blk, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                      bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv)
+        _update_block(blk, P, fr, fb, bodies, shapes, part, bsp, bsh)
 
 
 @njit(cache=True, error_model="numpy")
-def _update_bodies_ser(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                       bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv):
+def _update_bodies_ser(P, fr, fb, bodies, shapes, part, bsp, bsh):
+    """:func:`_update_bodies_par` on one thread."""
     for blk in range(NBLK):
-        _update_block(blk, P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                      bkin, brad, blast, bsnap, part, bsp, bsh, sbody, svs, svn, lv, wv)
+        _update_block(blk, P, fr, fb, bodies, shapes, part, bsp, bsh)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _frame(i, vhalf, vfull, grav, gdot, fr):
-    """Row i of the step inputs of :func:`run_chunk` to ``fr``: base velocity at t_i (0, 1) and
-    t_i + dt/2 (2, 3), gravity (4, 5) and its rate (6, 7)."""
-    fr[0] = vfull[i, 0]
-    fr[1] = vfull[i, 1]
-    fr[2] = vhalf[i, 0]
-    fr[3] = vhalf[i, 1]
-    fr[4] = grav[i, 0]
-    fr[5] = grav[i, 1]
-    fr[6] = gdot[i, 0]
-    fr[7] = gdot[i, 1]
+def _frame(i, drive):
+    """Row i of the step inputs ``drive`` (:class:`Drive`) of :func:`run_chunk`, as a
+    :class:`Frame`."""
+    return Frame(drive.vfull[i, 0], drive.vfull[i, 1], drive.vhalf[i, 0], drive.vhalf[i, 1],
+                 drive.grav[i, 0], drive.grav[i, 1], drive.gdot[i, 0], drive.gdot[i, 1])
 
 
 @njit(cache=True, error_model="numpy")
-def _moved(bpos, bang, blast, brad, margin):
-    """True when a body has moved by more than half the broad-phase margin since the last
-    rebuild of the pair list (translation plus rotation times the bounding radius)."""
+def _moved(bodies, margin):
+    """True when a body of ``bodies`` (:class:`Bodies`) has moved by more than half the
+    broad-phase margin [m] since the last rebuild of the pair list (translation plus rotation
+    times the bounding radius)."""
+    bpos = bodies.bpos
+    bang = bodies.bang
+    blast = bodies.blast
+    brad = bodies.brad
     for b in range(bpos.shape[0]):
         dx = bpos[b, 0] - blast[b, 0]
         dy = bpos[b, 1] - blast[b, 1]
@@ -1085,21 +1184,22 @@ def _moved(bpos, bang, blast, brad, margin):
 
 
 @njit(cache=True, error_model="numpy")
-def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
-              bpos, bang, bvel, bomg, bmass, binert, bkin, brad, blast, bsnap,
-              sbody, skind, svs, svn, srad, sgroup, lv, wv, jprops, jtab,
-              pairs, pj, pbond, sid, sf, sbr, bext):
-    """Advance ``nsteps`` central-difference steps (seed 001 eq. 2).
+def run_chunk(nsteps, P, E, C, S, drive, bodies, shapes, joints, contacts):
+    """Advance ``nsteps`` central-difference steps (Savalle et al. (2022), eq. 2).
 
-    ``vhalf[i]`` / ``vfull[i]``: base-motion velocity [m/s] at t_i + dt/2 and t_i; ``grav[i]``
-    the gravity vector [m/s²] at t_i and ``gdot[i]`` its rate [m/s³] (tilting table: the
+    ``P``, ``E``, ``C``, ``S``: parameters, energy accumulators, counters and statistics
+    (``P_*``, ``E_*``, ``C_*``, ``S_*`` fields); ``drive`` (:class:`Drive`): row i, the
+    base-motion velocity [m/s] at t_i + dt/2 (``vhalf``) and t_i (``vfull``), the gravity vector
+    [m/s²] at t_i (``grav``) and its rate [m/s³] (``gdot``; tilting table: the
     potential energy then changes with time, its rate ``-sum m x . gdot`` is accumulated in
-    ``E[E_WTILT]``); ``bext (nb, 3)`` an external force (Fx, Fy) [N] and
+    ``E[E_WTILT]``); ``bodies`` (:class:`Bodies`), ``shapes`` (:class:`Shapes`), ``joints``
+    (:class:`Joints`) and ``contacts`` (:class:`Contacts`) the state, updated in place.
+    ``bodies.bext (nb, 3)`` is an external force (Fx, Fy) [N] and
     moment about the centroid [N m] on each dynamic body, constant over the chunk (its work is
-    accumulated in ``E[E_WEXT]``; ignored on kinematic bodies). ``bsnap`` receives the state at
-    the time of the last force evaluation (x, y, angle, and the mid-step velocities vx, vy,
-    omega), the time at which the contact forces and the work accumulators are consistent
-    (energy snapshots). Returns the (possibly rebuilt) pair arrays.
+    accumulated in ``E[E_WEXT]``; ignored on kinematic bodies). ``bodies.bsnap`` receives the
+    state at the time of the last force evaluation (x, y, angle, and the mid-step velocities
+    vx, vy, omega), the time at which the contact forces and the work accumulators are
+    consistent (energy snapshots). Returns the (possibly rebuilt) :class:`Contacts`.
 
     A step: the contact loop (narrow phase and joint law, a numba parallel loop over the pairs,
     each pair writing only its own record and its resultant in ``pw``), the resultants
@@ -1118,47 +1218,45 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
     margin = P[P_MARGIN]
     reach = P[P_REACH]
     parmin = int(P[P_PARMIN])
-    nb = bmass.size
-    ns = sbody.size
+    bpos = bodies.bpos
+    bang = bodies.bang
+    blast = bodies.blast
+    jprops = joints.jprops
+    nb = bodies.bmass.size
+    c = contacts
     fb = np.zeros((nb, 3))
-    cap = pairs.shape[0] + 16
+    cap = c.pairs.shape[0] + 16
     pw = np.zeros((cap, NW))
     nact = np.zeros(cap, np.int64)
-    bpart = np.zeros((NBLK, 6))
-    fr = np.empty(8)
-    if C[C_NEED_REBUILD] == 0 and _moved(bpos, bang, blast, brad, margin):
+    bpart = np.zeros((NBLK, NQ))
+    if C[C_NEED_REBUILD] == 0 and _moved(bodies, margin):
         C[C_NEED_REBUILD] = 1
     # the body update keeps the world vertices current from here on
-    world_vertices(bpos, bang, sbody, svs, svn, lv, wv)
-    bsp, bsh = incidence(sbody, nb)
+    world_vertices(bpos, bang, shapes)
+    bsp, bsh = incidence(shapes.sbody, nb)
     for i in range(nsteps):
         if C[C_NEED_REBUILD] != 0:
-            newp = broad_phase(wv, svs, svn, srad, sbody, bkin, margin)
-            sid, sf, sbr, pbond, pj = transfer(pairs, sid, sf, sbr, pbond, newp, ns, jtab,
-                                               sgroup, 0)
-            pairs = newp
+            newp = broad_phase(shapes, bodies.bkin, margin)
+            c = transfer(c, newp, shapes.sgroup, joints.jtab, 0)
             for b in range(nb):
                 blast[b, 0] = bpos[b, 0]
                 blast[b, 1] = bpos[b, 1]
                 blast[b, 2] = bang[b]
             C[C_NEED_REBUILD] = 0
             C[C_REBUILD] += 1
-        npair = pairs.shape[0]
+        npair = c.pairs.shape[0]
         if npair > cap:
             cap = npair + npair // 4 + 16
             pw = np.zeros((cap, NW))
             nact = np.zeros(cap, np.int64)
-        _contacts_parallel(pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
-                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach, nact)
-        nactive = _sum_pairs(pairs, sbody, nact, pw, E, fb)
+        _contacts_parallel(c, pw, shapes, bodies, jprops, dt, thick, reach, nact)
+        nactive = _sum_pairs(c.pairs, shapes.sbody, nact, pw, E, fb)
         C[C_UPDATES] += nactive
-        _frame(i, vhalf, vfull, grav, gdot, fr)
+        fr = _frame(i, drive)
         if npair < parmin:
-            _update_bodies_ser(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                               bkin, brad, blast, bsnap, bpart, bsp, bsh, sbody, svs, svn, lv, wv)
+            _update_bodies_ser(P, fr, fb, bodies, shapes, bpart, bsp, bsh)
         else:
-            _update_bodies_par(P, fr, bpresc, fb, bext, bpos, bang, bvel, bomg, bmass, binert,
-                               bkin, brad, blast, bsnap, bpart, bsp, bsh, sbody, svs, svn, lv, wv)
+            _update_bodies_par(P, fr, fb, bodies, shapes, bpart, bsp, bsh)
         unbal = 0.0
         wdamp = 0.0
         wbase = 0.0
@@ -1166,12 +1264,12 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
         need = 0.0
         wtilt = 0.0
         for blk in range(NBLK):
-            unbal = max(unbal, bpart[blk, 0])
-            wtilt += bpart[blk, 5]
-            wdamp += bpart[blk, 1]
-            wbase += bpart[blk, 2]
-            wext += bpart[blk, 3]
-            need = max(need, bpart[blk, 4])
+            unbal = max(unbal, bpart[blk, Q_UNBAL])
+            wtilt += bpart[blk, Q_WTILT]
+            wdamp += bpart[blk, Q_WDAMP]
+            wbase += bpart[blk, Q_WBASE]
+            wext += bpart[blk, Q_WEXT]
+            need = max(need, bpart[blk, Q_NEED])
         if need > 0.0:
             C[C_NEED_REBUILD] = 1
         E[E_WDAMP] += wdamp
@@ -1184,10 +1282,17 @@ def run_chunk(nsteps, P, E, C, S, vhalf, vfull, grav, gdot, bpresc,
     # mean contact force at the end of the chunk
     tot = 0.0
     na = 0
-    for k in range(pairs.shape[0]):
+    sid = c.sid
+    sf = c.sf
+    for k in range(c.pairs.shape[0]):
         for o in range(2):
             if sid[k, o] >= 0:
                 tot += math.sqrt(sf[k, o, F_FN] ** 2 + sf[k, o, F_FS] ** 2)
                 na += 1
     S[S_MEANF] = tot / na if na > 0 else 0.0
-    return pairs, pj, pbond, sid, sf, sbr
+    return c
+
+
+# numba's cache checks only this file: flush it when the structure layouts and field positions
+# it compiles in (murus.dem._kdata) change
+_guard_cache(globals(), deps=("murus.dem._kdata",))

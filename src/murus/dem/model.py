@@ -36,6 +36,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from murus import G
+from murus.dem import _kdata as kd
 from murus.dem import kernels as K
 from murus.dem.materials import Joint
 from murus.errors import MurusError
@@ -432,6 +433,7 @@ class Model:
         self.bext = np.zeros((nb, 3))  # external force (Fx, Fy) [N] and moment [N m]
         self.bpresc = np.zeros((nb, 3))  # velocity (vx, vy, omega) of "prescribed" bodies
         self.bref = np.column_stack([bpos, np.zeros(nb)])
+        self.bsnap = np.zeros((nb, 6))  # set by snapshot() at the end of the build
         self.sbody = np.array(sbody, np.int64)
         self.skind = np.array(skind, np.int64)
         self.svs = np.array(svs, np.int64)
@@ -465,15 +467,15 @@ class Model:
         self.S = np.zeros(K.NS)
         self.E0 = 0.0
         # first pair list: the sub-contacts present at the start are bonded
-        K.world_vertices(self.bpos, self.bang, self.sbody, self.svs, self.svn, self.lv, self.wv)
-        pairs = K.broad_phase(self.wv, self.svs, self.svn, self.srad, self.sbody, self.bkin,
-                              self.margin)
-        empty = np.zeros((0, 2), np.int64)
-        (self.sid, self.sf, self.sbr, self.pbond, self.pj) = K.transfer(
-            empty, np.zeros((0, 2), np.int64), np.zeros((0, 2, K.NSF)),
-            np.zeros((0, 2), np.int8), np.zeros(0, np.int8), pairs, len(sbody), self.jtab,
-            self.sgroup, 1)
-        self.pairs = pairs
+        shapes = kd.pack(kd.Shapes, self)
+        K.world_vertices(self.bpos, self.bang, shapes)
+        pairs = K.broad_phase(shapes, self.bkin, self.margin)
+        empty = kd.Contacts(np.zeros((0, 2), np.int64), np.zeros(0, np.int64),
+                            np.zeros(0, np.int8), np.zeros((0, 2), np.int64),
+                            np.zeros((0, 2, K.NSF)), np.zeros((0, 2), np.int8))
+        contacts = K.transfer(empty, pairs, self.sgroup, self.jtab, 1)
+        for name, a in zip(kd.Contacts._fields, contacts, strict=True):
+            setattr(self, name, a)
         self._built = True
         from murus.dem.engine import detect
         detect(self)
@@ -540,7 +542,7 @@ class Model:
     def discs(self) -> tuple[np.ndarray, np.ndarray]:
         """Centres (n, 2) [m] and radii (n,) [m] of the disc shapes."""
         self.build()
-        K.world_vertices(self.bpos, self.bang, self.sbody, self.svs, self.svn, self.lv, self.wv)
+        K.world_vertices(self.bpos, self.bang, kd.pack(kd.Shapes, self))
         idx = self.svs[self.disc_shape]
         return self.wv[idx].copy(), self.srad[self.disc_shape].copy()
 
@@ -612,11 +614,12 @@ class Model:
         return stable_dt(self)
 
     # ------------------------------------------------------------------ checkpoint
-    _ARRAYS = ("bpos", "bang", "bvel", "bomg", "bmass", "binert", "bkin", "brad", "blen",
-               "blast", "bref", "bsnap", "sbody", "skind", "svs", "svn", "srad", "sgroup",
-               "lv", "wv",
-               "poly_shape", "disc_shape", "jtab", "jprops", "P", "E", "C", "S", "pairs", "pj",
-               "pbond", "sid", "sf", "sbr", "_motion_acc", "_motion_accv")
+    # the kernel state (murus.dem._kdata: a field added there is saved and loaded) and the
+    # model's own arrays
+    _ARRAYS = kd.STATE_ARRAYS + ("blen", "bref", "poly_shape", "disc_shape", "P", "E", "C", "S",
+                                 "_motion_acc", "_motion_accv")
+    #: arrays that checkpoints written before they existed lack: zeros (nbody, 3) on load
+    _ZERO_IF_MISSING = ("bext", "bpresc")
 
     def save(self, path) -> None:
         """Whole state to an ``.npz`` file (a callable base motion and custom probes are not
@@ -624,8 +627,6 @@ class Model:
         (:func:`murus.outputs.atomic_write`: a crash never leaves a half checkpoint)."""
         self.build()
         arrays = {name.lstrip("_"): getattr(self, name) for name in self._ARRAYS}
-        arrays["bext"] = self.bext
-        arrays["bpresc"] = self.bpresc
         for i, o in enumerate(self._outer):
             arrays[f"outer_{i}"] = o
         for name, h in self.history.items():
@@ -660,11 +661,13 @@ class Model:
             meta = json.loads(str(z["meta"]))
             m = cls(thickness=meta["thickness"], gravity=meta["gravity"], safety=meta["safety"],
                     rounding=meta["rounding"], margin=meta["margin"])
+            nb = z["bpos"].shape[0]
             for name in cls._ARRAYS:
-                setattr(m, name, z[name.lstrip("_")].copy())
-            nb = m.bpos.shape[0]
-            m.bext = z["bext"].copy() if "bext" in z.files else np.zeros((nb, 3))
-            m.bpresc = z["bpresc"].copy() if "bpresc" in z.files else np.zeros((nb, 3))
+                key = name.lstrip("_")
+                if key not in z.files and name in cls._ZERO_IF_MISSING:
+                    setattr(m, name, np.zeros((nb, 3)))
+                else:
+                    setattr(m, name, z[key].copy())
             m._outer = [z[f"outer_{i}"].copy() for i in range(meta["nouter"])]
             m.history = {k: list(z[f"hist__{k}"]) for k in meta["history"]}
         m.dt = meta["dt"]
