@@ -89,3 +89,22 @@ def test_parallel_loops_write_the_state():
         assert np.array_equal(a, b)
     assert np.array_equal(res["ser"][1], res["par"][1])
     assert np.array_equal(res["ser"][2], res["par"][2])
+
+
+def test_kernels_called_from_python_return_plain_tuples():
+    """numba boxes a named tuple by calling its Python class; a Ctrl-C pending at that moment
+    crashed the process with SIGSEGV (found by the behaviour-factor Ctrl-C test). The kernels
+    that Python calls return their contact arrays as a plain tuple."""
+    m = Model(joint=Joint(kn=1e9, ks=1e9, friction_deg=35), rounding=1e-3)
+    m.add_rectangle(0.8, 0.2, center=(0.0, 0.1), kinematic="fixed")
+    m.add_rectangle(0.4, 0.2, center=(0.17, 0.3))
+    m.settle(tol=1e-3, max_steps=50)
+    empty = _copies(kd.pack(kd.Contacts, m))._replace(pairs=np.zeros((0, 2), np.int64))
+    out = K.transfer_arrays(empty, m.pairs.copy(), m.sgroup, m.jtab, 1)
+    assert type(out) is tuple and len(out) == len(kd.Contacts._fields)
+    n = 3
+    drive = kd.Drive(np.zeros((n, 2)), np.zeros((n, 2)), np.tile([0.0, -9.81], (n, 1)),
+                     np.zeros((n, 2)))
+    out = K.run_chunk(n, m.P, m.E, m.C, m.S, drive, kd.pack(kd.Bodies, m),
+                      kd.pack(kd.Shapes, m), kd.pack(kd.Joints, m), kd.pack(kd.Contacts, m))
+    assert type(out) is tuple and len(out) == len(kd.Contacts._fields)

@@ -310,6 +310,15 @@ def transfer(old, new_pairs, sgroup, jtab, bond_new):
     return Contacts(new_pairs, pj, pbond, sid, sf, sbr)
 
 
+@njit(cache=True, error_model="numpy")
+def transfer_arrays(old, new_pairs, sgroup, jtab, bond_new):
+    """:func:`transfer` for a caller in Python: the arrays of the new :class:`Contacts` as a
+    plain tuple (numba boxes a named tuple by calling its Python class, which crashes the
+    process when a Ctrl-C is pending at that moment)."""
+    c = transfer(old, new_pairs, sgroup, jtab, bond_new)
+    return (c.pairs, c.pj, c.pbond, c.sid, c.sf, c.sbr)
+
+
 # ---- narrow phase ----------------------------------------------------------------------------
 
 
@@ -1290,7 +1299,9 @@ def run_chunk(nsteps, P, E, C, S, drive, bodies, shapes, joints, contacts):
                 tot += math.sqrt(sf[k, o, F_FN] ** 2 + sf[k, o, F_FS] ** 2)
                 na += 1
     S[S_MEANF] = tot / na if na > 0 else 0.0
-    return c
+    # a plain tuple, in the order of Contacts._fields: numba boxes a named tuple by calling its
+    # Python class, and a Ctrl-C pending at that moment crashed the process (SIGSEGV)
+    return (c.pairs, c.pj, c.pbond, c.sid, c.sf, c.sbr)
 
 
 # numba's cache checks only this file: flush it when the structure layouts and field positions

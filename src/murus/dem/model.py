@@ -473,7 +473,7 @@ class Model:
         empty = kd.Contacts(np.zeros((0, 2), np.int64), np.zeros(0, np.int64),
                             np.zeros(0, np.int8), np.zeros((0, 2), np.int64),
                             np.zeros((0, 2, K.NSF)), np.zeros((0, 2), np.int8))
-        contacts = K.transfer(empty, pairs, self.sgroup, self.jtab, 1)
+        contacts = K.transfer_arrays(empty, pairs, self.sgroup, self.jtab, 1)
         for name, a in zip(kd.Contacts._fields, contacts, strict=True):
             setattr(self, name, a)
         self._built = True
