@@ -1208,7 +1208,8 @@ def run_chunk(nsteps, P, E, C, S, drive, bodies, shapes, joints, contacts):
     accumulated in ``E[E_WEXT]``; ignored on kinematic bodies). ``bodies.bsnap`` receives the
     state at the time of the last force evaluation (x, y, angle, and the mid-step velocities
     vx, vy, omega), the time at which the contact forces and the work accumulators are
-    consistent (energy snapshots). Returns the (possibly rebuilt) :class:`Contacts`.
+    consistent (energy snapshots). Returns the arrays of the (possibly rebuilt) :class:`Contacts`
+    as a plain tuple, in the order of its fields.
 
     A step: the contact loop (narrow phase and joint law, a numba parallel loop over the pairs,
     each pair writing only its own record and its resultant in ``pw``), the resultants
