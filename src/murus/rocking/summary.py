@@ -93,7 +93,7 @@ def values(table, S) -> dict:
     import math
 
     out = {}
-    for q, x in zip(table, S, strict=True):
+    for q, x in zip(table, S.tolist() if hasattr(S, "tolist") else S, strict=True):
         x = float(x)
         if q.kind == "int":
             out[q.name] = int(x)
