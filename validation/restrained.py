@@ -61,7 +61,7 @@ def reduction_after_first_impact(c: float, K: float) -> float:
 
 
 def calibrate_delta_t(target: float = 0.82) -> float:
-    """The characteristic time of eq. 13 (not given by the seed) for which c = 1 % c_d reduces
+    """The characteristic time of eq. 13 (not given by the paper) for which c = 1 % c_d reduces
     the free-standing one-sided block by ``target`` after the first impact (Figure 9)."""
     from scipy.optimize import brentq
 
@@ -214,9 +214,9 @@ def section(fig_dir: Path | None = None) -> str:
         "EURODYN (2020) does not give the characteristic time delta_t of eq. 13 "
         "(c_d = 2 m g delta_t / h). One number was calibrated, the other predicted: "
         f"delta_t = **{delta_t:.3f} s** (c_d = {cd:.4g} N s/m) makes c = 1 % c_d reduce the "
-        "free-standing one-sided block by 82 % after the first impact, as the seed reports; "
+        "free-standing one-sided block by 82 % after the first impact, as the paper reports; "
         "with that same delta_t the restrained block (K = K_d) is reduced by "
-        f"**{100 * red_tie:.1f} %**, against the seed's **27 %**.",
+        f"**{100 * red_tie:.1f} %**, against the paper's **27 %**.",
         "",
         "| block1, c = 1 % c_d, one-sided | EURODYN (2020), §4.2 | murus |",
         "|---|---|---|",
@@ -230,7 +230,7 @@ def section(fig_dir: Path | None = None) -> str:
     out += [f"![Figure 9]({rel}/{figs[1]})", "",
             "### Figures 7 and 8: damping c = 0, 0.1, 1 and 5 % of c_d", "",
             *rows, "", f"![Figures 7-8]({rel}/{figs[0]})", "",
-            "As in the seed: the damper lowers the successive peaks and delays the impacts of "
+            "As in the paper: the damper lowers the successive peaks and delays the impacts of "
             "the free-standing block (Figure 7); the tie re-centres the block, shortens the "
             "time to the first impact and raises the rocking frequency, and for the same c the "
             "restrained block keeps larger rotations (Figure 8).", ""]

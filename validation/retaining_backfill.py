@@ -4,8 +4,8 @@ depend on the backfill width (W = 5 m and 2W), and the collapse acceleration of 
 the discrete backfill against Savalle et al. (2022), Table 7 (A_col = 5.38 m/s²) and the equivalent
 thrust.
 
-Runs (DSRW1, S2 at 5 Hz, the seed's slope A = A_pseudo / 2.5, to collapse d_top > 20 % H or
-15 s; discs of mean radius 0.04 m; absorbing lateral boundary, as the seed's free-field
+Runs (DSRW1, S2 at 5 Hz, the paper's slope A = A_pseudo / 2.5, to collapse d_top > 20 % H or
+15 s; discs of mean radius 0.04 m; absorbing lateral boundary, as the paper's free-field
 boundary; wall joints at 1e-3 of Table 6 as in the thrust runs): ``W5`` and ``W10``, and the
 same with a container (``W5_container``, ``W10_container``), and ``W5_seed1`` (another random
 packing: the scatter against which the effect of W is read); the cached JSON records
@@ -154,7 +154,7 @@ def section(recompute: bool = False, jobs: int = 1, fig_dir: Path = FIG) -> str:
              "collapse", "",
              "DSRW1 under S2 at 5 Hz (slope A_pseudo / 2.5, to d_top > 0.5 m or 15 s) with "
              "the disc backfill of `murus.retaining.backfill` behind the DEM wall (no "
-             "backstop, no thrust), with an absorbing (Lysmer-Kuhlemeyer, the seed's "
+             "backstop, no thrust), with an absorbing (Lysmer-Kuhlemeyer, the paper's "
              "free-field boundary) or a container lateral boundary at x = heel + W; discs "
              "of mean radius 0.04 m; wall joints at 1e-3 of Table 6 as in the thrust runs. "
              "Computed by `python validation/retaining_backfill.py` (cached in "

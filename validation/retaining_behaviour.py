@@ -121,7 +121,7 @@ def section(workers: int = 1) -> str:
                  f"2.08, minimum 1.83; over all the walls murus gives mean "
                  f"{sum(r for _, r in rs) / len(rs):.2f}, minimum {min(r for _, r in rs):.2f}. "
                  "The seed proposes r = 1.5 for design; the murus r is "
-                 f"{above}. It is higher than the seed's because its A_col is "
+                 f"{above}. It is higher than the paper's because its A_col is "
                  "(dynamic-collapse section: the thrust without memory, the damping on the "
                  "wall alone).")
     L.append("- S1 checks (seed Figure 14: stable at 0.6 A_col, collapsed at 0.7): the last "
@@ -129,7 +129,7 @@ def section(workers: int = 1) -> str:
              "survives a steady amplitude that made it collapse on the ramp: with the "
              "equivalent thrust, nothing accumulates from one cycle to the next (no soil "
              "fills the gap behind a wall that rocks back), so a long steady input does less "
-             "than the rising ramp, the opposite of the seed. 'skipped': the S2 run did not "
+             "than the rising ramp, the opposite of the paper. 'skipped': the S2 run did not "
              "collapse (no A_col to check).")
     order_s = sorted(a5, key=lambda w: -a5[w][0])
     order_m = sorted(a5, key=lambda w: -a5[w][1])

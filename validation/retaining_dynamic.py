@@ -542,8 +542,8 @@ def explain(recs: dict, ms: dict, dres: dict) -> list[str]:
         + ", ".join(f"{f:g} Hz {fr} {_fmt(_a(recs, f'dsrw1_{f:g}_{fr}'))} -> "
                     f"{_fmt(_a(recs, f'dsrw1_{f:g}_{fr}_dt'))}"
                     for f in (3.0, 5.0) for fr in FRAMES)
-        + " m/s². Neither frame brings DSRW1 to the seed's values.", "",
-        "**2. The damping ratio matters in murus, where the seed found it did not.** DSRW1 at "
+        + " m/s². Neither frame brings DSRW1 to the paper's values.", "",
+        "**2. The damping ratio matters in murus, where the paper found it did not.** DSRW1 at "
         "5 Hz, base frame: " + ", ".join(f"xi = {100 * x:g} %: {_fmt(v)}" for x, v, _ in xi)
         + " m/s²; mock-up 2.7: xi = 2 %: "
         f"{_fmt(_a(recs, 'mock_2.7_base_xi0.02'))} against {_fmt(_acol(m27))} at 10 %. The "
@@ -562,7 +562,7 @@ def explain(recs: dict, ms: dict, dres: dict) -> list[str]:
         "**3. The force-only thrust has no memory.** The thrust is a force on the back face and "
         "the backstop only stops the wall from entering the slope: after an outward "
         "excursion nothing fills the gap, and the wall rocks back. DSRW1 at 5 Hz: between "
-        f"A_pseudo and the seed's A_col (envelope 1.6-5.4 m/s²) d_top reaches "
+        f"A_pseudo and the paper's A_col (envelope 1.6-5.4 m/s²) d_top reaches "
         f"{100 * out_max:.1f} cm outwards, yet the wall comes back: the lowest d_top of a "
         f"cycle has a median of {100 * low_med:.2f} cm, and {n_back} of the {n_cyc} cycles "
         "return below 1.25 cm (0.5 % H; the histories below stay near zero between "
@@ -574,7 +574,7 @@ def explain(recs: dict, ms: dict, dres: dict) -> list[str]:
         "cycles' outward excursions reaches the threshold, a post-processing of the murus "
         "histories, not a model) gives, with xi = 10 %: "
         + ", ".join(f"{f:g} Hz **{_fmt(rb[f])}** ({_pct(rb[f], seed[f])})" for f in DSRW1_F)
-        + "; and it hardly depends on the damping, as the seed's results: at 5 Hz "
+        + "; and it hardly depends on the damping, as the paper's results: at 5 Hz "
         + ", ".join(f"xi = {100 * x:g} %: {_fmt(r)}" for x, _, r in xi) + " m/s². All cases:",
         "",
         *ratchet_table(recs), "",
@@ -615,11 +615,11 @@ def explain(recs: dict, ms: dict, dres: dict) -> list[str]:
         "`collapse_run(backfill=\"discrete\")` (section *Discrete granular backfill* below) "
         "follows the wall and ratchets it out, but it overshoots the other way (DSRW1 at 5 Hz: "
         "3.65 m/s², -32 %): its thrust on a wall that yields a few centimetres is about 1.6 "
-        "times the Coulomb active value (the disc assembly is softer than the seed's "
+        "times the Coulomb active value (the disc assembly is softer than the paper's "
         "continuum). What is left: a backfill whose stiffness matches the continuum's (finer "
         "or stiffer discs, calibrated on E as well as on phi), or a ratcheting backstop for "
         "the thrust model; the mock-ups' brick size, cross-section and input slope A, which "
-        "the seed does not print (reconstructed here).",
+        "the paper does not print (reconstructed here).",
     ]
     return lines
 
@@ -695,7 +695,7 @@ def section(fig_dir: Path | None = None, recompute: bool = False, jobs: int = 1)
         "2` for two processes); each run's command is `collapse_run(wall, f, **kw)` with the "
         "keywords stored in its JSON.", "",
         "### Scaled-down mock-ups (§3, Table 3): acceleration at failure", "",
-        "What the seed does not print and murus assumes: the input slope A (reconstructed as "
+        "What the paper does not print and murus assumes: the input slope A (reconstructed as "
         f"A = 2.6 / 19.9 = **{A_MOCK:.3f} m/s³** from Table 2, where UDEC's cross-section 3 of "
         "the H/B = 2.7 wall reaches d_top = 5 mm = 5 % H at 19.9 s, and Table 3, where that "
         "wall fails at 2.6 m/s²; consistent with \"signals from 15 to 30 s\"); the brick "
@@ -711,7 +711,7 @@ def section(fig_dir: Path | None = None, recompute: bool = False, jobs: int = 1)
         f"- Level: murus overestimates the experimental A_fail by **{st['base'][0]:+.0f} %** "
         f"on average (mean absolute {st['base'][1]:.0f} %) with the relative-velocity damping "
         f"and {st['absolute'][0]:+.0f} % ({st['absolute'][1]:.0f} %) with the absolute one; "
-        f"UDEC underestimates it by {st['udec'][0]:.0f} % (the seed's \"about -21 %\"). The "
+        f"UDEC underestimates it by {st['udec'][0]:.0f} % (the paper's \"about -21 %\"). The "
         "walls whose error exceeds 25 % are discussed below.",
         f"- Trend: A_fail decreases with the slenderness "
         f"{'monotonically' if mono else 'not monotonically'} (rank correlation with H/B "

@@ -111,7 +111,7 @@ def table8() -> tuple[list[str], dict]:
 def r_stats(over: dict, asm: Assumptions, signs) -> dict | None:
     """Behaviour factors r = A_peak / A_pseudo of the eight cases for one set of assumptions:
     mean and minimum (seed: 2.08 and 1.83), and the sum and minimum over DSRW2-4 (the cases
-    Table 8 does not print: the seed's mean and its five printed r imply a sum of 6.27 +- 0.05,
+    Table 8 does not print: the paper's mean and its five printed r imply a sum of 6.27 +- 0.05,
     and each at least 1.83)."""
     rs, rest = [], []
     for r in _rows("seed001_table8.csv"):
@@ -253,7 +253,7 @@ def section(fig_dir: Path | None = None) -> str:
         "(DSRW2-4) must sum to 6.27 +- 0.05 (16.64 - 10.37, with the rounding), each at least "
         f"1.83. With the murus A_pseudo: mean **{stats['mean']:.2f}**, minimum "
         f"**{stats['min']:.2f}**, DSRW2-4 sum **{stats['sum_rest']:.2f}**, minimum "
-        f"**{stats['min_rest']:.2f}**: the values the seed does not print are consistent with "
+        f"**{stats['min_rest']:.2f}**: the values the paper does not print are consistent with "
         "what it states.",
         "",
         "### Assumptions the seed leaves open, and their effect", "",
@@ -269,7 +269,7 @@ def section(fig_dir: Path | None = None) -> str:
         "defensible: delta = 2/3 phi is the customary wall friction of gravity-wall design; EN "
         "1998-5 §7.3.2.3(5) lets the dynamic force act at the static point for walls free to "
         "rotate about their toe, the governing mechanism here; a pseudo-static Coulomb wedge "
-        "(the seed's wording) has a triangular pressure, i.e. acts at h/3, and so does a "
+        "(the paper's wording) has a triangular pressure, i.e. acts at h/3, and so does a "
         "tilting table (the equivalence below), the seed authors' earlier tool [18].",
         f"- Taking Table 6 literally (delta = phi = 37.7 deg) with the EN 1998-5 mid-height "
         f"increment gives {_pct(st[4]['a0'], 1.58)} and {_pct(st[4]['a5'], 1.50)}; with a "
@@ -293,7 +293,7 @@ def section(fig_dir: Path | None = None) -> str:
         "### Scaled-down mock-ups (Savalle et al. (2022), §3, Table 3)", "",
         "Vertical walls, level sand, the materials of Table 1 (delta = 2/3 x 45 = 30 deg); only "
         "the base joint (course heights not given). The pseudo-static resistance depends on "
-        "H/B only (friction has no length scale), so the seed's inconsistent width (34 mm "
+        "H/B only (friction has no length scale), so the paper's inconsistent width (34 mm "
         "printed, 38-42 mm implied by the 50-140 mm heights) does not matter here. The "
         "experimental accelerations are dynamic (10 Hz ramp, failure at 5 % of H) and not "
         "pseudo-static limits; the mechanisms agree: sliding for the squat walls, toppling for "

@@ -163,7 +163,7 @@ def onset_tables(table1) -> tuple[list[str], dict]:
 
 
 def claims(pred) -> list[str]:
-    """Which readings reproduce the seed's statements."""
+    """Which readings reproduce the paper's statements."""
     def holds(rd, wanted):
         return all(pred[(w, t, rd)] == v for w in WALLS for t, v in wanted.items())
 
@@ -490,7 +490,7 @@ def section(fig_dir: Path | None = None) -> str:
     out += ["### Rocking onset (eq. 9 and eq. 11)", ""]
     lines, pred = onset_tables(table1)
     out += lines + [""]
-    out += ["Which pivot readings reproduce the seed's statements:", ""]
+    out += ["Which pivot readings reproduce the paper's statements:", ""]
     out += claims(pred) + [""]
     out += claim_text(table1) + [""]
     name, onset = fig_plain_criterion(table1, fig_dir)
@@ -531,7 +531,7 @@ def section(fig_dir: Path | None = None) -> str:
         "first crossing), e.g. the short wall at S07 rocks from "
         f"{runs[('short', 'S07', 1)].t_uplift:.2f} s instead of not at all, and at S09 from "
         f"{runs[('short', 'S09', 1)].t_uplift:.2f} s instead of "
-        f"{runs[('short', 'S09', 0)].t_uplift:.2f} s (the seed's Figure 12 reports measured "
+        f"{runs[('short', 'S09', 0)].t_uplift:.2f} s (the paper's Figure 12 reports measured "
         "rotation from about 2 s against a plain-model onset at about 10 s).",
         trend_text(runs, stats),
         "- Not reproduced: the measured histories (Figures 9-12, 15-20) are not available, nor "

@@ -15,7 +15,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 FIG = ROOT / "docs" / "figures" / "studies"
 
-#: FEMA P695 far-field records standing in for the seed's (not in FEMA P695): Duzce 1999 at
+#: FEMA P695 far-field records standing in for the paper's (not in FEMA P695): Duzce 1999 at
 #: Bolu (Turkey, as Dinar 1995; Duzce 1999 is itself in EURODYN (2020), Table 2) and Friuli 1976 at
 #: Tolmezzo (Italy, Mw 6.5 as Norcia 2016).
 STAND_INS = {
@@ -121,23 +121,23 @@ def section(fig_dir: Path | None = None) -> str:
         "The seed's records, Dinar 1995 (Figure 3) and Norcia 2016 (Figure 4), are not in the "
         "FEMA P695 sets that murus ships, so the curves cannot be compared number for number. "
         "The stand-ins are the two far-field records closest to them: Duzce 1999 at Bolu "
-        "(Turkey; Duzce 1999 is itself one of the seed's events, Table 2) and Friuli 1976 at "
+        "(Turkey; Duzce 1999 is itself one of the paper's events, Table 2) and Friuli 1976 at "
         "Tolmezzo (Italy, Mw 6.5 like Norcia), both horizontal components. The comparison is "
         "qualitative: does the response vary non-monotonically with K, with peaks that "
-        "exceed the free-standing response (the seed's \"amplifications ... where beats and "
+        "exceed the free-standing response (the paper's \"amplifications ... where beats and "
         "resonant effects develop\")?", "",
         *rows, "",
         f"![Rocking spectra]({rel}/{fig})", "",
         "As in Figures 3-4, the spectra are far from monotonic in K (several local maxima, "
         "last column). Under Friuli the restrained wall rotates more than the free-standing "
-        "one for most stiffnesses (the seed's Figure 4 reading: amplified responses, sometimes "
+        "one for most stiffnesses (the paper's Figure 4 reading: amplified responses, sometimes "
         "above the free-standing peak). Under Duzce-Bolu, stronger (PGA 0.73 g), the "
         "free-standing wall overturns and every tie keeps the wall up, but the softest ties "
         "(K < 0.1 K_d) let it rotate beyond alpha, and the response rises again with K in "
-        "bands (near K = 0.2 and 0.35 K_d, and towards K_d): the seed's Figure 3 reading "
+        "bands (near K = 0.2 and 0.35 K_d, and towards K_d): the paper's Figure 3 reading "
         "(\"even low values of stiffness result in an amplification\"). A tie is not "
         "stabilising for every K: the spectrum, not a single stiffness, is what a design "
-        "should check (the seed's conclusion).", "",
+        "should check (the paper's conclusion).", "",
     ]
     rows, fig = fragility_figure(fig_dir)
     out += [
@@ -147,7 +147,7 @@ def section(fig_dir: Path | None = None) -> str:
         "per limit state (binomial likelihood, Baker 2015), 90 % bands by bootstrap over the "
         "records (200 resamples). Tied: K = K_d at the top with eq. 11 transverse walls; "
         f"damped: the same with a damper c = 10 % c_d (eq. 13, delta_t = {DELTA_T} s, the "
-        "value calibrated on Figure 9), the seed's design value for limited rocking. "
+        "value calibrated on Figure 9), the paper's design value for limited rocking. "
         "Markers are the observed fractions.", "",
         *rows, "",
         f"![Fragility]({rel}/{fig})", "",

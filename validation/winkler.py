@@ -222,15 +222,16 @@ def series_walls(fig_dir: Path) -> list[str]:
         "",
         f"- With the {E_RUBBER / 1e6:g} MPa strip the frequency falls by "
         f"{_ec6_drop(walls['short'], E_RUBBER) * 100:.0f} % (short) and "
-        f"{_ec6_drop(walls['long'], E_RUBBER) * 100:.0f} % (long), more than the 30-40 % of seed "
-        "000 §2.1 (Figure 3, not in the extracted text); the seed's drop corresponds to a strip "
+        f"{_ec6_drop(walls['long'], E_RUBBER) * 100:.0f} % (long), more than the 30-40 % of "
+        "Mordant et al. (SERIES), §2.1 (Figure 3, not in the extracted text); the paper's drop "
+        "corresponds to a strip "
         f"of E_c ≈ {calib['short'] / 1e6:.0f} MPa (short) and {calib['long'] / 1e6:.0f} MPa "
         "(long), i.e. k_w of a few 1e9 N/m³, or to a wall more flexible than EN 1996 gives "
         "(empty vertical joints). The direction and order of magnitude are reproduced; the value "
-        "depends on assumptions the seed does not report (rubber modulus, wall modulus).",
+        "depends on assumptions the paper does not report (rubber modulus, wall modulus).",
         "",
     ]
-    # ---- rocking under the seed's input: an EN 1998-1 artificial record (ground B, type 1)
+    # ---- rocking under the paper's input: an EN 1998-1 artificial record (ground B, type 1)
     rec = generate_ec8(0.25 * G, ground="B", spectrum_type=1, n=1, seed=2024)[0]
     acc0 = rec.acc / np.max(np.abs(rec.acc))
     cases = {}
@@ -320,7 +321,7 @@ def series_walls(fig_dir: Path) -> list[str]:
         "- lower natural frequency: reproduced (table above; the rigid body on the 10 MPa strip "
         "alone would have "
         f"{small_amplitude_frequency(short, WinklerBase(E_RUBBER / T_LAYER)) / (2 * math.pi):.2f}"
-        " Hz, short wall), with a drop larger than the seed's unless E_c is a few tens of MPa;",
+        " Hz, short wall), with a drop larger than the paper's unless E_c is a few tens of MPa;",
         "- larger rotations under the same input: reproduced. The short wall rocks with and "
         f"without rubber and the 10 MPa strip multiplies theta_max by {min(rs):.1f} to "
         f"{max(rs):.1f}; the long wall on rubber rocks (contact length down to 0) at PGA where "
@@ -328,7 +329,7 @@ def series_walls(fig_dir: Path) -> list[str]:
         f"{max(ratios[('long', p)] for p in PGA['long']):.0f}). The rigid model barely lifts "
         "at these PGA (theta_max ~ 0): it ignores the dynamic amplification of the flexible "
         "wall, whose heel lifts at the kern (b/6) once the amplified response exceeds "
-        "g b / (6 z_G), as the seed's cantilever-then-rocking behaviour (§2.2) suggests;",
+        "g b / (6 z_G), as the paper's cantilever-then-rocking behaviour (§2.2) suggests;",
         "- softer impacts: reproduced for the same rocking amplitude (free rocking table, no "
         f"rubber / rubber: peak contact force {imp_ratio('peak_contact_force')} times, toe "
         f"pressure {imp_ratio('peak_pressure')} times, peak angular acceleration "
