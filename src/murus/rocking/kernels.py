@@ -115,6 +115,16 @@ PARAMS = (
     ("spare_39", "-", "unused"),
 )
 PARAM_DTYPE = np.dtype([(name, np.float64) for name, _, _ in PARAMS])
+_PARAM_NAMES = frozenset(PARAM_DTYPE.names)
+
+
+def params_record(values: dict) -> np.void:
+    """The parameter record of the fields ``values`` (name -> number; the others 0), built at
+    once. A name that is not a field of :data:`PARAMS` raises ``KeyError``."""
+    unknown = values.keys() - _PARAM_NAMES
+    if unknown:
+        raise KeyError(f"not a rocking kernel parameter: {', '.join(sorted(unknown))}")
+    return np.array([tuple(values.get(n, 0.0) for n in PARAM_DTYPE.names)], PARAM_DTYPE)[0]
 
 
 def new_params() -> np.void:
