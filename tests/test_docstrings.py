@@ -22,16 +22,8 @@ PACKAGES = ["murus", "murus.motion", "murus.eurocode", "murus.rocking", "murus.d
             "murus.motion.io", "murus.motion.spectra", "murus.motion.measures",
             "murus.motion.processing", "murus.motion.synthetic", "murus.motion.artificial"]
 
-#: Names whose docstrings are not converted yet, by module: those of the modules that issue 16
-#: rewrites in parallel (the DEM and rocking engines): the lead empties this list after the
-#: merge. Remove a name when its docstring gains its sections.
-PENDING = {
-    # modules rewritten by issue 16 items 1-4 (left to the lead after the merge)
-    "murus.dem.engine": {"Probe", "RunResult", "SettleResult", "body_probe", "relative_probe",
-                         "stop_when", "tilt_probe"},
-    "murus.rocking.engine": {"BatchResult", "RockingResult", "simulate_batch"},
-    "murus.rocking.winkler": {"WinklerResult"},
-}
+#: Names whose docstrings are not converted yet, by module (empty: all converted, issue 16 item 5).
+PENDING = {}
 
 
 def _section(doc: str, name: str) -> bool:

@@ -91,9 +91,17 @@ OK_STATUSES = ("completed", "stopped")
 class Probe:
     """A scalar monitor of the model state, rebuilt from ``spec`` after a checkpoint.
 
-    kinds: ``("body", b, q)`` with q in x, y, angle, vx, vy, omega, ux, uy, rot (ux, uy, rot:
-    since the reference state); ``("relative", b, ref, q)`` with q in ux, uy, rot: of body b
-    relative to body ref; ``("tilt",)``: gravity tilt [deg]; ``("time",)``.
+    Calling it on a model returns the value (a float). Quantities ``q`` of a body and their
+    units: ``x``, ``y`` (centroid position) [m], ``angle`` [rad], ``vx``, ``vy`` [m/s],
+    ``omega`` [rad/s], ``ux``, ``uy`` (displacement since the reference state) [m], ``rot``
+    (rotation since the reference state) [rad].
+
+    Attributes
+    ----------
+    spec : tuple
+        The kind and its arguments: ``("body", b, q)``: quantity ``q`` of body ``b``;
+        ``("relative", b, ref, q)``: the same of body ``b`` minus that of body ``ref`` (``q``
+        in ux, uy, rot); ``("tilt",)``: gravity tilt [deg]; ``("time",)``: model time [s].
     """
 
     spec: tuple
@@ -136,19 +144,53 @@ def _body_q(m, b, q):
 
 
 def body_probe(body: int, q: str) -> Probe:
-    """Position, angle, velocity or displacement ``q`` of one body (see :class:`Probe`)."""
+    """Position, angle, velocity or displacement ``q`` of one body (see :class:`Probe`).
+
+    Parameters
+    ----------
+    body : int
+        Index of the body.
+    q : str
+        ``"x"``, ``"y"`` [m], ``"angle"`` [rad], ``"vx"``, ``"vy"`` [m/s], ``"omega"``
+        [rad/s], or since the reference state ``"ux"``, ``"uy"`` [m], ``"rot"`` [rad].
+
+    Returns
+    -------
+    Probe
+    """
     _body_q_check(q)
     return Probe(("body", int(body), q))
 
 
 def relative_probe(body: int, ref: int, q: str = "ux") -> Probe:
     """Displacement of ``body`` relative to ``ref`` (e.g. d_top: top block relative to the
-    base)."""
+    base).
+
+    Parameters
+    ----------
+    body : int
+        Index of the body monitored.
+    ref : int
+        Index of the reference body.
+    q : str
+        ``"ux"``, ``"uy"`` [m] or ``"rot"`` [rad] (any quantity of :func:`body_probe` is
+        accepted: the difference of the two bodies' values).
+
+    Returns
+    -------
+    Probe
+    """
     _body_q_check(q)
     return Probe(("relative", int(body), int(ref), q))
 
 
 def tilt_probe() -> Probe:
+    """The gravity tilt of the model (tilting table) [deg].
+
+    Returns
+    -------
+    Probe
+    """
     return Probe(("tilt",))
 
 
@@ -162,7 +204,23 @@ def probe_from_spec(spec) -> Probe:
 
 
 def stop_when(probe: Callable, op: str, value: float) -> Callable:
-    """A stop condition ``probe(model) op value`` (op one of >, <, abs>)."""
+    """A stop condition ``probe(model) op value`` for :func:`run` (its ``stop``).
+
+    Parameters
+    ----------
+    probe : callable
+        A :class:`Probe` or any ``callable(model) -> float``.
+    op : str
+        ``">"``, ``"<"`` or ``"abs>"`` (``|probe(model)| > value``).
+    value : float
+        The threshold, in the units of the probe (e.g. [m] for a displacement).
+
+    Returns
+    -------
+    callable
+        ``cond(model) -> bool``, named after the condition (the name appears in the run's
+        message when it stops the run).
+    """
     if op not in (">", "<", "abs>"):
         raise ValueError(f"op must be '>', '<' or 'abs>', got {op!r}")
 
@@ -181,11 +239,26 @@ def stop_when(probe: Callable, op: str, value: float) -> Callable:
 # ---------------------------------------------------------------------- results
 @dataclass
 class SettleResult(Result):
-    """Outcome of :func:`settle`: ``converged``, the steps taken, the final unbalanced-force
-    ratio [-], a one-line ``message`` and the largest overlap ``overlap`` [-] of two bodies
-    (fraction of the thinner one's thickness along the contact normal,
-    :func:`overlap_fraction`). ``status``: ``"converged"`` or ``"not converged"``;
-    ``success``: converged (:class:`murus.results.Result`)."""
+    """Outcome of :func:`settle` (the static solution under gravity).
+
+    ``status``: ``"converged"`` or ``"not converged"``; ``success``: converged
+    (:class:`murus.results.Result`).
+
+    Attributes
+    ----------
+    converged : bool
+        Whether the unbalanced-force ratio fell below the tolerance.
+    steps : int
+        Steps taken [-].
+    ratio : float
+        Final unbalanced-force ratio [-]: the largest unbalanced force of a dynamic body over
+        the mean contact force (module doc).
+    message : str
+        One-line account of the settling.
+    overlap : float
+        Largest overlap of two bodies at the end [-], as a fraction of the thinner one's
+        thickness along the contact normal (:func:`overlap_fraction`).
+    """
 
     converged: bool
     steps: int
@@ -204,11 +277,33 @@ class SettleResult(Result):
 
 @dataclass
 class RunResult(Result):
-    """History of a dynamic run. ``t`` [s]; ``values[name]`` sampled with it (probes and the
-    energy terms ``energy.*``); status: completed | stopped (a stop condition) | interrupted |
-    max_steps | unstable (non-finite positions) | interpenetration (two bodies overlap by more
-    than :data:`OVERLAP_LIMIT` of their size); :attr:`ok` (or :attr:`success`,
-    :class:`murus.results.Result`) for the first two."""
+    """History of a dynamic run of :func:`run`.
+
+    ``result[name]`` is ``values[name]``; :attr:`ok` (or :attr:`success`,
+    :class:`murus.results.Result`) is true for the statuses ``completed`` and ``stopped``.
+
+    Attributes
+    ----------
+    t : ndarray
+        Sample times [s] (model time, the whole history of the model).
+    values : dict
+        name -> ndarray sampled at ``t``: the probes (in their units, :class:`Probe`) and the
+        energy terms ``energy.*`` [J] of :func:`energy` (nan before a probe was added).
+    status : str
+        ``completed`` | ``stopped`` (a stop condition) | ``interrupted`` | ``max_steps`` |
+        ``unstable`` (non-finite positions) | ``interpenetration`` (two bodies overlap by more
+        than :data:`OVERLAP_LIMIT` of the thinner one's thickness).
+    message : str
+        One-line account of how the run ended (empty when completed).
+    steps : int
+        Steps taken by this call [-].
+    wall : float
+        Wall-clock time of this call [s].
+    contact_updates : int
+        Contact detections done by this call [-].
+    dt : float
+        Time step [s].
+    """
 
     t: np.ndarray
     values: dict = field(default_factory=dict)

@@ -42,14 +42,77 @@ _STATUS = {
 
 @dataclass
 class RockingResult(Result):
-    """A single time history (SI units: s, rad, rad/s, m/s², J).
+    """A single time history of a rocking body on a rigid base (SI units: s, rad, rad/s, m/s², J).
 
-    Arrays are on the output grid ``t``; ``pivot`` is 0 at rest, +1/-1 rocking about O/O'.
-    ``impacts`` has rows ``(t, omega_before, omega_after)``; ``uplift_intervals`` rows
-    ``(start, end)`` (end ``nan`` while still rocking at the end of the run); ``peaks`` rows
-    ``(t, theta)`` at each extremum of the rotation while rocking. The scalar quantities are
-    declared in :data:`murus.rocking.summary.SUMMARY` (units, description); ``uplift_time``
-    is the deprecated name of ``t_uplift``."""
+    Arrays are on the output grid ``t``. The scalar quantities are declared in
+    :data:`murus.rocking.summary.SUMMARY` (units, description); ``uplift_time`` is the
+    deprecated name of ``t_uplift``.
+
+    Attributes
+    ----------
+    t : ndarray
+        Output times [s].
+    theta : ndarray
+        Rotation [rad], positive when the body turns about the corner O (held at the
+        overturning rotation after overturning; nan after an early stop).
+    omega : ndarray
+        Angular velocity [rad/s] (nan after overturning or an early stop).
+    ag, av : ndarray
+        Horizontal and vertical (upward) ground accelerations on the grid [m/s²].
+    pivot : ndarray
+        Pivot [-]: 0 at rest, +1/-1 rocking about O/O'.
+    impacts : ndarray
+        Rows ``(t, omega_before, omega_after)`` [s, rad/s, rad/s], one per impact.
+    uplift_intervals : ndarray
+        Rows ``(start, end)`` [s] of each rocking interval (``end`` nan while still rocking at
+        the end of the run).
+    peaks : ndarray
+        Rows ``(t, theta)`` [s, rad] at each extremum of the rotation while rocking.
+    alpha : float
+        Slenderness angle [rad].
+    p : float
+        Frequency parameter ``sqrt(m g R / I_O)`` [rad/s].
+    restitution : float
+        Coefficient of restitution ``omega_after / omega_before`` of the constant-valued laws
+        [-].
+    theta_max : float
+        Largest absolute rotation [rad].
+    theta_signed_max : float
+        Signed rotation at the largest absolute rotation [rad].
+    t_theta_max : float
+        Time of the largest absolute rotation [s].
+    theta_pos, theta_neg : float
+        Largest positive and largest negative rotation [rad].
+    n_impacts : int
+        Number of impacts [-].
+    t_uplift : float or None
+        Time of first uplift [s] (None: never).
+    overturned : bool
+        Whether the body overturned.
+    t_overturn : float or None
+        Time of overturning [s] (None: no overturning).
+    t_exceed_alpha : float or None
+        First time ``|theta| > alpha`` [s] (None: never).
+    energy_dissipated : float
+        Energy dissipated at impacts [J].
+    status : int
+        0 ok, 1 step size underflow, 2 step budget exhausted.
+    message : str
+        ``"ok"``, or why and when the integration stopped early.
+    n_steps : int
+        Runge-Kutta (or Newmark) steps [-].
+    meta : dict
+        Input of the run: model, motion and solver options.
+    lever : ndarray or None
+        Lever of the weight about a moving pivot [m] on the grid (None: corner pivots,
+        ``b/2``).
+
+    References
+    ----------
+    Housner (1963) (rocking equations, restitution at impacts); Mordant et al. (SERIES),
+    eqs. 9 and 11 (:attr:`rocking_criterion`); EURODYN (2020), §2 (``p``) and §4
+    (:attr:`limit_states`).
+    """
 
     t: np.ndarray
     theta: np.ndarray
@@ -419,8 +482,21 @@ SUMMARY_FIELDS = {**{q.name: i for i, q in enumerate(SUMMARY)},
 
 @dataclass
 class BatchResult:
-    """Summaries of ``len(models) x len(motions)`` histories: each field is an array of shape
-    ``(n_models, n_motions)``; ``raw`` holds the full summary vectors."""
+    """Summaries of ``len(models) x len(motions)`` histories.
+
+    ``result[name]`` is the quantity ``name`` of :data:`murus.rocking.summary.SUMMARY` (or one
+    of its earlier names, :data:`SUMMARY_FIELDS`) as an array of shape ``(n_models,
+    n_motions)``, in the units declared there (rad, s, J, counts; ``overturned`` 1/0, times
+    not reached nan); ``theta_max_over_alpha`` [-] and ``overturned`` (bool) are properties.
+
+    Attributes
+    ----------
+    raw : ndarray
+        The full summary vectors, shape ``(n_models, n_motions, len(SUMMARY))``, each slot in
+        the units of its quantity.
+    alpha : ndarray
+        Slenderness angle of each model [rad], shape ``(n_models,)``.
+    """
 
     raw: np.ndarray
     alpha: np.ndarray
@@ -472,11 +548,45 @@ def simulate_batch(
     """Run every model under every motion, in parallel over the cores (event-driven method).
 
     Each case is computed by the same kernel as :func:`simulate`, so that its summary is the
-    same number for number; only the histories are not kept. ``threads``: numba threads
-    (default: ``MURUS_THREADS``, else ``numba.get_num_threads()``; :mod:`murus.threads`). The
-    batch is one parallel loop over whole histories, so a thread that shares its core with
-    another process delays it little: the default keeps every thread on a busy machine too
-    (``benchmarks/bench_threads.py``)."""
+    same number for number; only the histories are not kept. The batch is one parallel loop
+    over whole histories, so a thread that shares its core with another process delays it
+    little: the default keeps every thread on a busy machine too
+    (``benchmarks/bench_threads.py``).
+
+    Parameters
+    ----------
+    models : sequence
+        :class:`RockingModel` or :class:`RigidBlock` objects (Housner (1963) restitution by
+        default).
+    motions : sequence
+        GroundMotions (``acc`` [m/s²]), excitations of :mod:`murus.rocking.excitation`, or
+        ``None`` for free vibration.
+    duration : float, optional
+        End of every analysis [s]; default: per motion, the end of the input plus 5 s of free
+        motion (:func:`murus.rocking.excitation.default_duration`).
+    theta0 : float
+        Initial rotation [rad] of every case.
+    omega0 : float
+        Initial angular velocity [rad/s] of every case.
+    rtol : float
+        Relative tolerance of the event-driven integrator [-] (absolute: ``rtol * alpha``);
+        default :data:`murus.rocking.defaults.RTOL`.
+    max_steps : int
+        Step budget of each history [-] (status 2 when exhausted).
+    threads : int, optional
+        numba threads (default: ``MURUS_THREADS``, else ``numba.get_num_threads()``;
+        :mod:`murus.threads`).
+
+    Returns
+    -------
+    BatchResult
+        The summaries, shape ``(len(models), len(motions))``.
+
+    References
+    ----------
+    Mordant et al. (SERIES), eq. 16 (the iterated restitution variant, whose cases are re-run
+    until their largest rotation no longer moves).
+    """
     mdls = [as_model(m) for m in models]
     excs = [as_excitation(m) for m in motions]
     if not mdls or not excs:

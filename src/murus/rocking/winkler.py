@@ -390,15 +390,89 @@ def overturning_acceleration(body, base, gravity: float = G) -> float:
 # ================================================================== simulation =========
 @dataclass
 class WinklerResult(Result):
-    """One time history on the elastic layer (SI units: s, m, rad, N, Pa, J).
+    """One time history of a rigid body on the elastic layer (SI units: s, m, rad, N, Pa, J).
 
-    Arrays are on the output grid ``t``. ``pivot`` is the centre of pressure in body coordinates
-    (``xi`` from the base centre, positive towards the corner O lowered by ``theta > 0``; nan
-    without contact). ``crossings`` has rows ``(t, theta', v)`` at each ``theta = 0``;
-    ``peaks`` rows ``(t, theta)``: the extreme rotation of each half cycle between crossings (the
-    first row is the initial half cycle, the last one the half cycle running at the end). The
-    scalar quantities are declared in :data:`murus.rocking.summary.WINKLER_SUMMARY`;
-    ``first_crossing`` is the deprecated name of ``t_first_crossing``."""
+    Arrays are on the output grid ``t``. The scalar quantities are declared in
+    :data:`murus.rocking.summary.WINKLER_SUMMARY`; ``first_crossing`` is the deprecated name
+    of ``t_first_crossing``.
+
+    Attributes
+    ----------
+    t : ndarray
+        Output times [s].
+    theta : ndarray
+        Rotation [rad], clockwise positive (``theta > 0`` lowers the corner O).
+    omega : ndarray
+        Angular velocity [rad/s].
+    v : ndarray
+        Vertical displacement of the base centre [m] (negative: layer compressed).
+    v_dot : ndarray
+        Its velocity [m/s].
+    angular_acceleration : ndarray
+        ``theta''`` [rad/s²].
+    ag, av : ndarray
+        Horizontal and vertical (upward) ground accelerations on the grid [m/s²].
+    contact_force : ndarray
+        Contact resultant ``F = t_w int q dxi`` [N].
+    contact_length : ndarray
+        Length of the base in contact ``Lc`` [m].
+    pivot : ndarray
+        Centre of pressure in body coordinates [m]: ``xi`` from the base centre, positive
+        towards the corner O (nan without contact).
+    max_pressure : ndarray
+        Largest contact pressure [Pa].
+    kinetic_energy, potential_energy, elastic_energy : ndarray
+        ``T``, ``V`` (relative to the undeformed upright position) and the elastic energy ``U``
+        of the layer [J].
+    dissipated_energy : ndarray
+        Energy ``D`` dissipated by the damping of the layer since the start [J].
+    input_energy : ndarray
+        Work ``W`` of the inertial forces of the ground motion since the start [J].
+    crossings : ndarray
+        Rows ``(t, theta', v)`` [s, rad/s, m] at each ``theta = 0``.
+    peaks : ndarray
+        Rows ``(t, theta)`` [s, rad]: the extreme rotation of each half cycle between
+        crossings (the first row is the initial half cycle, the last one the half cycle
+        running at the end).
+    width : float
+        Base width ``b`` [m].
+    alpha : float
+        Slenderness angle [rad].
+    theta_max : float
+        Largest absolute rotation [rad].
+    theta_signed_max : float
+        Signed rotation at the largest absolute rotation [rad].
+    t_theta_max : float
+        Time of the largest absolute rotation [s].
+    overturned : bool
+        Whether the body overturned.
+    t_overturn : float or None
+        Time of overturning [s] (None: no overturning).
+    peak_contact_force : float
+        Largest contact resultant (at step ends) [N].
+    t_peak_contact_force : float
+        Time of the largest contact resultant [s].
+    peak_pressure : float
+        Largest contact pressure (at step ends) [Pa].
+    peak_angular_acceleration : float
+        Largest ``|theta''|`` (at step ends) [rad/s²].
+    min_contact_length : float
+        Smallest contact length [m].
+    status : int
+        0 ok, 1 step size underflow, 2 step budget exhausted.
+    message : str
+        ``"ok"`` or why the integration stopped early.
+    n_steps, n_rejected : int
+        Accepted and rejected Runge-Kutta steps [-].
+    meta : dict
+        Input of the run: body, base, motion and solver options.
+
+    References
+    ----------
+    Mordant et al. (SERIES), eq. 10 (:meth:`apparent_restitution`, the energy lost per
+    impact by the rigid model); Housner (1963) (the rigid rocking model that the layer tends
+    to as its stiffness grows).
+    """
 
     t: np.ndarray
     theta: np.ndarray
