@@ -47,3 +47,17 @@ def test_one_dormand_prince_tableau():
     assert np.allclose(K.DP_A.sum(axis=1), K.DP_C, rtol=0, atol=1e-15)
     assert abs(K.DP_A[6].sum() - 1.0) < 1e-15
     assert abs(K.DP_E.sum()) < 1e-16
+
+
+def test_params_record_by_name():
+    """The parameter record is built from fields given by name; the others are 0 and an
+    unknown name is refused (a typo would otherwise be a silent zero)."""
+    import pytest
+
+    from murus.rocking import kernels as K
+
+    P = K.params_record({"m": 2.0, "alpha": 0.1})
+    assert P["m"] == 2.0 and P["alpha"] == 0.1 and P["g"] == 0.0
+    assert P.dtype == K.PARAM_DTYPE
+    with pytest.raises(KeyError, match="tie_kk"):
+        K.params_record({"tie_kk": 1.0})

@@ -371,32 +371,25 @@ def _winkler(case: RockingCase, body, path: Path, text: str):
         raise fail_at(path, text, ("solver", "rest_tol"), "a Winkler base has no rest rule: "
                       "the layer keeps the wall in continuous contact")
     try:
+        from murus.rocking.winkler import WinklerModel
+
         return WinklerModel(body, case.base.build())
     except WinklerError as exc:
         raise fail_at(path, text, ("base",), str(exc)) from None
 
 
-class WinklerModel:
-    """A body on a :class:`murus.rocking.winkler.WinklerBase` (what :func:`build` returns for
-    ``[base] model = "winkler"``; :func:`run_case` dispatches on it)."""
-
-    def __init__(self, body, base):
-        self.body = body
-        self.base = base
-
-
 def run_case(model, motion, kwargs):
-    """Run what :func:`build` returned: the rigid-base engine or the Winkler layer."""
-    if isinstance(model, WinklerModel):
-        from murus.rocking.winkler import simulate_winkler
-
-        kw = {k: v for k, v in kwargs.items() if k in ("duration", "out_dt", "omega0",
-                                                        "theta0_over_alpha")}
-        if kwargs.get("rtol") is not None:
-            kw["rtol"] = max(kwargs["rtol"], 1e-10)  # the Winkler layer's floor
-        return simulate_winkler(model.body, model.base, motion, **kw)
+    """Run what :func:`build` returned through :func:`murus.rocking.simulate`, which dispatches
+    on the model: a :class:`~murus.rocking.winkler.WinklerModel` (``[base] model = "winkler"``)
+    takes only the options of the elastic layer, with ``rtol`` at least 1e-10."""
     from murus.rocking.engine import simulate
+    from murus.rocking.winkler import WinklerModel
 
+    if isinstance(model, WinklerModel):
+        kwargs = {k: v for k, v in kwargs.items() if k in ("duration", "out_dt", "omega0",
+                                                            "theta0_over_alpha", "rtol")}
+        if kwargs.get("rtol") is not None:
+            kwargs["rtol"] = max(kwargs["rtol"], 1e-10)  # the Winkler layer's floor
     return simulate(model, motion, **kwargs)
 
 
