@@ -116,6 +116,7 @@ PARAMS = (
 )
 PARAM_DTYPE = np.dtype([(name, np.float64) for name, _, _ in PARAMS])
 _PARAM_NAMES = frozenset(PARAM_DTYPE.names)
+_PARAM_ZEROS = (0.0,) * len(PARAM_DTYPE.names)
 
 
 def params_record(values: dict) -> np.void:
@@ -124,7 +125,7 @@ def params_record(values: dict) -> np.void:
     unknown = values.keys() - _PARAM_NAMES
     if unknown:
         raise KeyError(f"not a rocking kernel parameter: {', '.join(sorted(unknown))}")
-    return np.array([tuple(values.get(n, 0.0) for n in PARAM_DTYPE.names)], PARAM_DTYPE)[0]
+    return np.array([tuple(map(values.get, PARAM_DTYPE.names, _PARAM_ZEROS))], PARAM_DTYPE)[0]
 
 
 def new_params() -> np.void:
