@@ -39,9 +39,15 @@ def test_hex_lattice_in_a_rectangle():
 def test_overlap_and_fraction():
     with pytest.raises(PackingError, match="overlap"):
         check_overlap([[0.0, 0.0], [0.03, 0.0]], [0.02, 0.02])
-    # one disc in a window: pi r^2 / area, sampled at a tenth of the radius
-    phi = solid_fraction([[0.5, 0.5]], [0.2], (0.0, 1.0, 0.0, 1.0))
-    assert phi == pytest.approx(math.pi * 0.04, rel=0.01)
+    # one disc in a window, sampled at the cell midpoints of a grid of a tenth of the radius:
+    # exactly the share of midpoints inside the circle, and within the area of the cells the
+    # circle crosses (at most 8 r / h + 4 of them) of the exact pi r^2 / area
+    r, h = 0.2, 0.02
+    phi = solid_fraction([[0.5, 0.5]], [r], (0.0, 1.0, 0.0, 1.0))
+    mid = np.arange(0.5 * h, 1.0, h)
+    X, Z = np.meshgrid(mid, mid)
+    assert phi == np.mean((X - 0.5) ** 2 + (Z - 0.5) ** 2 < r**2)
+    assert abs(phi - math.pi * r**2) <= (8 * r / h + 4) * h**2
 
 
 def test_old_import_paths():
