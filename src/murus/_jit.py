@@ -21,8 +21,9 @@ from __future__ import annotations
 
 import hashlib
 import importlib.util
-import os
 from pathlib import Path
+
+from murus.outputs import atomic_write
 
 __all__ = ["guard_cache", "sources_digest"]
 
@@ -108,9 +109,7 @@ def guard_cache(namespace: dict, deps: tuple[str, ...] = ()) -> bool:
                     pass
         try:
             Path(path).mkdir(parents=True, exist_ok=True)
-            tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")
-            tmp.write_text(digest)
-            os.replace(tmp, stamp)
+            atomic_write(stamp, lambda tmp: tmp.write_text(digest), fsync=False)
         except OSError:
             pass
         flushed = True
