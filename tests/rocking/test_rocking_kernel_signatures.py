@@ -61,3 +61,38 @@ def test_params_record_by_name():
     assert P.dtype == K.PARAM_DTYPE
     with pytest.raises(KeyError, match="tie_kk"):
         K.params_record({"tie_kk": 1.0})
+
+
+def test_a_restraint_class_plugs_in_without_a_model_field():
+    """The extension point of the rocking moment (issue 16, item 1): a restraint class that the
+    model takes through ``restraints`` runs the same kernel term as the model's own field. A
+    user-defined class that writes the damper's parameters gives the identical history (bit for
+    bit) to ``damper = Damper(...)``; a class without ``fill``/``describe`` is refused with its
+    position."""
+    import pytest
+
+    from murus.motion.synthetic import sine_pulse
+    from murus.rocking import Damper, ModelError, RockingModel, simulate
+    from murus.rocking import restrained_wall_block as block
+
+    class MyDamper:
+        def __init__(self, c, h):
+            self.c, self.h = c, h
+
+        def fill(self, P, body):
+            P["dmp_c"], P["dmp_y"], P["dmp_x"] = self.c, self.h, 0.0
+
+        def describe(self):
+            return {"c": self.c, "h": self.h}
+
+    b = block("block1")
+    pulse = sine_pulse(3.0, 2.0, dt=0.002)
+    ref = simulate(RockingModel(b, damper=Damper(2e4, 0.8 * b.height)), pulse)
+    mine = simulate(RockingModel(b, restraints=[MyDamper(2e4, 0.8 * b.height)]), pulse)
+    free = simulate(RockingModel(b), pulse)
+    assert ref.theta_max != free.theta_max  # the damper acts
+    assert np.array_equal(ref.theta, mine.theta)
+    assert mine.meta["model"]["restraints"] == [{"c": 2e4, "h": 0.8 * b.height}]
+    with pytest.raises(ModelError, match=r"restraints\[0\]") as err:
+        RockingModel(b, restraints=[object()])
+    assert err.value.key == ("restraints", 0)

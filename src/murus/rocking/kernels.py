@@ -791,9 +791,14 @@ def reset_summary(S):
 def new_log(n_out: int = 0, n_impacts: int = 0, n_events: int = 0) -> Log:
     """A :class:`Log` for one run: histories of ``n_out`` points, room for ``n_impacts`` impacts
     and ``n_events`` uplift intervals and peaks (all nan until written)."""
-    return Log(np.zeros(S_SIZE), np.zeros(MEM_SIZE), np.full(n_out, np.nan),
-               np.full(n_out, np.nan), np.full(n_out, np.nan), np.full((n_impacts, 3), np.nan),
-               np.full((n_events, 2), np.nan), np.full((n_events, 2), np.nan))
+    # three blocks, not eight arrays: a single history is short and its Python side counts
+    z = np.zeros(S_SIZE + MEM_SIZE)
+    h = np.full((3, n_out), np.nan)
+    ni = 3 * n_impacts
+    ev = np.full(ni + 4 * n_events, np.nan)
+    return Log(z[:S_SIZE], z[S_SIZE:], h[0], h[1], h[2], ev[:ni].reshape(n_impacts, 3),
+               ev[ni:ni + 2 * n_events].reshape(n_events, 2),
+               ev[ni + 2 * n_events:].reshape(n_events, 2))
 
 
 @njit(cache=True)

@@ -60,6 +60,14 @@ class RockingModel:
         transverse walls (EURODYN (2020) "one-sided motion"), which must then be given.
     pivot:
         A :class:`Pivot` law (Mordant et al. (SERIES), §3.3.1); default Housner's corner.
+    restraints:
+        Further restraints, the extension point of the rocking moment: objects with
+        ``fill(P, body)`` (write their parameters by name into the kernel record ``P``),
+        ``describe()`` (a dict) and optionally ``check(body)`` (raise on an invalid
+        placement). A new term of the moment touches two places: its parameter rows in
+        :data:`murus.rocking.kernels.PARAMS` with its moment in
+        :func:`murus.rocking.kernels.restraint_terms`, and its class (here, or in
+        :mod:`murus.rocking.restraints` beside :class:`Tie`); the model takes it as it is.
     """
 
     body: RigidBlock
@@ -72,6 +80,7 @@ class RockingModel:
     damper: Damper | None = None
     motion_sides: str = "two"
     pivot: Pivot = field(default_factory=Pivot)
+    restraints: tuple = ()
 
     def __post_init__(self) -> None:
         if not isinstance(self.body, RigidBlock):
@@ -118,10 +127,18 @@ class RockingModel:
                              "motion_sides = 'one'", key=("transverse_walls",))
         if not isinstance(self.pivot, Pivot):
             raise ModelError("pivot must be a Pivot")
+        object.__setattr__(self, "restraints", tuple(self.restraints))
+        for i, r in enumerate(self.restraints):
+            if not (callable(getattr(r, "fill", None)) and callable(getattr(r, "describe", None))):
+                raise ModelError(f"restraints[{i}]: a restraint needs fill(P, body) and "
+                                 f"describe(), got {type(r).__name__}", key=("restraints", i))
+            if callable(getattr(r, "check", None)):
+                r.check(b)
 
     @property
     def restrained(self) -> bool:
-        return any(x is not None for x in (self.tie, self.transverse_walls, self.damper))
+        return bool(self.restraints) or any(
+            x is not None for x in (self.tie, self.transverse_walls, self.damper))
 
     @property
     def rigid_walls(self) -> bool:
@@ -140,7 +157,17 @@ class RockingModel:
 
     def params(self) -> np.void:
         """The parameter record ``P`` read by the kernels (:data:`murus.rocking.kernels.PARAMS`,
-        fields set by name)."""
+        fields set by name). A fresh copy on every call (the engine may change it during a
+        run); the model is frozen, so the record is built once."""
+        flat = self.__dict__.get("_params")
+        if flat is None:
+            rec = self._build_params()
+            flat = np.frombuffer(rec.tobytes(), np.float64)  # the record's 40 slots
+            object.__setattr__(self, "_params", flat)
+        # a copy of the slots viewed as a record (copying a record itself costs 16 us)
+        return flat.copy().view(K.PARAM_DTYPE)[0]
+
+    def _build_params(self) -> np.void:
         b = self.body
         P = {}  # filled by name, then one record (a record set field by field costs 10 us more)
         P["i_o"] = b.I_O
@@ -157,7 +184,7 @@ class RockingModel:
         P["e_aspect"] = 1.0
         self.restitution.fill(P, b, self.pivot.code != 0)
         P["terms"] = 1.0 if self.restrained else 0.0
-        for r in (self.tie, self.transverse_walls, self.damper):
+        for r in (self.tie, self.transverse_walls, self.damper, *self.restraints):
             if r is not None:
                 r.fill(P, b)
         return K.params_record(P)
@@ -184,6 +211,9 @@ class RockingModel:
             "transverse_walls": (None if self.transverse_walls is None
                                  else self.transverse_walls.describe()),
             "damper": None if self.damper is None else self.damper.describe(),
+            # only when given: the description keys the study caches
+            **({"restraints": [r.describe() for r in self.restraints]} if self.restraints
+               else {}),
         }
 
 

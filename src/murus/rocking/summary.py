@@ -19,6 +19,8 @@ horizontal dampers", doi:10.47964/1120.9351.20156, §4 (limit states).
 
 from __future__ import annotations
 
+import functools
+import math
 from typing import NamedTuple
 
 
@@ -87,23 +89,25 @@ def slots(table) -> dict[str, int]:
     return {q.name: i for i, q in enumerate(table)}
 
 
+def _time(x: float):
+    return None if math.isnan(x) else x
+
+
+@functools.lru_cache(maxsize=None)
+def _readers(table) -> tuple:
+    """(name, converter) of each quantity of a summary table."""
+    conv = {"int": int, "bool": bool, "time": _time}
+    return tuple((q.name, conv.get(q.kind, float)) for q in table)
+
+
 def values(table, S) -> dict:
     """The summary vector ``S`` of a kernel read through its table: name -> Python value
     (``float``, ``int``, ``bool``, or ``None`` for a time not reached)."""
-    import math
-
-    out = {}
-    for q, x in zip(table, S.tolist() if hasattr(S, "tolist") else S, strict=True):
-        x = float(x)
-        if q.kind == "int":
-            out[q.name] = int(x)
-        elif q.kind == "bool":
-            out[q.name] = bool(x)
-        elif q.kind == "time":
-            out[q.name] = None if math.isnan(x) else x
-        else:
-            out[q.name] = x
-    return out
+    readers = _readers(tuple(table))
+    xs = S.tolist() if hasattr(S, "tolist") else [float(x) for x in S]
+    if len(xs) != len(readers):
+        raise ValueError(f"a summary vector of {len(xs)} values for a table of {len(readers)}")
+    return {name: f(float(x)) for (name, f), x in zip(readers, xs)}
 
 
 def table_summary(result, table, fields) -> dict:
