@@ -104,7 +104,8 @@ def main(quick: bool = False) -> None:
         "Goal of the issue: the batch throughput with tie, damper and one-sided contact active "
         "stays within a factor 1.5 of the free-standing throughput. With rigid transverse walls "
         f"the restrained batch takes {rigid:.2f} x the free-standing time: "
-        f"{'met' if rigid <= 1.5 else 'NOT met'}. With elastic walls of the seed's stiffness the "
+        f"{'met' if rigid <= 1.5 else 'NOT met'}. With elastic walls of the stiffness of "
+        "EURODYN (2020) the "
         f"cost per Runge-Kutta step stays within {elastic['time'] / elastic['steps'] / (base['time'] / base['steps']):.2f} "  # noqa: E501
         "of the free-standing one, but every contact with the walls is a bounce of a few "
         "milliseconds (omega_r- ~ 800 rad/s for block1) that the error control resolves with "

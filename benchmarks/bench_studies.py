@@ -35,7 +35,8 @@ def make_plan(quick: bool):
     if quick:
         recs = RecordSet(kind="suite", suite="farfield", select=tuple(
             f"farfield_{i:02d}{c}" for i in range(1, 5) for c in "ab"))
-    study = make_study(case, {"block": blocks, "K_over_Kd": ratios}, recs, name="seed002_all")
+    study = make_study(case, {"block": blocks, "K_over_Kd": ratios}, recs,
+                       name="restrained_blocks_all")
     return study.plan()
 
 

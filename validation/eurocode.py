@@ -21,7 +21,7 @@ def section() -> str:
         "| wall | level [g] | linear, seed [mm] | linear, murus [mm] | constant, seed [mm] | "
         "constant, murus [mm] |", "|---|---|---|---|---|---|",
     ]
-    with open(ROOT / "tests" / "data" / "eurocode" / "seed000_table2.csv") as fh:
+    with open(ROOT / "tests" / "data" / "eurocode" / "mordant_series_table2.csv") as fh:
         for r in csv.DictReader(line for line in fh if not line.startswith("#")):
             L, a = float(r["L_m"]), float(r["level_g"])
             lin = case.compressive_length(L, a, "linear") * 1e3

@@ -97,7 +97,7 @@ def figures_7_8_9(fig_dir: Path, delta_t: float, Kd: float) -> tuple[list[str], 
         ax.set_ylabel("theta/alpha")
         ax.legend(fontsize=7, ncol=4)
     axes[-1].set_xlabel("time [s]")
-    fig.savefig(fig_dir / "seed002_fig7_fig8.png", dpi=110)
+    fig.savefig(fig_dir / "eurodyn2020_fig7_fig8.png", dpi=110)
     plt.close(fig)
     # Figure 9: c = 1 % c_d, free-standing vs restrained, one-sided
     fig, ax = plt.subplots(figsize=(8, 3.2), layout="constrained")
@@ -109,9 +109,9 @@ def figures_7_8_9(fig_dir: Path, delta_t: float, Kd: float) -> tuple[list[str], 
     ax.set_ylabel("theta/alpha")
     ax.set_title("Figure 9: block1, c = 1 % c_d, one-sided, e = 1", fontsize=9)
     ax.legend(fontsize=8)
-    fig.savefig(fig_dir / "seed002_fig9.png", dpi=110)
+    fig.savefig(fig_dir / "eurodyn2020_fig9.png", dpi=110)
     plt.close(fig)
-    return rows, ["seed002_fig7_fig8.png", "seed002_fig9.png"]
+    return rows, ["eurodyn2020_fig7_fig8.png", "eurodyn2020_fig9.png"]
 
 
 def figure_2(fig_dir: Path) -> tuple[list[str], str]:
@@ -143,7 +143,7 @@ def figure_2(fig_dir: Path) -> tuple[list[str], str]:
         ax.set_xlabel("frequency [Hz]")
         ax.set_title(f"{lab}: 90 % of the energy in {f05:.2f}-{f95:.2f} Hz", fontsize=8)
     axes[0].set_ylabel("|FFT| / max")
-    fig.savefig(fig_dir / "seed002_fig2.png", dpi=110)
+    fig.savefig(fig_dir / "eurodyn2020_fig2.png", dpi=110)
     plt.close(fig)
     rows = ["| configuration | 5 % [Hz] | median [Hz] | 95 % [Hz] | band 5-95 % [Hz] | "
             "band / median |", "|---|---|---|---|---|---|"]
@@ -152,7 +152,7 @@ def figure_2(fig_dir: Path) -> tuple[list[str], str]:
                     f"{(c - a) / m:.2f} |")
     w = resonance_frequencies(b, K=1e6).omega_plus / (2 * math.pi)
     rows += ["", f"Eq. 8 for K = 1e6 N/m: omega_r+ / 2 pi = {w:.2f} Hz."]
-    return rows, "seed002_fig2.png"
+    return rows, "eurodyn2020_fig2.png"
 
 
 def resonance_table() -> list[str]:

@@ -1,5 +1,5 @@
 """Validation of the behaviour-factor study (issue 6 item 4; Savalle et al. (2022), §4.2-4.4, Tables
-7-8, Figure 14): the example case file ``examples/retaining/seed001_dsrw1_behaviour_factor.toml``
+7-8, Figure 14): the example case file ``examples/retaining/dsrw1_behaviour_factor.toml``
 (DSRW1: S2 at 3, 5, 10 Hz, at 5 Hz with a vertical component in phase and in opposition, and
 the S1 checks at 0.6 and 0.7 A_col of each) and DSRW2-DSRW4 at 5 Hz (S2 only), run by
 :func:`murus.retaining.study.run_behaviour_study` with the equivalent thrust.
@@ -22,18 +22,27 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 CACHE = ROOT / "validation" / "results" / "retaining_behaviour"
-EXAMPLE = ROOT / "examples" / "retaining" / "seed001_dsrw1_behaviour_factor.toml"
-DATA = ROOT / "tests" / "data" / "retaining" / "seed001_table8.csv"
+EXAMPLE = ROOT / "examples" / "retaining" / "dsrw1_behaviour_factor.toml"
+DATA = ROOT / "tests" / "data" / "retaining" / "savalle2022_table8.csv"
 OTHERS = ("DSRW2", "DSRW3", "DSRW4")
+#: The study names the cached study folders were computed under. A study's name is part of its
+#: digest (murus.retaining.study.BehaviourStudy.digest), which a study folder must match, so
+#: these names stay as they were when the cache was made ("seed001" was the old handle of
+#: Savalle et al. (2022)); the example file itself is now named "dsrw1_behaviour_factor". The
+#: name changes no number: the digest of each run (case_digest) does not contain it.
+CACHE_NAMES = {"DSRW1": "seed001_dsrw1_behaviour_factor", "DSRW2": "seed001_dsrw2_5hz",
+               "DSRW3": "seed001_dsrw3_5hz", "DSRW4": "seed001_dsrw4_5hz"}
 
 
 def studies():
-    """name -> BehaviourStudy."""
+    """name -> BehaviourStudy (named as in the cache, CACHE_NAMES)."""
+    import dataclasses
+
     from murus.retaining.study import behaviour_study, load_behaviour_study
 
-    out = {"DSRW1": load_behaviour_study(EXAMPLE)}
+    out = {"DSRW1": dataclasses.replace(load_behaviour_study(EXAMPLE), name=CACHE_NAMES["DSRW1"])}
     for w in OTHERS:
-        out[w] = behaviour_study({"study": {"name": f"seed001_{w.lower()}_5hz"},
+        out[w] = behaviour_study({"study": {"name": CACHE_NAMES[w]},
                                   "wall": {"preset": w},
                                   "cases": {"frequencies": [5.0], "check_ratios": []}})
     return out
@@ -75,7 +84,7 @@ def section(workers: int = 1) -> str:
     L = ["## Dry-stone retaining walls: behaviour factor (Savalle et al. (2022), Tables 7-8, "
          "Figure 14)", ""]
     L.append("The behaviour-factor study of `murus.retaining.study` on the example case file "
-             "`examples/retaining/seed001_dsrw1_behaviour_factor.toml` (DSRW1) and on DSRW2-4 "
+             "`examples/retaining/dsrw1_behaviour_factor.toml` (DSRW1) and on DSRW2-4 "
              "at 5 Hz, with the equivalent thrust and the numerics of the dynamic-collapse "
              "section above (xi = 10 % on velocities relative to the base, joints at 1e-3 of "
              "Table 6): S2 until d_top = 20 % H gives A_col, A_peak = 0.6 A_col, r = A_peak / "
@@ -83,7 +92,7 @@ def section(workers: int = 1) -> str:
              "Produced by `python validation/retaining_behaviour.py` (the study folders in "
              "`validation/results/retaining_behaviour/` are its cache); the same table comes "
              "from `murus retaining behaviour-factor examples/retaining/"
-             "seed001_dsrw1_behaviour_factor.toml`.")
+             "dsrw1_behaviour_factor.toml`.")
     L.append("")
     L.append("| wall | f [Hz] | vertical | seed A_col [m/s²] | murus A_col [m/s²] (error) | "
              "seed A_pseudo | murus A_pseudo | seed r | murus r | S1 at 0.6 / 0.7 A_col "

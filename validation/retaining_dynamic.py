@@ -213,7 +213,7 @@ def mock_table(recs: dict) -> tuple[list[str], dict]:
     """Table 3 against murus (both damping frames); returns the lines and the errors."""
     from murus.retaining.geometry import MOCKUP_SLENDERNESS
 
-    rows = {float(r["slenderness"]): r for r in _rows("seed001_table3.csv")}
+    rows = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
     out = ["| H/B | H [mm] (courses) | A_fail exp. [m/s²] | mode exp. | A_fail UDEC [m/s²] "
            "(error) | mode UDEC | **murus, base frame** [m/s²] (error) | mode | murus, "
            "absolute frame [m/s²] (error) | mode | A_pseudo [m/s²] |",
@@ -255,7 +255,7 @@ def _rank_corr(x, y) -> float:
 
 
 def phi_table(recs: dict) -> list[str]:
-    rows = _rows("seed001_table4.csv")
+    rows = _rows("savalle2022_table4.csv")
     out = ["| backfill phi [deg] | UDEC error (Table 4) | UDEC A_fail [m/s²] (derived) | "
            "murus A_fail, base frame [m/s²] (error) | murus A_pseudo [m/s²] |",
            "|---|---|---|---|---|"]
@@ -348,7 +348,7 @@ def figures(recs: dict, fig_dir: Path) -> list[str]:
 
     plt = _plt()
     names = []
-    rows = {float(r["slenderness"]): r for r in _rows("seed001_table3.csv")}
+    rows = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
     s = np.array(MOCKUP_SLENDERNESS)
     ax1.plot(s, [float(rows[x]["exp_A_fail_m_s2"]) for x in s], "ks-", label="experiment [33]")
@@ -381,7 +381,7 @@ def figures(recs: dict, fig_dir: Path) -> list[str]:
     ax2.set_title("DSRW1, S2, collapse at d_top = 20 % H (arrow: no collapse, envelope at the "
                   "end)", fontsize=8)
     ax2.legend(fontsize=7)
-    name = "seed001_dynamic_acol.png"
+    name = "savalle2022_dynamic_acol.png"
     fig.savefig(fig_dir / name, dpi=110)
     plt.close(fig)
     names.append(name)
@@ -414,7 +414,7 @@ def figures(recs: dict, fig_dir: Path) -> list[str]:
     ax2.set_ylim(-5, 55)
     ax2.set_title("DSRW1, murus: d_top histories", fontsize=8)
     ax2.legend(fontsize=6, ncol=2)
-    name = "seed001_dynamic_dtop.png"
+    name = "savalle2022_dynamic_dtop.png"
     fig.savefig(fig_dir / name, dpi=110)
     plt.close(fig)
     names.append(name)
@@ -477,7 +477,7 @@ def ratchet_table(recs: dict) -> list[str]:
     from murus.retaining.collapse import SEED_TABLE7
     from murus.retaining.geometry import MOCKUP_SLENDERNESS
 
-    rows = {float(r["slenderness"]): r for r in _rows("seed001_table3.csv")}
+    rows = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
     out = ["| case | reference [m/s²] | murus A_col, base / absolute frame [m/s²] | "
            "ratchet estimate, base / absolute [m/s²] | its error, base / absolute |",
            "|---|---|---|---|---|"]
@@ -648,7 +648,7 @@ def shapes_figure(recs: dict, fig_dir: Path) -> str | None:
         ax.set_title(f"{rec['summary']['wall']} {rec['summary']['frequency']:g} Hz: "
                      f"mode {rec.get('mode') or '—'}", fontsize=7)
         ax.tick_params(labelsize=6)
-    name = "seed001_dynamic_shapes.png"
+    name = "savalle2022_dynamic_shapes.png"
     fig.savefig(fig_dir / name, dpi=110)
     plt.close(fig)
     return name
@@ -668,7 +668,7 @@ def section(fig_dir: Path | None = None, recompute: bool = False, jobs: int = 1)
     rho = _rank_corr(MOCKUP_SLENDERNESS, vb)
     mono = all(b <= a + 1e-9 for a, b in zip(vb[:-1], vb[1:], strict=True))
     modes_b = [recs[f"mock_{x:g}_base"].get("mode") for x in MOCKUP_SLENDERNESS]
-    exp_modes = [r["exp_mode"] for r in _rows("seed001_table3.csv")]
+    exp_modes = [r["exp_mode"] for r in _rows("savalle2022_table3.csv")]
     agree = sum(1 for m, e in zip(modes_b, exp_modes, strict=True) if m and m in e)
     names = figures(recs, fig_dir)
     shp = shapes_figure(recs, fig_dir)

@@ -41,7 +41,7 @@ def _plt():
 
 def table1() -> list[str]:
     rows = []
-    with open(ROOT / "tests" / "data" / "rocking" / "seed002_table1.csv") as fh:
+    with open(ROOT / "tests" / "data" / "rocking" / "eurodyn2020_table1.csv") as fh:
         rdr = csv.DictReader(line for line in fh if not line.startswith("#"))
         for r in rdr:
             b = restrained_wall_block(r["label"])
@@ -222,9 +222,9 @@ def seed_walls() -> tuple[list[str], str]:
                  "damper "
                  "(Figure 7a, c = 0)", fontsize=9)
     ax.legend(fontsize=8)
-    fig.savefig(FIG / "seed002_block1_free.png", dpi=110)
+    fig.savefig(FIG / "eurodyn2020_block1_free.png", dpi=110)
     plt.close(fig)
-    return rows, "seed002_block1_free.png"
+    return rows, "eurodyn2020_block1_free.png"
 
 
 def section() -> str:

@@ -46,6 +46,7 @@ def main() -> None:
     signal.signal(signal.SIGINT, _interrupt)
     import eurocode
     import identify
+    import mordant_series_model
     import motion
     import rest_rule
     import restrained
@@ -54,13 +55,12 @@ def main() -> None:
     import retaining_dynamic
     import retaining_pseudostatic
     import rocking
-    import seed000_model
     import studies
     import winkler
 
     sections = [("rocking", rocking.section), ("restrained", restrained.section),
                 ("rest_rule", rest_rule.section),
-                ("seed000_model", seed000_model.section),
+                ("mordant_series_model", mordant_series_model.section),
                 ("winkler", lambda: winkler.run(ROOT / "docs" / "figures" / "winkler")),
                 ("motion", motion.section), ("eurocode", eurocode.section),
                 ("retaining_pseudostatic", retaining_pseudostatic.section),

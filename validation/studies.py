@@ -70,9 +70,9 @@ def spectra(fig_dir: Path) -> tuple[list[str], str]:
                 f"{' overturns' if ov[1:].any() else ''} | {np.nanmin(yk):.3f} | "
                 f"{int(np.sum(yk > free))} of {yk.size} | {int(np.sum(yk >= 0.4))} of "
                 f"{yk.size} | {n_peaks(y)} |")
-    fig.savefig(fig_dir / "seed002_fig3_fig4_standins.png", dpi=110)
+    fig.savefig(fig_dir / "eurodyn2020_fig3_fig4_standins.png", dpi=110)
     plt.close(fig)
-    return rows, "seed002_fig3_fig4_standins.png"
+    return rows, "eurodyn2020_fig3_fig4_standins.png"
 
 
 def fragility_figure(fig_dir: Path) -> tuple[list[str], str]:
@@ -88,7 +88,7 @@ def fragility_figure(fig_dir: Path) -> tuple[list[str], str]:
     for ax, ls in zip(axes, ds["limit_state"].values, strict=True):
         plot_fragility(ds, ax=ax, limit_state=str(ls))
         ax.set_title(f"block2, {ls}", fontsize=9)
-    fig.savefig(fig_dir / "seed002_fragility_block2.png", dpi=110)
+    fig.savefig(fig_dir / "eurodyn2020_fragility_block2.png", dpi=110)
     plt.close(fig)
     rows = ["| configuration | limit state | median PGA [g] (90 % CI) | beta (90 % CI) | fit |",
             "|---|---|---|---|---|"]
@@ -103,7 +103,7 @@ def fragility_figure(fig_dir: Path) -> tuple[list[str], str]:
                 f"({float(ds['fragility_beta_lo'].sel(s)):.2f}-"
                 f"{float(ds['fragility_beta_hi'].sel(s)):.2f}) | "
                 f"{ds['fragility_status'].sel(s).item()} |")
-    return rows, "seed002_fragility_block2.png"
+    return rows, "eurodyn2020_fragility_block2.png"
 
 
 def section(fig_dir: Path | None = None) -> str:

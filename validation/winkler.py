@@ -360,7 +360,7 @@ def series_walls(fig_dir: Path) -> list[str]:
                         fontsize=9)
         ax[1].set_ylabel("contact length / b")
         ax[1].set_xlabel("time [s]")
-        fig.savefig(fig_dir / "winkler_seed000_record.png", dpi=110)
+        fig.savefig(fig_dir / "winkler_mordant_series_record.png", dpi=110)
         plt.close(fig)
     fig, ax = plt.subplots(2, 1, figsize=(8, 5), sharex=True, layout="constrained")
     for name, r in imp_hist.items():
@@ -376,7 +376,7 @@ def series_walls(fig_dir: Path) -> list[str]:
     fig.savefig(fig_dir / "winkler_impacts.png", dpi=110)
     plt.close(fig)
     lines += [
-        f"![record]({_link(fig_dir, 'winkler_seed000_record.png')})",
+        f"![record]({_link(fig_dir, 'winkler_mordant_series_record.png')})",
         "",
         f"![impacts]({_link(fig_dir, 'winkler_impacts.png')})",
     ]

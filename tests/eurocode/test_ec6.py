@@ -10,7 +10,7 @@ from murus.eurocode.ec6 import EC6Error, EquivalentStatic, compressive_length, k
 
 
 def rows(data_dir):
-    with open(data_dir / "eurocode" / "seed000_table2.csv") as fh:
+    with open(data_dir / "eurocode" / "mordant_series_table2.csv") as fh:
         return list(csv.DictReader(line for line in fh if not line.startswith("#")))
 
 

@@ -197,12 +197,12 @@ def test_mechanisms_follow_the_limit_analysis_on_a_fast_ramp(wall, a_pseudo, str
 
 
 def test_table4_derived_values():
-    # tests/data/retaining/seed001_table4.csv: UDEC A_fail = 3.2 m/s² (experiment, Table 3)
+    # tests/data/retaining/savalle2022_table4.csv: UDEC A_fail = 3.2 m/s² (experiment, Table 3)
     # times (1 + error); 45 deg reproduces Table 3's 2.6 m/s² to its printed digits
     import csv
     from pathlib import Path
 
-    path = Path(__file__).parents[1] / "data" / "retaining" / "seed001_table4.csv"
+    path = Path(__file__).parents[1] / "data" / "retaining" / "savalle2022_table4.csv"
     with open(path) as fh:
         rows = list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
     assert [float(r["backfill_friction_deg"]) for r in rows] == [45.0, 50.0, 55.0]

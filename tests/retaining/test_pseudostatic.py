@@ -31,7 +31,7 @@ R = math.radians
 
 
 def table8(data_dir):
-    with open(data_dir / "retaining" / "seed001_table8.csv") as fh:
+    with open(data_dir / "retaining" / "savalle2022_table8.csv") as fh:
         return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
 
 
@@ -82,7 +82,7 @@ def test_all_presets_governed_by_the_base():
 
 
 def test_mockup_failure_modes_follow_table3(data_dir):
-    with open(data_dir / "retaining" / "seed001_table3.csv") as fh:
+    with open(data_dir / "retaining" / "savalle2022_table3.csv") as fh:
         rows = list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
     assert [float(r["slenderness"]) for r in rows] == list(MOCKUP_SLENDERNESS)
     allowed = {"S": {"sliding"}, "T": {"overturning"}, "S/T": {"sliding", "overturning"}}

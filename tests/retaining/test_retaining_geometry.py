@@ -19,13 +19,13 @@ from murus.retaining.geometry import (
 
 
 def table5(data_dir):
-    with open(data_dir / "retaining" / "seed001_table5.csv") as fh:
+    with open(data_dir / "retaining" / "savalle2022_table5.csv") as fh:
         return {r["wall"]: r for r in csv.DictReader(ln for ln in fh if not ln.startswith("#"))}
 
 
 def test_presets_are_table5_and_table6(data_dir):
     rows = table5(data_dir)
-    with open(data_dir / "retaining" / "seed001_table6.csv") as fh:
+    with open(data_dir / "retaining" / "savalle2022_table6.csv") as fh:
         t6 = {r["parameter"]: r for r in csv.DictReader(ln for ln in fh
                                                         if not ln.startswith("#"))}
     assert set(rows) == set(PRESETS)

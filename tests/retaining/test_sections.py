@@ -8,7 +8,7 @@ import pytest
 
 from murus.retaining.sections import SectionsError, first_passage_times, weighted_response
 
-DATA = Path(__file__).resolve().parents[1] / "data" / "retaining" / "seed001_table2.csv"
+DATA = Path(__file__).resolve().parents[1] / "data" / "retaining" / "savalle2022_table2.csv"
 
 
 def table2():

@@ -10,7 +10,7 @@ from murus.rocking import BodyError, RigidBlock, restrained_wall_block, series_c
 
 
 def _table1(data_dir):
-    with open(data_dir / "rocking" / "seed002_table1.csv") as fh:
+    with open(data_dir / "rocking" / "eurodyn2020_table1.csv") as fh:
         rows = [r for r in csv.DictReader(line for line in fh if not line.startswith("#"))]
     return rows
 

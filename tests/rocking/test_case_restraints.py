@@ -39,7 +39,7 @@ def _run(tmp_path, extra):
 
 
 def test_example_cases_build_every_term():
-    cfg, path, text = load_case(EXAMPLES / "seed002_block1_restrained_damped.toml")
+    cfg, path, text = load_case(EXAMPLES / "restrained_block1_damped.toml")
     model, motion, kw = build(cfg, path, text)
     assert model.motion_sides == "one"
     assert model.tie.stiffness == pytest.approx(6.9227e4)
@@ -47,7 +47,7 @@ def test_example_cases_build_every_term():
     cd = 2 * model.body.mass * 9.81 * 10.0 / 3.0
     assert model.damper.coefficient == pytest.approx(0.01 * cd, rel=1e-12)
     assert model.transverse_walls.stiffness == 4.5e8
-    cfg, path, text = load_case(EXAMPLES / "seed000_short_wall_modified.toml")
+    cfg, path, text = load_case(EXAMPLES / "series_short_wall_modified.toml")
     model, motion, kw = build(cfg, path, text)
     assert model.pivot.law == "compressive-length"
     assert model.restitution.k0_free == 0.5
@@ -123,7 +123,7 @@ def test_demo_runs_the_new_cases(tmp_path):
     assert r.exit_code == 0, r.output
     rows = (tmp_path / "demo" / "demo_summary.csv").read_text().splitlines()
     names = {row.split(",")[0] for row in rows[1:]}
-    assert {"seed002_block1_restrained_damped", "seed000_short_wall_modified"} <= names
+    assert {"restrained_block1_damped", "series_short_wall_modified"} <= names
     assert math.isfinite(float(rows[1].split(",")[1]))
 
 

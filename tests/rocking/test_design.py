@@ -28,7 +28,7 @@ BLOCKS = [f"block{i}" for i in range(1, 7)]
 
 
 def _table1(data_dir):
-    with open(data_dir / "rocking" / "seed002_table1.csv") as fh:
+    with open(data_dir / "rocking" / "eurodyn2020_table1.csv") as fh:
         return {r["label"]: r for r in csv.DictReader(ln for ln in fh if not ln.startswith("#"))}
 
 

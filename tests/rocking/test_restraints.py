@@ -231,9 +231,10 @@ def test_piecewise_linear_frequency_with_a_soft_tie():
 
 
 def test_eurodyn2020_figure9_reductions():
-    """EURODYN (2020), Figure 9 (tests/data/rocking/seed002_fig9.csv): with the characteristic time
-    of eq. 13 calibrated on the free-standing block (82 %), the restrained block's reduction is a
-    prediction; the paper prints "27 %" read off a figure, so 2 points of tolerance."""
+    """EURODYN (2020), Figure 9 (tests/data/rocking/eurodyn2020_fig9.csv): with the
+    characteristic time of eq. 13 calibrated on the free-standing block (82 %), the restrained
+    block's reduction is a prediction; the paper prints "27 %" read off a figure, so 2 points of
+    tolerance."""
     import csv
     import sys
     from pathlib import Path
@@ -244,7 +245,7 @@ def test_eurodyn2020_figure9_reductions():
 
     from murus.rocking.design import reference_damping, tie_design
 
-    with open(root / "tests" / "data" / "rocking" / "seed002_fig9.csv") as fh:
+    with open(root / "tests" / "data" / "rocking" / "eurodyn2020_fig9.csv") as fh:
         rows = {r["configuration"]: float(r["reduction"])
                 for r in csv.DictReader(line for line in fh if not line.startswith("#"))}
     c = 0.01 * reference_damping(BLOCK, 10.186)  # delta_t from validation/restrained.py

@@ -194,11 +194,12 @@ def _quarter_period(body, I_of_theta, theta0):
 
 
 def test_first_return_converges_to_the_rigid_impact_time():
-    """seed000 short wall released from alpha/2, resting on the compressed corner zone: the
-    first return to theta = 0 tends to the rigid model's first impact (kernels-based
-    simulate). Measured errors 8.19 %, 2.35 %, 0.723 %, 0.226 % for k = 1e9 ... 1e12, i.e. an
-    observed order 0.54, 0.51, 0.50 in k: the compressed zone Lc ~ k^(-1/2) shifts the pivot by
-    Lc/3. The finest is below 1 % (0.23 %); ratios asserted within 20 % of sqrt(10)."""
+    """The short wall of Mordant et al. (SERIES) released from alpha/2, resting on the
+    compressed corner zone: the first return to theta = 0 tends to the rigid model's first
+    impact (kernels-based simulate). Measured errors 8.19 %, 2.35 %, 0.723 %, 0.226 % for
+    k = 1e9 ... 1e12, i.e. an observed order 0.54, 0.51, 0.50 in k: the compressed zone
+    Lc ~ k^(-1/2) shifts the pivot by Lc/3. The finest is below 1 % (0.23 %); ratios asserted
+    within 20 % of sqrt(10)."""
     rigid = simulate(SHORT, theta0_over_alpha=0.5, duration=1.0).impacts[0, 0]
     errs = []
     for k in STIFFNESSES:

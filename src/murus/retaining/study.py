@@ -36,7 +36,7 @@ damaged and failed.
 Case file (TOML, ``examples/retaining/``)::
 
     [study]
-    name = "seed001_dsrw1"
+    name = "dsrw1"
     retries = 2                  # a failing case is re-run this many times, then recorded
 
     [wall]

@@ -1,12 +1,12 @@
 """A rigid wall on a no-tension elastic (Winkler) layer: walls on acoustic rubber strips.
 
-Seed 000 (§1.1, §2.1) tests walls with and without 1 cm acoustic rubber layers under them and
-concludes that with rubber "the assumption of rigid support is no more valid and the wall has to
-be considered as resting on an elastic foundation": natural frequencies 30-40 % lower and a
-softer passage through the vertical position. Here the base contact is a bed of independent
+Mordant et al. (SERIES), §1.1 and §2.1, test walls with and without 1 cm acoustic rubber layers
+under them and conclude that with rubber "the assumption of rigid support is no more valid and the
+wall has to be considered as resting on an elastic foundation": natural frequencies 30-40 % lower
+and a softer passage through the vertical position. Here the base contact is a bed of independent
 springs and dashpots (Winkler 1867) that act only in compression, so that the contact length, the
-pivot (centre of pressure) and the energy lost at each "impact" follow from the deformation of
-the layer instead of a restitution law (the same idea as Psycharis and Jennings 1983, "Rocking of
+pivot (centre of pressure) and the energy lost at each "impact" follow from the deformation of the
+layer instead of a restitution law (the same idea as Psycharis and Jennings 1983, "Rocking of
 slender rigid bodies allowed to uplift", EESD 11, whose equations are not reproduced here: the
 derivation below is ours).
 

@@ -1,9 +1,9 @@
 """Study files (TOML): a rocking case, a grid of parameters and a record set.
 
-Example (``examples/studies/seed002_spectrum_block2.toml``)::
+Example (``examples/studies/restrained_block2_spectrum.toml``)::
 
     [study]
-    name = "seed002_spectrum_block2"
+    name = "restrained_block2_spectrum"
     chunk_size = 256          # histories per task (one simulate_batch call)
     retries = 2               # a failing chunk is re-run this many times, then recorded failed
 
@@ -32,7 +32,7 @@ Example (``examples/studies/seed002_spectrum_block2.toml``)::
     # or m/s for PGV): each record is scaled to each level
 
     [output]
-    folder = "seed002_spectrum_block2"   # relative to this file (the CLI's --out wins)
+    folder = "restrained_block2_spectrum"   # relative to this file (the CLI's --out wins)
     figure = "spectrum.png"              # optional: plotted when the run ends
 
 Sweep parameters: any field of the case by dotted name (``"body.width"``,

@@ -2,7 +2,8 @@
 1.
 
 The measured table signals are not available: one EN 1998-1 Type 1, ground B artificial record
-(fixed seed) is scaled to the measured PGA of each test, as in ``validation/seed000_model.py``.
+(fixed seed) is scaled to the measured PGA of each test, as in
+``validation/mordant_series_model.py``.
 From rest, rocking starts at the first instant where ``|a_g|`` exceeds the onset acceleration
 of the pivot law, so the statements below follow from the PGA alone and are asserted exactly;
 nothing here compares rocking histories.
@@ -20,7 +21,7 @@ from murus import G
 from murus.motion.artificial import generate_ec8
 from murus.rocking import Housner, Pivot, RockingModel, series_clay_wall, simulate
 
-TABLE1 = Path(__file__).resolve().parents[1] / "data" / "rocking" / "seed000_table1_pga.csv"
+TABLE1 = Path(__file__).resolve().parents[1] / "data" / "rocking" / "mordant_series_table1_pga.csv"
 COLUMN = {"short": "short_no_rubber", "long": "long_no_rubber"}
 WALLS = ("short", "long")
 #: onset acceleration in units of g B / H (mass on top at H = 1.80 m)

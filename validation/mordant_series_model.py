@@ -9,9 +9,9 @@ eqs. 11-13; restitution, eqs. 16-18) switched on one after the other (Figures 9-
 The measured table signals of the tests are not available: the input is an EN 1998-1 Type 1,
 ground B spectrum-compatible artificial record (Mordant et al. (SERIES), §2: "artificially generated
 seismic input signal consistent with Eurocode 8 spectrum"), one fixed record scaled to the PGA of
-each test. Writes PNGs under ``docs/figures/seed000/`` and returns the Markdown section.
+each test. Writes PNGs under ``docs/figures/mordant_series/`` and returns the Markdown section.
 
-Standalone: ``python validation/seed000_model.py --out seed000.md [--fig-dir DIR]``.
+Standalone: ``python validation/mordant_series_model.py --out mordant_series.md [--fig-dir DIR]``.
 """
 
 from __future__ import annotations
@@ -34,8 +34,8 @@ from murus.rocking import (
 )
 
 ROOT = Path(__file__).resolve().parents[1]
-FIG = ROOT / "docs" / "figures" / "seed000"
-TABLE1 = ROOT / "tests" / "data" / "rocking" / "seed000_table1_pga.csv"
+FIG = ROOT / "docs" / "figures" / "mordant_series"
+TABLE1 = ROOT / "tests" / "data" / "rocking" / "mordant_series_table1_pga.csv"
 
 #: The artificial input (EN 1998-1 §3.2.2.2 Type 1, ground B; the ag used to generate it is
 #: irrelevant because every test scales the record to its own PGA).
@@ -480,7 +480,7 @@ def section(fig_dir: Path | None = None) -> str:
         "The measured table signals are not available; as in the tests (§2: \"artificially "
         "generated seismic input signal consistent with Eurocode 8 spectrum, with an "
         "acceleration level increased step-by-step\") one artificial record is scaled to the "
-        "measured PGA of each test (Table 1, `tests/data/rocking/seed000_table1_pga.csv`). "
+        "measured PGA of each test (Table 1, `tests/data/rocking/mordant_series_table1_pga.csv`). "
         f"Record: EN 1998-1 Type {r['spectrum_type']}, ground {r['ground']} (an assumption: the "
         "seed names neither; the scaling to the PGA removes ag, and the onset criteria depend "
         "on the PGA only), `generate_ec8(seed="
