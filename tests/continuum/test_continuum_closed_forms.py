@@ -144,7 +144,7 @@ def test_quiet_boundary_oblique_incidence_reflects_a_little():
 
 
 def _aki_richards(theta, alpha, beta, wave):
-    """Free-surface coefficients, Aki & Richards (2002) eqs. (5.27), (5.28)."""
+    """Free-surface P-SV coefficients, Aki & Richards (2002), §5.2 (written again here)."""
     if wave == "P":
         i = theta
         p = math.sin(i) / alpha

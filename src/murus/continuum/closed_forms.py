@@ -14,7 +14,7 @@ Problems and sources:
   modal superposition they must equal (:func:`layer_transfer_modal`);
 - Lysmer-Kuhlemeyer quiet boundary: reflection of a plane P or SV wave on a viscous boundary at
   any incidence (Lysmer & Kuhlemeyer 1969), exact plane-wave solution derived here; with no
-  dashpot it is the free-surface reflection of Aki & Richards (2002), eq. (5.27);
+  dashpot it is the free-surface reflection of Aki & Richards (2002), §5.2;
 - cylindrical hole in a Mohr-Coulomb medium, plane strain, hydrostatic far field (Salençon 1969;
   the Itasca verification problem "Cylindrical hole in an infinite Mohr-Coulomb medium"):
   plastic radius, stresses, radial displacement with a non-associated dilation;
@@ -134,8 +134,8 @@ def layer_transfer_hysteretic(f, vs: float, H: float, xi: float, complex_output:
 
     References
     ----------
-    Kramer, S. L. (1996). Geotechnical Earthquake Engineering, Prentice Hall, §7.2.1, eqs.
-    (7.9)-(7.11) (uniform damped soil on rigid rock).
+    Kramer, S. L. (1996). Geotechnical Earthquake Engineering, Prentice Hall, §7.2.1 (uniform
+    damped soil on rigid rock).
     """
     fa = _freqs(f)
     vs, H, xi = _pos("vs", vs), _pos("H", H), _pos("xi", xi, allow_zero=True)
@@ -165,7 +165,7 @@ def mass_damping_alpha(xi: float, f: float) -> float:
 
     References
     ----------
-    Chopra, A. K. (2012). Dynamics of Structures, 4th ed., Pearson, §11.4.1 (mass-proportional
+    Chopra, A. K. (2012). Dynamics of Structures, 4th ed., Prentice Hall, ch. 11 (Rayleigh
     damping).
     """
     return 4.0 * math.pi * _pos("f", f) * _pos("xi", xi, allow_zero=True)
@@ -188,7 +188,7 @@ def mass_damping_ratio(alpha: float, f):
 
     References
     ----------
-    Chopra, A. K. (2012). Dynamics of Structures, 4th ed., Pearson, §11.4.1.
+    Chopra, A. K. (2012). Dynamics of Structures, 4th ed., Prentice Hall, ch. 11.
     """
     fa = _freqs(f)
     if np.any(fa == 0):
@@ -251,7 +251,7 @@ def layer_transfer_rayleigh(f, vs: float, H: float, alpha: float, relative: bool
     ----------
     Kramer, S. L. (1996). Geotechnical Earthquake Engineering, Prentice Hall, §7.2.1 (the same
     boundary-value problem with a complex modulus); the damping term is derived here.
-    Chopra, A. K. (2012). Dynamics of Structures, 4th ed., §11.4.1 (mass-proportional damping).
+    Chopra, A. K. (2012). Dynamics of Structures, 4th ed., ch. 11 (Rayleigh damping).
     """
     fa = _freqs(f)
     vs, H, alpha = _pos("vs", vs), _pos("H", H), _pos("alpha", alpha, allow_zero=True)
@@ -307,8 +307,8 @@ def layer_transfer_modal(f, vs: float, H: float, alpha: float, n_modes: int = 1,
 
     References
     ----------
-    Chopra, A. K. (2012). Dynamics of Structures, 4th ed., Pearson, §16.7 and ch. 17 (modal
-    analysis of distributed-mass systems under base excitation).
+    Chopra, A. K. (2012). Dynamics of Structures, 4th ed., Prentice Hall, ch. 17 (systems with
+    distributed mass and elasticity: modal analysis under base excitation).
     """
     fa = _freqs(f)
     vs, H, alpha = _pos("vs", vs), _pos("H", H), _pos("alpha", alpha, allow_zero=True)
@@ -377,8 +377,8 @@ def quiet_boundary_reflection(theta: float, vp: float, vs: float, wave: str = "P
     linear system for the two reflected amplitudes, solved here exactly (``rho`` cancels). At
     normal incidence with ``a = b = 1`` nothing is reflected; at oblique incidence a part is
     (Lysmer & Kuhlemeyer 1969, their energy-ratio figure); with ``a = b = 0`` the boundary is a
-    free surface and the coefficients are those of Aki & Richards (2002), eq. (5.27) (P) and
-    (5.28) (SV), all the energy reflected.
+    free surface and the coefficients are the free-surface ones of Aki & Richards (2002),
+    §5.2, all the energy reflected.
 
     Parameters
     ----------
@@ -401,7 +401,7 @@ def quiet_boundary_reflection(theta: float, vp: float, vs: float, wave: str = "P
     Lysmer, J. and Kuhlemeyer, R. L. (1969). Finite dynamic model for infinite media. J. Eng.
     Mech. Div. ASCE 95(EM4), 859-877.
     Aki, K. and Richards, P. G. (2002). Quantitative Seismology, 2nd ed., University Science
-    Books, §5.2.5, eqs. (5.27)-(5.28) (free-surface reflection).
+    Books, §5.2 (reflection of P-SV waves at a free surface).
     """
     try:
         theta = float(theta)
@@ -742,8 +742,8 @@ def oedometric_modulus(E: float, nu: float) -> float:
 
     References
     ----------
-    Timoshenko, S. P. and Goodier, J. N. (1970). Theory of Elasticity, 3rd ed., McGraw-Hill,
-    §2.5 (Hooke's law with lateral strains prevented).
+    Timoshenko, S. P. and Goodier, J. N. (1970). Theory of Elasticity, 3rd ed., McGraw-Hill
+    (Hooke's law with the lateral strains prevented).
     """
     E = _pos("E", E)
     try:
@@ -776,7 +776,7 @@ def oedometric_settlement(pressure: float, thickness: float, E: float, nu: float
 
     References
     ----------
-    Timoshenko & Goodier (1970), §2.5 (see :func:`oedometric_modulus`).
+    Timoshenko & Goodier (1970) (see :func:`oedometric_modulus`).
     """
     return (_pos("pressure", pressure, allow_zero=True) * _pos("thickness", thickness)
             / oedometric_modulus(E, nu))

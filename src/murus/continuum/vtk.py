@@ -27,7 +27,7 @@ Data layout of murus's zones (plain arrays):
 
 References
 ----------
-Kitware. VTK File Formats (VTK User's Guide, ch. 19), XML formats: UnstructuredGrid, cell type
+Kitware. VTK File Formats (VTK User's Guide), XML formats: UnstructuredGrid, cell type
 ``VTK_QUAD = 9``; the ParaView Data (``.pvd``) collection.
 Itasca. FLAC manual, zone plastic-state indicators ("shear-n", "tension-p", ...).
 """
