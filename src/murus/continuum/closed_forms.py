@@ -206,26 +206,29 @@ def layer_transfer_rayleigh(f, vs: float, H: float, alpha: float, relative: bool
     unit volume proportional to the velocity, ``-rho alpha v``:
 
     - ``relative=True``: ``v`` is the velocity relative to the base,
-      ``rho u'' + rho alpha (u' - u_b') = G u_zz`` (dots: time). Writing ``u = u_b + w``,
-      ``G w_zz + rho (w² - i alpha w) w = -rho w² u_b`` (w: circular frequency), whose solution
-      with ``w(H) = 0`` gives::
+      ``rho d²u/dt² + rho alpha d(u - u_b)/dt = G d²u/dz²``. With ``u = u_b + r`` and the
+      circular frequency ``w``: ``G d²r/dz² + rho (w² - i alpha w) r = -rho w² u_b``, whose
+      solution with ``r(H) = 0``, ``dr/dz(0) = 0`` gives::
 
           F = 1 - w / (w - i alpha) (1 - 1 / cos(kappa H)),   kappa = sqrt(w² - i alpha w) / Vs
 
-      This is the form of the blocks' mass-proportional damping in murus
-      (:mod:`murus.dem`, damping on the velocities relative to the base) and the one whose modal
-      damping is exactly ``xi_n = alpha / (2 w_n)``.
-    - ``relative=False``: ``v`` is the absolute velocity (damping also resists the rigid-body
-      motion of the base, as when every gridpoint velocity of a grid on a moving base is
-      damped): ``G u_zz + rho (w² - i alpha w) u = 0``, so ``F = 1 / cos(kappa H)``.
+      This is the form of the blocks' mass-proportional damping in murus with its default
+      ``damping_frame="base"`` (:func:`murus.dem.engine.run`: damping on the velocities
+      relative to the base).
+    - ``relative=False``: ``v`` is the absolute velocity (the damping also resists the
+      rigid-body motion with the base, as when every gridpoint velocity of a grid on a moving
+      base is damped; ``damping_frame="absolute"`` for the blocks):
+      ``G d²u/dz² + rho (w² - i alpha w) u = 0``, so ``F = 1 / cos(kappa H)``.
 
-    Both equal the modal superposition of :func:`layer_transfer_modal` with all modes (checked
-    in tests/continuum/test_continuum_closed_forms.py), and at the first resonance both are
-    ``~ 4 / (pi) / (2 xi_1)`` with ``xi_1 = alpha / (2 w_1)`` (single-mode modal damping), the
-    same peak as :func:`layer_transfer_hysteretic` with ``xi = xi_1``. The two forms differ by
-    the factor ``w / (w - i alpha)`` on the relative part, i.e. by O(alpha / w): little for a
-    few per cent of damping (0.3 % at the first resonance with ``xi_1 = 5 %``), and they meet
-    as ``w >> alpha``.
+    Both have the modal damping ``xi_n = alpha / (2 w_n)``; they differ in the load on the
+    modes (the base acceleration alone, or also the damping force ``-rho alpha du_b/dt`` of the
+    base velocity). Both equal the modal superposition of :func:`layer_transfer_modal` with
+    all modes (checked in tests/continuum/test_continuum_closed_forms.py), and at the first
+    resonance both are ``~ Gamma_1 / (2 xi_1) = 2 / (pi xi_1)`` with ``xi_1 = alpha / (2 w_1)``
+    (single-mode modal damping), the same peak as :func:`layer_transfer_hysteretic` with
+    ``xi = xi_1``. The two forms differ by the factor ``w / (w - i alpha)`` on the relative
+    part, i.e. by O(alpha / w): little for a few per cent of damping (0.3 % at the first
+    resonance with ``xi_1 = 5 %``), and they meet as ``w >> alpha``.
 
     Parameters
     ----------
