@@ -101,8 +101,8 @@ def _draw(ax, p0, p, z, blocks, show_edges, show_original):
 
     if show_original:
         ring = p0[np.concatenate([z, z[:, :1]], axis=1)]
-        ax.add_collection(LineCollection(ring, colors="0.6", linewidths=0.4, linestyles="--",
-                                         label="undeformed"), autolim=True)
+        ax.add_collection(LineCollection(ring, colors="0.4", linewidths=0.5, linestyles="--",
+                                         label="undeformed", zorder=3), autolim=True)
     edge = dict(edgecolor="k", linewidth=0.4) if show_edges else dict(edgecolor="face")
     zc = PolyCollection(p[z], closed=True, **edge)
     ax.add_collection(zc, autolim=True)
@@ -147,7 +147,7 @@ def plot_zones(xy, zones, values=None, ax=None, displacement=None, magnification
     show_edges : bool
         Draw the zone edges.
     show_original : bool
-        Draw the undeformed mesh in dashed grey under the deformed one.
+        Draw the undeformed mesh in dashed grey lines over the deformed one.
 
     Returns
     -------
@@ -240,5 +240,6 @@ def plot_plastic_state(xy, zones, state, ax=None, displacement=None,
                    for v in present]
         if blk:
             handles.append(Patch(facecolor=_BLOCKS, edgecolor="k", label="blocks"))
-        ax.legend(handles=handles, loc="best", fontsize="small")
+        ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                  fontsize="small", title="plastic state")
     return ax
