@@ -26,7 +26,6 @@ one-line ``ValueError`` naming what is wrong.
 
 from __future__ import annotations
 
-import base64
 import os
 import re
 import shutil
@@ -37,12 +36,15 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from murus._vtkxml import HEADER as _HEADER
+from murus._vtkxml import VTKFILE as _VTKFILE
+from murus._vtkxml import as_data as _as_data
+from murus._vtkxml import data_array as _data_array
+from murus._vtkxml import data_section as _data_section
+from murus._vtkxml import move_series, read_base64_array
 from murus.outputs import write_text
 
 __all__ = ["PvdWriter", "read_base64_array", "write_contacts_vtp", "write_series", "write_vtp"]
-
-_HEADER = '<?xml version="1.0"?>\n'
-_VTKFILE = '<VTKFile type="{kind}" version="0.1" byte_order="LittleEndian">\n'
 
 
 # ----------------------------------------------------------------------------- validation
@@ -97,33 +99,6 @@ def _as_discs(discs) -> tuple[np.ndarray, np.ndarray]:
     return c, r
 
 
-def _as_data(name, values, n: int, what: str, noun: str) -> np.ndarray:
-    """A data array with ``n`` tuples: (n,) scalars or (n, k) vectors, 2-vectors padded to 3."""
-    if not isinstance(name, str) or not name.strip():
-        raise ValueError(f"{what} names must be non-empty strings, got {name!r}")
-    a = np.asarray(values)
-    if a.dtype == bool:
-        a = a.astype(np.uint8)
-    if a.dtype.kind not in "iuf":
-        raise ValueError(f"{what} {name!r} has dtype {a.dtype}; expected numbers")
-    if a.ndim == 0 or a.ndim > 2 or (a.ndim == 2 and a.shape[1] == 0):
-        raise ValueError(f"{what} {name!r} has shape {a.shape}; expected ({n},) or ({n}, k)")
-    if len(a) != n:
-        raise ValueError(f"{what} {name!r} has {len(a)} values for {n} {noun}")
-    if a.ndim == 2 and a.shape[1] == 1:
-        a = a[:, 0]
-    if a.ndim == 2 and a.shape[1] == 2:
-        a = np.column_stack([a, np.zeros(n, dtype=a.dtype)])
-    if a.dtype.kind == "f":
-        a = a.astype(np.float64)
-        bad = np.flatnonzero(~np.isfinite(a.reshape(n, -1)).all(axis=1))
-        if len(bad):
-            raise ValueError(f"{what} {name!r} has non-finite values (first at index {bad[0]})")
-    else:
-        a = a.astype(np.int64)
-    return a
-
-
 def _as_contacts(rows) -> np.ndarray:
     a = np.asarray(rows, dtype=np.float64)
     if a.size == 0:
@@ -139,37 +114,6 @@ def _as_contacts(rows) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------- XML pieces
-
-_VTK_TYPE = {"f": "Float64", "i": "Int64"}
-
-
-def _values_text(a: np.ndarray, binary: bool) -> str:
-    flat = a.ravel()
-    if binary:
-        raw = flat.astype("<f8" if a.dtype.kind == "f" else "<i8").tobytes()
-        return base64.b64encode(np.uint32(len(raw)).astype("<u4").tobytes() + raw).decode("ascii")
-    if a.dtype.kind == "f":
-        return " ".join(map(repr, flat.tolist()))
-    return " ".join(map(str, flat.tolist()))
-
-
-def _data_array(name: str, a: np.ndarray, binary: bool, indent: str) -> str:
-    comps = 1 if a.ndim == 1 else a.shape[1]
-    fmt = "binary" if binary else "ascii"
-    attrs = f'type="{_VTK_TYPE[a.dtype.kind]}" Name={quoteattr(name)} NumberOfComponents="{comps}"'
-    body = _values_text(a, binary)
-    return f'{indent}<DataArray {attrs} format="{fmt}">\n{indent}  {body}\n{indent}</DataArray>\n'
-
-
-def _data_section(tag: str, data: Mapping[str, np.ndarray], binary: bool) -> str:
-    if not data:
-        return f"      <{tag}>\n      </{tag}>\n"
-    out = [f"      <{tag}>\n"]
-    for name, a in data.items():
-        out.append(_data_array(name, a, binary, "        "))
-    out.append(f"      </{tag}>\n")
-    return "".join(out)
-
 
 def _cells(tag: str, connectivity: np.ndarray, offsets: np.ndarray, binary: bool) -> str:
     return (f"      <{tag}>\n"
@@ -447,28 +391,8 @@ def write_series(
                 contacts.add(t, name)
             contacts.write()
         blocks.write()
-        _move_series(tmp, folder)
+        move_series(tmp, folder, _OURS)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return folder / "series.pvd"
 
-
-def _move_series(tmp: Path, folder: Path) -> None:
-    if not folder.exists():
-        tmp.rename(folder)
-        return
-    new = {p.name for p in tmp.iterdir()}
-    for old in folder.iterdir():
-        if old.is_file() and _OURS.fullmatch(old.name) and old.name not in new:
-            old.unlink()
-    # frames first, collections last, so that a .pvd never points at a missing frame
-    for name in sorted(new, key=lambda s: (s.endswith(".pvd"), s)):
-        os.replace(tmp / name, folder / name)
-
-
-def read_base64_array(text: str, dtype) -> np.ndarray:
-    """Decode one inline ``format="binary"`` DataArray written here (UInt32 byte-count
-    header, then little-endian values); for tests and quick checks."""
-    raw = base64.b64decode(text.strip())
-    nbytes = int(np.frombuffer(raw[:4], dtype="<u4")[0])
-    return np.frombuffer(raw[4 : 4 + nbytes], dtype=np.dtype(dtype).newbyteorder("<")).copy()
