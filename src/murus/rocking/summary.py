@@ -93,7 +93,7 @@ def _time(x: float):
     return None if math.isnan(x) else x
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _readers(table) -> tuple:
     """(name, converter) of each quantity of a summary table."""
     conv = {"int": int, "bool": bool, "time": _time}
@@ -107,7 +107,7 @@ def values(table, S) -> dict:
     xs = S.tolist() if hasattr(S, "tolist") else [float(x) for x in S]
     if len(xs) != len(readers):
         raise ValueError(f"a summary vector of {len(xs)} values for a table of {len(readers)}")
-    return {name: f(float(x)) for (name, f), x in zip(readers, xs)}
+    return {name: f(float(x)) for (name, f), x in zip(readers, xs, strict=True)}
 
 
 def table_summary(result, table, fields) -> dict:
