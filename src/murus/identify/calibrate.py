@@ -413,7 +413,9 @@ def plot_calibration(model, measurement: Measurement, params: dict, ax=None, rto
 
         _, ax = plt.subplots(figsize=(8, 3))
     mdl = with_params(measurement.model if measurement.model is not None else model, params)
+    # a free vibration runs as long as the measurement, as in the calibration itself
     r = simulate(mdl, measurement.motion, theta0=measurement.theta0, omega0=measurement.omega0,
+                 duration=float(measurement.t[-1]) if measurement.motion is None else None,
                  rtol=rtol, out_dt=min(0.005, float(np.median(np.diff(measurement.t)))))
     ax.plot(measurement.t, measurement.theta * 1e3, color="0.5", lw=0.8, label="measured")
     ax.plot(r.t, r.theta * 1e3, color="C3", lw=1.0, label="calibrated model")
