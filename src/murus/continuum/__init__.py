@@ -1,0 +1,1 @@
+"""Mohr-Coulomb continuum zones beside the distinct elements (issue 17)."""
