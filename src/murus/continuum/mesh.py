@@ -319,9 +319,8 @@ class Mesh:
             (ne, 2) int64 gridpoint pairs.
         """
         e = _zone_edges(self.zones)
-        key = np.sort(e, axis=1)
-        _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-        return e[cnt[inv.ravel()] == 1]
+        inv, cnt = _edge_groups(e, self.n_gridpoints)
+        return e[cnt[inv] == 1]
 
     def boundary_gridpoints(self) -> np.ndarray:
         """Gridpoints on the mesh boundary, sorted.
@@ -478,6 +477,13 @@ class Mesh:
 
 def _zone_edges(zones: np.ndarray) -> np.ndarray:
     return np.stack([zones, np.roll(zones, -1, axis=1)], axis=-1).reshape(-1, 2)
+
+
+def _edge_groups(e: np.ndarray, ng: int) -> tuple[np.ndarray, np.ndarray]:
+    """Group the undirected edges: the group of each edge and the size of each group."""
+    k = np.minimum(e[:, 0], e[:, 1]) * np.int64(ng) + np.maximum(e[:, 0], e[:, 1])
+    _, inv, cnt = np.unique(k, return_inverse=True, return_counts=True)
+    return inv.ravel(), cnt
 
 
 def _bad_zones(xy: np.ndarray, zones: np.ndarray) -> np.ndarray:
@@ -1168,6 +1174,8 @@ def merge(meshes: Sequence[Mesh], *, tol: float = _TOL) -> Mesh:
         gridpoint of one lies inside a boundary edge of another (different numbers of zones or
         gradings along a shared side); overlapping zones; zones that collapse.
     """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
     meshes = list(meshes)
@@ -1189,20 +1197,14 @@ def merge(meshes: Sequence[Mesh], *, tol: float = _TOL) -> Mesh:
     offs = np.cumsum([0] + [m.n_gridpoints for m in meshes])
     scale = float(np.hypot(*(xy.max(0) - xy.min(0))))
     atol = tol * scale
-    # union-find over the coincident pairs
-    parent = np.arange(len(xy))
-
-    def find(a):
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-
-    for a, b in cKDTree(xy).query_pairs(atol, output_type="ndarray"):
-        ra, rb = find(a), find(b)
-        if ra != rb:
-            parent[max(ra, rb)] = min(ra, rb)
-    roots = np.array([find(a) for a in range(len(xy))])
+    # coincident gridpoints: connected components of the pairs closer than atol
+    pairs = cKDTree(xy).query_pairs(atol, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
+                       shape=(len(xy), len(xy)))
+    _, label = connected_components(graph, directed=False)
+    first = np.full(label.max() + 1, len(xy))
+    np.minimum.at(first, label, np.arange(len(xy)))
+    roots = first[label]                      # each point -> the first point of its group
     keep, new = np.unique(roots, return_inverse=True)
     xy_new = xy[keep]
     zones = np.concatenate([new[m.zones + offs[i]] for i, m in enumerate(meshes)])
@@ -1217,9 +1219,7 @@ def merge(meshes: Sequence[Mesh], *, tol: float = _TOL) -> Mesh:
     # each edge at most twice, in opposite directions
     e = _zone_edges(zones)
     ez = np.repeat(np.arange(len(zones)), 4)
-    key = np.sort(e, axis=1)
-    _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    inv = inv.ravel()
+    inv, cnt = _edge_groups(e, len(xy_new))
     over = np.nonzero(cnt[inv] > 2)[0]
     two = np.nonzero(cnt[inv] == 2)[0]
     two = two[np.argsort(inv[two], kind="stable")]          # the two uses of an edge, together
