@@ -366,8 +366,8 @@ class Mesh:
         Returns
         -------
         numpy.ndarray
-            int64 gridpoint indices: the chain in order along the side for a full name, sorted
-            for a union.
+            int64 gridpoint indices: the chain in order along the side for a full name or a bare
+            name that one region has, sorted for a union of several.
 
         Raises
         ------
@@ -380,6 +380,8 @@ class Mesh:
         if not parts:
             known = ", ".join(sorted(self.sides)) or "none"
             raise MeshError(f"no side named {name!r} (sides: {known})", key=tuple(key))
+        if len(parts) == 1:
+            return np.array(parts[0])
         return np.unique(np.concatenate(parts))
 
     def on_line(self, p0, p1, tol: float | None = None, *, key=()) -> np.ndarray:
