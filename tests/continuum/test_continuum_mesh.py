@@ -15,6 +15,7 @@ from murus.continuum.mesh import (
     annulus,
     graded_fractions,
     merge,
+    mesh_regions,
     polygon_corners,
     polygon_region,
     quad_region,
@@ -337,3 +338,34 @@ def test_mesh_rejects_a_clockwise_or_non_convex_zone():
     with pytest.raises(MeshError) as e:
         Mesh(xy, [[0, 1, 2, 7]], [0], ("r",))
     assert e.value.key == ("zones", 0)
+
+
+def test_mesh_regions_prefixes_the_keys_of_the_case_file():
+    regions = [{"name": "foundation", "vertices": [(0, -1), (4, -1), (4, 0), (0, 0)], "nx": 4,
+                "ny": 2, "material": "clay"},
+               {"name": "fill", "vertices": [(0, 0), (4, 0), (4, 2), (0, 2)], "nx": 4, "ny": 3}]
+    m = mesh_regions(regions)
+    assert m.region_names == ("foundation", "fill")
+    np.testing.assert_array_equal(np.bincount(m.region), [8, 12])
+    assert m.n_gridpoints == 5 * 6
+    bad = [dict(regions[0]), dict(regions[1], vertices=[(0, 0), (4, 0), (4, 2), (4, 2), (0, 2)])]
+    with pytest.raises(MeshError, match="coincide") as e:
+        mesh_regions(bad)
+    assert e.value.key == ("zones", 1, "vertices", 3)
+    with pytest.raises(MeshError, match="without conforming") as e:
+        mesh_regions([regions[0], dict(regions[1], nx=5)])
+    assert e.value.key[:1] == ("zones",) and e.value.key[1] in (0, 1)
+    with pytest.raises(MeshError, match="> 0") as e:
+        mesh_regions([dict(regions[0], nx=None, size=0)])
+    assert e.value.key == ("zones", 0, "size")
+
+
+def test_three_given_corners_mesh_a_triangle_with_a_collinear_vertex():
+    verts = [(0, 0), (2, 0), (4, 0), (0, 3)]                   # vertex 1 on the bottom side
+    m = polygon_region(verts, nx=3)                            # automatic: three corners
+    m3 = polygon_region(verts, corners=(0, 2, 3), nx=3)
+    for mesh in (m, m3):
+        assert_valid(mesh)
+        assert mesh.n_zones == 27
+        assert mesh.areas().sum() == pytest.approx(6.0, rel=1e-12)
+        assert np.hypot(*(mesh.xy[mesh.side("bottom")] - (2.0, 0.0)).T).min() < 1e-12

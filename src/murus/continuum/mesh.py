@@ -63,7 +63,8 @@ from murus.errors import MurusError
 
 __all__ = [
     "MeshError", "Mesh", "MeshQuality", "quad_region", "rectangle", "polygon_region", "merge",
-    "annulus", "strip_footing", "polygon_corners", "graded_fractions", "SIDE_NAMES",
+    "annulus", "strip_footing", "polygon_corners", "graded_fractions", "mesh_regions",
+    "SIDE_NAMES", "REGION_KEYS",
 ]
 
 #: Default names of the four sides of a quadrilateral region, counter-clockwise from corner c0.
@@ -570,8 +571,9 @@ def _segments_cross(a, b, c, d, tol) -> bool:
             or (abs(o3) <= s and on(c, d, a)) or (abs(o4) <= s and on(c, d, b)))
 
 
-def _check_ring(p: np.ndarray, key) -> None:
-    """A closed ring of points: no duplicated vertex, no self-intersection, non-zero area."""
+def _check_ring(p: np.ndarray, key, indexed: bool = True) -> None:
+    """A closed ring of points: no duplicated vertex, no self-intersection, non-zero area
+    (``indexed``: the error of a duplicated vertex carries its index in the ring)."""
     n = len(p)
     scale = float(np.hypot(*(p.max(0) - p.min(0))))
     if scale == 0.0:
@@ -583,7 +585,7 @@ def _check_ring(p: np.ndarray, key) -> None:
     if dup.size:
         i, j = int(iu[0][dup[0]]), int(iu[1][dup[0]])
         raise MeshError(f"points {i} and {j} coincide at ({p[i, 0]:.6g}, {p[i, 1]:.6g})",
-                        key=(*key, j))
+                        key=(*key, j) if indexed else key)
     for i in range(n):
         a, b = p[i], p[(i + 1) % n]
         for j in range(i + 1, n):
@@ -803,7 +805,7 @@ def _mesh_quad(sides: list[np.ndarray], nx, ny, size, grading, name: str,
             nx = max(nx + 1, math.ceil(nx * ex / hx))
         if grow_y:
             ny = max(ny + 1, math.ceil(ny * ey / hy))
-    else:  # pragma: no cover - the side sizes bound the interior edges long before
+    else:  # the interior edges stay longer than the size (a strongly distorted region)
         raise MeshError(f"region {name!r}: no number of zones reaches the size", key=keys["size"])
     xy = p.reshape(-1, 2)
     zones = _grid_zones(nx, ny)
@@ -887,7 +889,7 @@ def quad_region(bottom, right, top, left, *, nx: int | None = None, ny: int | No
                             f"{start[1]:.6g})", key=(SIDE_NAMES[(k + 1) % 4], 0))
         sides[(k + 1) % 4][0] = end
     ring = np.concatenate([s[:-1] for s in sides])
-    _check_ring(ring, ("sides",))
+    _check_ring(ring, ("sides",), indexed=False)
     if _signed_area(ring) <= 0.0:
         raise MeshError("the sides must follow the boundary counter-clockwise (bottom, right, "
                         "top, left)", key=("sides",))
@@ -1024,9 +1026,10 @@ def polygon_region(vertices, *, corners: Sequence[int] | None = None, nx: int | 
     vertices : array_like
         (n, 2) vertices [m], n >= 3, counter-clockwise or clockwise (normalised to
         counter-clockwise); no duplicated vertex, no self-intersection.
-    corners : sequence of 4 int, optional
+    corners : sequence of 4 (or 3) int, optional
         Indices into ``vertices`` of the four corners, the first being c0 (the start of the
-        bottom side); the others follow counter-clockwise whatever their order here. Default:
+        bottom side); the others follow counter-clockwise whatever their order here (three
+        corners: the region is meshed as a triangle, below). Default:
         :func:`polygon_corners` (the four vertices whose interior angles are furthest from
         180 deg, c0 the lowest, then leftmost). A polygon with only three vertices below
         180 deg (a triangle) is meshed as three quadrilaterals meeting at its centroid, with
@@ -1067,8 +1070,9 @@ def polygon_region(vertices, *, corners: Sequence[int] | None = None, nx: int | 
             given = [int(k) for k in corners]
         except (TypeError, ValueError):
             raise MeshError("corners must be 4 vertex indices", key=("corners",)) from None
-        if len(given) != 4 or len(set(given)) != 4 or any(not 0 <= k < n for k in given):
-            raise MeshError(f"corners must be 4 distinct vertex indices in 0..{n - 1}",
+        if len(given) not in (3, 4) or len(set(given)) != len(given) or any(
+                not 0 <= k < n for k in given):
+            raise MeshError(f"corners must be 4 (or 3) distinct vertex indices in 0..{n - 1}",
                             key=("corners",))
         pos = {int(order[i]): i for i in range(n)}      # input index -> ring index
         ring = [pos[k] for k in given]
@@ -1423,3 +1427,58 @@ def strip_footing(half_width: float, depth: float, width: float, *, n_footing: i
     sides = dict(m.sides)
     sides.update(extra)
     return Mesh(m.xy, m.zones, m.region, m.region_names, sides)
+
+
+# ----------------------------------------------------------------------------- case files
+
+#: Keys of one region for :func:`mesh_regions` (the arguments of :func:`polygon_region`).
+REGION_KEYS = ("vertices", "corners", "nx", "ny", "size", "grading", "name", "side_names")
+
+
+def mesh_regions(regions: Sequence[Mapping], *, table: str = "zones", tol: float = _TOL) -> Mesh:
+    """Mesh polygon regions and merge them into one conforming mesh: the layer under the
+    ``[[zones]]`` tables of a case file.
+
+    Parameters
+    ----------
+    regions : sequence of mapping
+        One mapping per region with the keys of :func:`polygon_region` (``vertices`` [m],
+        optional ``corners``, ``nx``, ``ny``, ``size`` [m], ``grading``, ``name``,
+        ``side_names``); other keys (a material) are ignored. ``name`` defaults to
+        ``"{table}{i}"``.
+    table : str
+        Name of the table, the first element of the key path of an error.
+    tol : float
+        Relative tolerance of coincident gridpoints (:func:`merge`).
+
+    Returns
+    -------
+    Mesh
+        The merged mesh; region ``i`` (``Mesh.region == i``) is ``regions[i]``.
+
+    Raises
+    ------
+    MeshError
+        With the key path prefixed by ``(table, i)``: ``("zones", 2, "vertices", 3)`` for a
+        duplicated vertex of the third region, ``("zones", 1)`` for a region whose side does not
+        conform to another's.
+    """
+    meshes = []
+    for i, spec in enumerate(regions):
+        if not isinstance(spec, Mapping):
+            raise MeshError(f"{table}[{i}] must be a table", key=(table, i))
+        if "vertices" not in spec:
+            raise MeshError(f"{table}[{i}] has no vertices", key=(table, i, "vertices"))
+        kw = {k: spec[k] for k in REGION_KEYS if k in spec and k != "vertices"}
+        kw.setdefault("name", f"{table}{i}")
+        try:
+            meshes.append(polygon_region(spec["vertices"], **kw))
+        except MeshError as e:
+            raise MeshError(str(e), key=(table, i, *e.key)) from None
+    if not meshes:
+        raise MeshError(f"no {table} regions", key=(table,))
+    try:
+        return merge(meshes, tol=tol) if len(meshes) > 1 else meshes[0]
+    except MeshError as e:
+        k = e.key[1:] if e.key[:1] == ("meshes",) else e.key
+        raise MeshError(str(e), key=(table, *k)) from None
