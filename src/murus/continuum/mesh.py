@@ -672,6 +672,29 @@ def _n_for_size(length: float, h: float, r: float, nmin: int, key) -> int:
     return n
 
 
+def _grow(n: int, excess: float, r: float) -> int:
+    """Next count when the largest zone is ``excess`` times the size: in proportion when uniform
+    (the sizes scale as 1/n), by 10 % when graded (they tend to a limit)."""
+    if abs(math.log(r)) < 1e-12:
+        return max(n + 1, math.ceil(n * excess))
+    return n + max(1, n // 10)
+
+
+def _n_sides(sides, h: float, r: float, nmin: int, key) -> int:
+    """Smallest count (searched by :func:`_grow`) for which no zone along the sides is longer
+    than h (arc length, which bounds the chord), the gridpoints snapped to their vertices."""
+    n = n0 = max(_n_for_size(s.length, h, r, nmin, key) for s in sides)
+    while True:
+        worst = max(s.length * float(np.diff(s.fractions(n, r)).max()) for s in sides)
+        if worst <= h * (1.0 + 1e-9):
+            return n
+        if n > 4 * n0 + 64:
+            raise MeshError(f"with grading {r:g} the zones along a side with vertices stay larger "
+                            f"than the size {h:g} m: give the number of zones, a larger size or a "
+                            "grading closer to 1", key=key)
+        n = _grow(n, worst / h, r)
+
+
 class _Polyline:
     """A polyline side with its arc length."""
 
@@ -786,10 +809,10 @@ def _mesh_quad(sides: list[np.ndarray], nx, ny, size, grading, name: str,
             raise MeshError("give nx and ny, or a target zone size", key=keys["size"])
         hx, hy = size
         if auto_x:
-            nx = max(_n_for_size(seg.length, hx, rx, segx, keys["size"]) for seg in (bottom, top))
+            nx = _n_sides((bottom, top), hx, rx, segx, keys["size"])
         if auto_y:
-            ny = max(_n_for_size(seg.length, hy, ry, segy, keys["size"]) for seg in (left, right))
-    for _ in range(200):
+            ny = _n_sides((left, right), hy, ry, segy, keys["size"])
+    for _ in range(30):
         sb, st = bottom.fractions(nx, rx), top.fractions(nx, rx)
         sl, sr = left.fractions(ny, ry), right.fractions(ny, ry)
         p = _tfi(bottom.at(sb), right.at(sr), top.at(st), left.at(sl), sb, sr, st, sl)
@@ -802,11 +825,12 @@ def _mesh_quad(sides: list[np.ndarray], nx, ny, size, grading, name: str,
         if not (grow_x or grow_y):
             break
         if grow_x:
-            nx = max(nx + 1, math.ceil(nx * ex / hx))
+            nx = _grow(nx, ex / hx, rx)
         if grow_y:
-            ny = max(ny + 1, math.ceil(ny * ey / hy))
+            ny = _grow(ny, ey / hy, ry)
     else:  # the interior edges stay longer than the size (a strongly distorted region)
-        raise MeshError(f"region {name!r}: no number of zones reaches the size", key=keys["size"])
+        raise MeshError(f"region {name!r}: the interior zones stay larger than the size: give "
+                        "the numbers of zones or a grading closer to 1", key=keys["size"])
     xy = p.reshape(-1, 2)
     zones = _grid_zones(nx, ny)
     bad = _bad_zones(xy, zones)
@@ -1033,10 +1057,10 @@ def polygon_region(vertices, *, corners: Sequence[int] | None = None, nx: int | 
         :func:`polygon_corners` (the four vertices whose interior angles are furthest from
         180 deg, c0 the lowest, then leftmost). A polygon with only three vertices below
         180 deg (a triangle) is meshed as three quadrilaterals meeting at its centroid, with
-        ``nx`` zones along each half side.
+        ``max(nx, ny)`` zones along each half side.
     nx, ny, size, grading
-        As for :func:`quad_region` (a three-cornered region takes ``nx`` or ``size`` only, and
-        no grading).
+        As for :func:`quad_region` (a three-cornered region takes no grading: its three
+        quadrilaterals must conform along the lines from the mid-sides to the centroid).
     name : str
         Region name.
     side_names : sequence of str, optional
@@ -1093,10 +1117,8 @@ def polygon_region(vertices, *, corners: Sequence[int] | None = None, nx: int | 
     if grading != (1.0, 1.0):
         raise MeshError("a three-cornered region is meshed as three quadrilaterals: it takes no "
                         "grading", key=("grading",))
-    if ny is not None and nx is not None and ny != nx:
-        raise MeshError("a three-cornered region has nx zones along each half side: give nx "
-                        "only", key=("ny",))
-    return _triangle(p, c, nx if nx is not None else ny, size, name, names)
+    counts = [k for k in (nx, ny) if k is not None]
+    return _triangle(p, c, max(counts) if counts else None, size, name, names)
 
 
 def _triangle(p: np.ndarray, c: list[int], n, size, name: str, names) -> Mesh:
