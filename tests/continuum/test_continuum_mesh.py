@@ -299,6 +299,10 @@ BAD = [
                                             [(1, 1), (1, 0)], [(1, 0), (0, 0)], nx=1, ny=1),
      ("sides",), "counter-clockwise"),
     ("annulus radii", lambda: annulus(2.0, 1.0, 3, 3), ("outer_radius",), "exceed"),
+    ("graded triangle", lambda: polygon_region([(0, 0), (3, 0), (1, 2)], nx=3, grading=1.2),
+     ("grading",), "no grading"),
+    ("bad corners", lambda: polygon_region(BACKFILL, corners=(0, 1, 1, 4), nx=4, ny=4),
+     ("corners",), "distinct"),
 ]
 
 
@@ -369,3 +373,23 @@ def test_three_given_corners_mesh_a_triangle_with_a_collinear_vertex():
         assert mesh.n_zones == 27
         assert mesh.areas().sum() == pytest.approx(6.0, rel=1e-12)
         assert np.hypot(*(mesh.xy[mesh.side("bottom")] - (2.0, 0.0)).T).min() < 1e-12
+
+
+def test_backfill_example_builds_a_conforming_mesh(tmp_path):
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "examples" / "continuum" / "mesh_backfill.py"
+    spec = importlib.util.spec_from_file_location("mesh_backfill", path)
+    ex = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ex)
+    ex.main(tmp_path)
+    assert (tmp_path / "mesh_backfill.png").stat().st_size > 0
+    m = ex.build()
+    assert_valid(m)
+    assert m.region_names == ("under_wall", "foundation", "backfill")
+    assert m.n_zones == 4 * 4 + ex.NX * 4 + ex.NX * ex.NY
+    # conforming: the gridpoints of the foundation top are those of the backfill bottom
+    np.testing.assert_array_equal(m.side("foundation.top")[::-1], m.side("backfill.bottom"))
+    area = abs(shoelace(ex.backfill_vertices())) + (ex.LENGTH + ex.WALL_BASE) * ex.FOUNDATION
+    assert m.areas().sum() == pytest.approx(area, rel=1e-12)
