@@ -17,12 +17,20 @@ positive area for the mixed discretisation to hold.
 
 A region bounded by four sides (each a polyline, so that a side can be the inclined back of a wall
 or a broken ground surface, sloped then level) is meshed by transfinite (Coons) interpolation
-(Gordon & Hall (1973), eq. 2.5 with the linear blending functions): the gridpoints of the four sides
+(Gordon & Hall (1973), with linear blending functions): the gridpoints of the four sides
 are placed first, by a geometric progression of the zone sizes (``grading``: the ratio of the size
 of a zone to the size of the one before it, along the side's direction), with a gridpoint at every
 vertex of a side's polyline, and the interior gridpoints follow from the blend of the four sides.
-A polygon region picks four of its vertices as corners (:func:`polygon_region`); a region with only
-three corners is meshed as three quadrilaterals that meet at its centroid.
+Where a side has vertices, the graded positions are moved by an affine map within each segment
+so that each vertex is a gridpoint (the ratio of successive sizes is kept within a segment), and
+the blend takes, at each gridpoint, the positions interpolated between the opposite sides (the
+four sides are then reproduced exactly, so the zone areas of a straight-sided region sum to its
+polygon area). A target ``size`` bounds every zone edge: the smallest numbers of zones are
+searched for (with a grading ``r``, the largest zone of a side of length ``L`` cannot go below
+``L (1 - 1/r)``, an error says so). A polygon region picks four of its vertices as corners
+(:func:`polygon_region`); a region with only three corners is meshed as three quadrilaterals that
+meet at its centroid. :func:`mesh_regions` meshes and merges the regions of a case file's
+``[[zones]]`` tables.
 
 Frame and conventions (written once, here): x horizontal, y upwards, lengths in m, angles ``*_deg``
 in degrees. The four sides of a quadrilateral region follow its boundary counter-clockwise from its
@@ -43,7 +51,7 @@ References
 ----------
 Gordon, W. J. and Hall, C. A. (1973). Construction of curvilinear co-ordinate systems and
 applications to mesh generation. International Journal for Numerical Methods in Engineering 7(4),
-461-477. doi:10.1002/nme.1620070405 (transfinite interpolation, eq. 2.5).
+461-477. doi:10.1002/nme.1620070405 (transfinite interpolation).
 
 Marti, J. and Cundall, P. A. (1982). Mixed discretization procedure for accurate modelling of
 plastic collapse. International Journal for Numerical and Analytical Methods in Geomechanics 6(1),
@@ -739,7 +747,7 @@ class _Polyline:
 
 def _tfi(bottom: np.ndarray, right: np.ndarray, top: np.ndarray, left: np.ndarray,
          sb, sr, st, sl) -> np.ndarray:
-    """Transfinite interpolation (Gordon & Hall (1973), eq. 2.5, linear blending) of the gridpoints
+    """Transfinite interpolation (Gordon & Hall (1973), linear blending) of the gridpoints
     of the four sides: bottom and top (nx+1 points, i direction), left and right (ny+1 points, j
     direction), all oriented from the c0 side; ``s*`` their fractions. Returns (ny+1, nx+1, 2)."""
     c0, c1, c2, c3 = bottom[0], bottom[-1], top[-1], top[0]
@@ -894,7 +902,7 @@ def quad_region(bottom, right, top, left, *, nx: int | None = None, ny: int | No
 
     References
     ----------
-    Gordon & Hall (1973), eq. 2.5 (transfinite interpolation with linear blending).
+    Gordon & Hall (1973) (transfinite interpolation with linear blending).
     """
     name = _region_name(name)
     side_names = _side_names(side_names, 4, ("side_names",))
@@ -1081,7 +1089,7 @@ def polygon_region(vertices, *, corners: Sequence[int] | None = None, nx: int | 
 
     References
     ----------
-    Gordon & Hall (1973), eq. 2.5 (transfinite interpolation).
+    Gordon & Hall (1973) (transfinite interpolation).
     """
     name = _region_name(name)
     nx, ny, size, grading = _mesh_args(nx, ny, size, grading)
