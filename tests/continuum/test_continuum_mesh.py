@@ -393,3 +393,18 @@ def test_backfill_example_builds_a_conforming_mesh(tmp_path):
     np.testing.assert_array_equal(m.side("foundation.top")[::-1], m.side("backfill.bottom"))
     area = abs(shoelace(ex.backfill_vertices())) + (ex.LENGTH + ex.WALL_BASE) * ex.FOUNDATION
     assert m.areas().sum() == pytest.approx(area, rel=1e-12)
+
+
+def test_mesh_pickles_and_is_read_only():
+    import pickle
+
+    m = strip_footing(1.0, 3.0, 4.0, n_footing=3)
+    m2 = pickle.loads(pickle.dumps(m))
+    np.testing.assert_array_equal(m2.xy, m.xy)
+    np.testing.assert_array_equal(m2.zones, m.zones)
+    assert m2.region_names == m.region_names and set(m2.sides) == set(m.sides)
+    np.testing.assert_array_equal(m2.side("footing"), m.side("footing"))
+    with pytest.raises(ValueError):
+        m.xy[0, 0] = 1.0
+    with pytest.raises(TypeError):
+        m.sides["new"] = np.array([0])

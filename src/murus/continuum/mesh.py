@@ -210,6 +210,11 @@ class Mesh:
         object.__setattr__(self, "sides", MappingProxyType(sides))
         self.check()
 
+    def __reduce__(self):
+        # the sides are a read-only mapping proxy, which does not pickle: rebuild from a dict
+        return (Mesh, (np.array(self.xy), np.array(self.zones), np.array(self.region),
+                       self.region_names, {k: np.array(v) for k, v in self.sides.items()}))
+
     # ------------------------------------------------------------------ sizes and geometry
     @property
     def n_gridpoints(self) -> int:
