@@ -420,8 +420,14 @@ class Mesh:
         MeshError
             If the selection names no gridpoint, or on a negative tolerance.
         """
-        a = np.asarray(p0, dtype=float)
-        b = np.asarray(p1, dtype=float)
+        try:
+            a = np.asarray(p0, dtype=float)
+            b = np.asarray(p1, dtype=float)
+        except (TypeError, ValueError):
+            a = b = np.zeros(0)
+        if a.shape != (2,) or b.shape != (2,) or not (np.isfinite(a).all()
+                                                       and np.isfinite(b).all()):
+            raise MeshError("a line is given by two points (x, y) [m]", key=tuple(key))
         tol = 1e-6 * self.size if tol is None else float(tol)
         if not (tol >= 0.0 and math.isfinite(tol)):
             raise MeshError(f"tol = {tol} must be >= 0 [m]", key=tuple(key))
