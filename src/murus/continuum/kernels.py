@@ -104,11 +104,28 @@ ST_INVERTED = 16  # a triangle of the zone has a non-positive area (zone too dis
 
 # ---- return flags of mc_return ---------------------------------------------------------------
 R_ELASTIC = 0
-R_SHEAR = 1
-R_TENSION = 2
+R_SHEAR = 1  # bit: returned to the shear surface
+R_TENSION = 2  # bit: returned to the tension cut-off (3: to the corner of both)
 
 #: Triangles of a zone: corners (i, j, k) of overlay A (0, 1) and overlay B (2, 3).
 TRI = ((0, 1, 2), (0, 2, 3), (0, 1, 3), (1, 2, 3))
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _corner(s1, s2, s3, a1, a2, npsi, sp, tens):
+    """Return of the principal trial stresses ``s1 <= s2 <= s3`` [Pa] to the corner of the
+    shear and tension surfaces (``s1 = s_P``, ``s3 = sigma_t``) with the shear flow
+    ``(1, 0, -N_psi)`` and the tension flow ``(0, 0, 1)`` (two plastic multipliers); ``s2``
+    follows the flows, kept within ``[s_P, sigma_t]`` (the apex edges)."""
+    A1 = a1 - a2 * npsi
+    A2 = a2 * (1.0 - npsi)
+    A3 = a2 - a1 * npsi
+    det = A1 * a1 - a2 * A3
+    r1 = s1 - sp
+    r3 = s3 - tens
+    ls = (r1 * a1 - a2 * r3) / det
+    lt = (A1 * r3 - A3 * r1) / det
+    return sp, min(max(s2 - ls * A2 - lt * a2, sp), tens), tens
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -131,9 +148,9 @@ def mc_return(sxx, syy, sxy, szz, K, G, nphi, npsi, csn, tens):
     Returns
     -------
     tuple
-        ``(sxx, syy, sxy, szz, flag, dwp)``: the stress on or inside the yield surface [Pa], the
-        flag (``R_ELASTIC``, ``R_SHEAR``, ``R_TENSION``) and the plastic work density
-        ``sigma : de_p`` of the correction [J/m³].
+        ``(sxx, syy, sxy, szz, flag, dwp)``: the stress on or inside the yield surface [Pa],
+        the flag (``R_ELASTIC``, or the bits ``R_SHEAR``, ``R_TENSION``: 3 at their corner)
+        and the plastic work density ``sigma : de_p`` of the correction [J/m³].
 
     Notes
     -----
@@ -144,13 +161,23 @@ def mc_return(sxx, syy, sxy, szz, K, G, nphi, npsi, csn, tens):
     ``l = f_s / (a1 - a2 N_psi + a1 N_phi N_psi - a2 N_phi)``, ``s1 -= l (a1 - a2 N_psi)``,
     ``s2 -= l a2 (1 - N_psi)``, ``s3 -= l (a2 - a1 N_psi)``; tension: ``l = (s3 - sigma_t) /
     a1``, ``s1 -= l a2``, ``s2 -= l a2``, ``s3 -= l a1`` (``a1 = K + 4 G / 3``,
-    ``a2 = K - 2 G / 3``); the principal directions are unchanged.
+    ``a2 = K - 2 G / 3``); the principal directions are unchanged. Two additions to FLAC's
+    one-surface corrections, for trial stresses far outside the surface: when the shear
+    correction would reverse the order of ``s2`` and ``s3`` (or ``s1`` and ``s2``), the stress
+    returns to the edge of the Mohr-Coulomb pyramid with both surfaces active (two plastic
+    multipliers, Koiter's rule; de Souza Neto, Perić & Owen (2008), §8.2); when ``s2`` also
+    exceeds the tensile strength after the tension correction, ``s2`` and ``s3`` both return to
+    it (and ``s1`` too if it still exceeds it); when the tension correction leaves the shear
+    surface violated, the stress returns to the corner of the two surfaces (``s3 = sigma_t``,
+    ``s1 = s_P``).
 
     References
     ----------
     Itasca FLAC, Constitutive Models, section "Mohr-Coulomb model" (incremental elastic law,
     yield and potential functions, plastic corrections). DynEarthSol, Choi et al. (2013),
     ``rheology.cxx``, functions ``elasto_plastic`` and ``elasto_plastic2d`` (MIT licence).
+    de Souza Neto, Perić & Owen (2008), Computational Methods for Plasticity, §8.2 (return to
+    an edge of the Mohr-Coulomb surface).
     """
     c = 0.5 * (sxx + syy)
     d = 0.5 * (sxx - syy)
@@ -183,20 +210,79 @@ def mc_return(sxx, syy, sxy, szz, K, G, nphi, npsi, csn, tens):
     sp = tens * nphi - csn
     h = s3 - tens + ap * (s1 - sp)
     if h <= 0.0:
-        lam = fs / (a1 - a2 * npsi + a1 * nphi * npsi - a2 * nphi)
-        d1 = lam * (a1 - a2 * npsi)
-        d2 = lam * a2 * (1.0 - npsi)
-        d3 = lam * (a2 - a1 * npsi)
+        # shear (FLAC): one surface, s1 - s3 N_phi + 2 c sqrt(N_phi) = 0
+        A1 = a1 - a2 * npsi
+        A2 = a2 * (1.0 - npsi)
+        A3 = a2 - a1 * npsi
+        lam = fs / (A1 - nphi * A3)
+        n1 = s1 - lam * A1
+        n2 = s2 - lam * A2
+        n3 = s3 - lam * A3
+        if n2 > n3:
+            # the return crossed the edge s2 = s3: return to the edge, both surfaces
+            # (s1, s3) and (s1, s2) active, flows (1, 0, -N_psi) and (1, -N_psi, 0)
+            B1 = A1
+            B2 = A3
+            B3 = A2
+            fb = s1 - s2 * nphi + csn
+            m11 = A1 - nphi * A3
+            m12 = B1 - nphi * B3
+            m21 = A1 - nphi * A2
+            m22 = B1 - nphi * B2
+            det = m11 * m22 - m12 * m21
+            la = (fs * m22 - m12 * fb) / det
+            lb = (m11 * fb - m21 * fs) / det
+            n1 = s1 - la * A1 - lb * B1
+            n2 = s2 - la * A2 - lb * B2
+            n3 = s3 - la * A3 - lb * B3
+        elif n2 < n1:
+            # the return crossed the edge s1 = s2: surfaces (s1, s3) and (s2, s3), flows
+            # (1, 0, -N_psi) and (0, 1, -N_psi)
+            B1 = A2
+            B2 = A1
+            B3 = A3
+            fb = s2 - s3 * nphi + csn
+            m11 = A1 - nphi * A3
+            m12 = B1 - nphi * B3
+            m21 = A2 - nphi * A3
+            m22 = B2 - nphi * B3
+            det = m11 * m22 - m12 * m21
+            la = (fs * m22 - m12 * fb) / det
+            lb = (m11 * fb - m21 * fs) / det
+            n1 = s1 - la * A1 - lb * B1
+            n2 = s2 - la * A2 - lb * B2
+            n3 = s3 - la * A3 - lb * B3
         flag = R_SHEAR
+        if max(n2, n3) > tens:
+            # the shear correction crossed the tension cut-off: the corner
+            n1, n2, n3 = _corner(s1, s2, s3, a1, a2, npsi, sp, tens)
+            flag = R_SHEAR | R_TENSION
     else:
+        # tension (FLAC): s3 to sigma_t; and s2 (then s1) when it also exceeds it
         lam = ft / a1
-        d1 = lam * a2
-        d2 = lam * a2
-        d3 = lam * a1
-        flag = R_TENSION
-    s1 -= d1
-    s2 -= d2
-    s3 -= d3
+        n1 = s1 - lam * a2
+        n2 = s2 - lam * a2
+        n3 = tens
+        if n2 > tens:
+            det = a1 * a1 - a2 * a2
+            l2 = (a1 * (s2 - tens) - a2 * (s3 - tens)) / det
+            l3 = (a1 * (s3 - tens) - a2 * (s2 - tens)) / det
+            n1 = s1 - a2 * (l2 + l3)
+            n2 = tens
+            if n1 > tens:
+                n1 = tens
+        if n1 - n3 * nphi + csn < 0.0:
+            # the tension correction left the shear surface violated: the corner
+            n1, n2, n3 = _corner(s1, s2, s3, a1, a2, npsi, sp, tens)
+            flag = R_SHEAR | R_TENSION
+        else:
+            flag = R_TENSION
+    d1 = s1 - n1
+    d2 = s2 - n2
+    d3 = s3 - n3
+    s1 = n1
+    s2 = n2
+    s3 = n3
     # plastic work density: sigma_new : C^-1 (sigma_trial - sigma_new)
     tr = (d1 + d2 + d3) / 3.0
     k1 = 1.0 / (3.0 * K) - 1.0 / (2.0 * G)
@@ -371,12 +457,13 @@ def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     h = 0.5 * (evB - d11 - d22)
     f3, w3 = _tri_stress(s[3], d11 + h, d22 + h, 0.5 * (d12 + d21), 0.5 * (d21 - d12), K, G, p,
                          large, plastic)
-    if f0 == R_SHEAR or f1 == R_SHEAR or f2 == R_SHEAR or f3 == R_SHEAR:
+    fl = f0 | f1 | f2 | f3
+    if fl & R_SHEAR:
         st |= ST_SHEAR_NOW | ST_SHEAR_PAST
-    if f0 == R_TENSION or f1 == R_TENSION or f2 == R_TENSION or f3 == R_TENSION:
+    if fl & R_TENSION:
         st |= ST_TENSION_NOW | ST_TENSION_PAST
     zstate[z] = st
-    if f0 + f1 + f2 + f3 > 0:
+    if fl != 0:
         # each triangle's volume is a2 / 2 and each overlay counts one half
         zwork[z] += 0.25 * (aA1 * w0 + aA2 * w1 + aB1 * w2 + aB2 * w3)
     # corner forces, -(sxx b + sxy c, sxy b + syy c) / 2 per triangle, halved per overlay

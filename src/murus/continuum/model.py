@@ -204,6 +204,7 @@ class ContinuumModel:
         self.P[K.P_PARMIN] = 4000.0
         self.time = 0.0
         self.E0 = 0.0
+        self.K0 = 0.0
         self._motion_kind = "none"
         self._motion_dt = 0.0
         self._motion_acc = np.zeros(0)
@@ -563,7 +564,8 @@ class ContinuumModel:
             ``plastic`` (work dissipated by plastic flow), ``damping_work`` (work of the
             damping forces, negative), ``base_work`` (work of the fixed and base-driven
             gridpoints on the zones), ``external_work`` (applied forces) and ``error``: the
-            balance ``kinetic + gravity + strain + plastic - (base + external + damping)``.
+            balance ``kinetic - kinetic_0 + gravity + strain + plastic - (base + external +
+            damping)``, with ``kinetic_0`` the kinetic energy of the reference state.
         """
         free = self.gfix == 0
         m = self.gmass[:, None]
@@ -574,7 +576,7 @@ class ContinuumModel:
         out = {"kinetic": ke, "gravity": pe, "strain": se, "plastic": float(self.zwork.sum()),
                "damping_work": float(self.E[K.E_WDAMP]), "base_work": float(self.E[K.E_WBASE]),
                "external_work": float(self.E[K.E_WEXT])}
-        out["error"] = (ke + pe + se + out["plastic"]
+        out["error"] = (ke - self.K0 + pe + se + out["plastic"]
                         - (out["base_work"] + out["external_work"] + out["damping_work"]))
         return out
 
@@ -596,6 +598,8 @@ class ContinuumModel:
         self.E[:] = 0.0
         self.zwork[:] = 0.0
         self.E0 = self._strain_energy()
+        free = self.gfix == 0
+        self.K0 = 0.5 * float((self.gmass[:, None] * self.gvel ** 2 * free).sum())
 
     # ------------------------------------------------------------------ run
     def settle(self, **kw):
