@@ -368,3 +368,44 @@ def test_bad_models_raise_with_the_key():
     with pytest.raises(RunError) as e:
         m.settle(alpha=1.0)
     assert e.value.key == ("alpha",)
+
+
+# ---------------------------------------------------------------------- quiet base
+@pytest.mark.parametrize("wave", ["S", "P"])
+def test_a_pulse_leaves_through_the_quiet_base(wave):
+    """A downgoing plane pulse (u = f(y + c t): velocity c f', stress rho c times the velocity
+    in the matching component) in a 1D column leaves through the quiet base: the energy left in
+    the column afterwards is the reflected energy."""
+    H, n = 20.0, 40
+    mat = Elastic(density=RHO, E=5e7, nu=0.3)
+    xy, zones = rect_mesh(1, n, 1.0, H)
+    m = ContinuumModel(xy, zones, mat, gravity=0.0, large_strain=False)
+    left, right, bottom, top = sides(xy)
+    d = 0 if wave == "S" else 1  # the moving direction
+    m.fix(np.ones(m.ng, bool), x=(d == 1), y=(d == 0))
+    bg = np.flatnonzero(bottom)
+    m.add_quiet([[bg[0], bg[1]]])
+    c = mat.vs if wave == "S" else mat.vp
+    y0, w = 13.0, 1.5
+
+    def vel(y):
+        return 0.1 * np.exp(-0.5 * ((y - y0) / w) ** 2)
+
+    m.gvel[:, d] = vel(m.gxy[:, 1])
+    yc = m.centroids()[:, 1]
+    v = vel(yc)
+    k, g = mat.bulk, mat.shear
+    if wave == "S":
+        m.set_stress(0.0, 0.0, RHO * c * v, 0.0)
+    else:
+        lam = k - 2 * g / 3
+        m.set_stress(lam / (k + 4 * g / 3) * RHO * c * v, RHO * c * v, 0.0,
+                     lam / (k + 4 * g / 3) * RHO * c * v)
+    m.reset_reference()
+    e0 = m.K0 + m.E0
+    res = m.run((y0 + 8 * w) / c, every=10)
+    assert res.success
+    e = m.energy()
+    left_in = e["kinetic"] + e["strain"] + m.E0
+    assert left_in < 0.03 * e0
+    assert -e["dashpot_work"] == pytest.approx(e0 - left_in, rel=0.01)

@@ -21,8 +21,8 @@ from collections import namedtuple
 __all__ = ["Grid", "Zones", "STATE_ARRAYS", "pack", "IG_GXY", "IG_GVEL", "IG_GDISP",
            "IG_GACC", "IZ_ZSIG", "IZ_ZSTATE", "IZ_ZWORK", "IZ_ZF"]
 
-Grid = namedtuple("Grid", ["gxy", "gvel", "gacc", "gdisp", "gmass", "gfix", "gext", "gsp",
-                           "gzc"])
+Grid = namedtuple("Grid", ["gxy", "gvel", "gacc", "gdisp", "gmass", "gfix", "gext", "gdash",
+                           "gsp", "gzc"])
 Grid.__doc__ = """Gridpoints (``ng`` rows each).
 
 - ``gxy (ng, 2)``: coordinates [m] (updated each step in large-strain mode, fixed in
@@ -34,6 +34,8 @@ Grid.__doc__ = """Gridpoints (``ng`` rows each).
 - ``gfix (ng, 2)`` int64: per direction x, y: 0 free, 1 fixed (zero velocity), 2 moved by the
   base motion (velocity of the base in that direction);
 - ``gext (ng, 2)``: applied force [N] (point loads and boundary pressures);
+- ``gdash (ng, 3)``: quiet-boundary dashpot matrix ``(cxx, cxy, cyy)`` [N s/m] of the gridpoint,
+  the sum over its quiet edges of ``L/2 (rho Cp n n^T + rho Cs t t^T)`` (zero elsewhere);
 - ``gsp (ng + 1,)``, ``gzc (nzc,)`` int64: CSR incidence, the zone corners ``4 z + c`` of each
   gridpoint (ascending), by which the gridpoint loop gathers the corner forces.
 """

@@ -35,6 +35,9 @@ not depend on the number of threads; the gridpoint loop combines its partial sum
 order of ``NBLK`` blocks. Damping: Cundall's local non-viscous damping ``-alpha |F| sign(v)``
 per direction (Cundall (1987)) and mass-proportional damping ``-alpha_M m (v - v_base)`` treated
 by the central-difference average (the blocks' form, stable for any ``alpha_M dt``).
+Quiet (viscous) boundaries, Lysmer & Kuhlemeyer (1969): dashpots ``rho Cp`` normal and
+``rho Cs`` tangential per unit length of a boundary edge, lumped to its gridpoints as the matrix
+``gdash`` (absolute velocities), their diagonal treated as the mass damping.
 """
 
 from __future__ import annotations
@@ -73,7 +76,8 @@ NP = 7
 E_WDAMP = 0  # work of the damping forces (negative) [J]
 E_WBASE = 1  # work of the fixed and base-driven gridpoints on the zones [J]
 E_WEXT = 2  # work of the applied forces gext [J]
-NE = 3
+E_WDASH = 3  # work of the quiet-boundary dashpots (negative) [J]
+NE = 4
 
 # ---- counters and statistics -----------------------------------------------------------------
 C_STEP = 0
@@ -89,7 +93,8 @@ Q_NFREE = 2
 Q_WDAMP = 3
 Q_WBASE = 4
 Q_WEXT = 5
-NQ = 6
+Q_WDASH = 6
+NQ = 7
 
 #: Blocks of the gridpoint loop (fixed, so the partial sums are combined in the same order on
 #: any number of threads).
@@ -569,6 +574,7 @@ def _grid_block(blk, P, fr, grid, zf, part):
     gmass = grid.gmass
     gfix = grid.gfix
     gext = grid.gext
+    gdash = grid.gdash
     gsp = grid.gsp
     gzc = grid.gzc
     ng = gmass.size
@@ -586,6 +592,7 @@ def _grid_block(blk, P, fr, grid, zf, part):
     wdamp = 0.0
     wbase = 0.0
     wext = 0.0
+    wdash = 0.0
     for g in range(lo, hi):
         fix_x = gfix[g, 0]
         fix_y = gfix[g, 1]
@@ -600,11 +607,14 @@ def _grid_block(blk, P, fr, grid, zf, part):
             fy += ay
             fa += math.sqrt(ax * ax + ay * ay)
         m = gmass[g]
+        vx0 = gvel[g, 0]
+        vy0 = gvel[g, 1]
+        cxy = gdash[g, 1]
         un2 = 0.0
         for d in range(2):
             fint = fx if d == 0 else fy
             fix = fix_x if d == 0 else fix_y
-            v0 = gvel[g, d]
+            v0 = vx0 if d == 0 else vy0
             if fix == 0:
                 gg = fr.gx if d == 0 else fr.gy
                 vb = fr.vx if d == 0 else fr.vy
@@ -615,9 +625,16 @@ def _grid_block(blk, P, fr, grid, zf, part):
                 wv = v0 - db
                 if alocal > 0.0 and wv != 0.0:
                     fd = -alocal * abs(f) * (1.0 if wv > 0.0 else -1.0)
-                v1 = (v0 * (1.0 - cm) + dt * (f + fd) / m + 2.0 * cm * db) / (1.0 + cm)
+                # quiet dashpots: the diagonal term on the mean velocity of the step (as the
+                # mass damping), the coupling term on the other direction's half-step velocity
+                cdd = gdash[g, 0] if d == 0 else gdash[g, 2]
+                fc = -cxy * (vy0 if d == 0 else vx0)
+                cd = 0.5 * cdd * dt / m
+                v1 = ((v0 * (1.0 - cm - cd) + dt * (f + fd + fc) / m + 2.0 * cm * db)
+                      / (1.0 + cm + cd))
                 vm = 0.5 * (v0 + v1)
                 wdamp += dt * (fd - amass * m * (vm - db)) * vm
+                wdash += dt * (fc - cdd * vm) * vm
                 wext += dt * gext[g, d] * vm
             elif fix == 1:
                 v1 = 0.0
@@ -642,6 +659,7 @@ def _grid_block(blk, P, fr, grid, zf, part):
     part[blk, Q_WDAMP] = wdamp
     part[blk, Q_WBASE] = wbase
     part[blk, Q_WEXT] = wext
+    part[blk, Q_WDASH] = wdash
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
@@ -720,6 +738,7 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part):
             E[E_WDAMP] += part[blk, Q_WDAMP]
             E[E_WBASE] += part[blk, Q_WBASE]
             E[E_WEXT] += part[blk, Q_WEXT]
+            E[E_WDASH] += part[blk, Q_WDASH]
         S[S_UNBAL] = unbal
         S[S_MEANF] = fsum / nfree if nfree > 0.0 else 0.0
         C[C_STEP] += 1

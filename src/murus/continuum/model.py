@@ -174,6 +174,7 @@ class ContinuumModel:
         self.gdisp = np.zeros((ng, 2))
         self.gfix = np.zeros((ng, 2), np.int64)
         self.gext = np.zeros((ng, 2))
+        self.gdash = np.zeros((ng, 3))
         self.zg = np.ascontiguousarray(zg)
         self.zmat = np.ascontiguousarray(zm.astype(np.int64))
         self.zsig = np.zeros((nz, 4, 4))
@@ -361,26 +362,70 @@ class ContinuumModel:
         ModelError
             An edge that is not a boundary edge (key ``("edges", i)``).
         """
-        ed = np.asarray(edges)
-        if ed.ndim != 2 or ed.shape[1] != 2 or ed.shape[0] == 0:
-            raise ModelError("edges must be a non-empty (k, 2) array of gridpoints",
-                             key=("edges",))
         if not math.isfinite(pressure):
             raise ModelError("pressure must be finite", key=("pressure",))
-        bnd = self.boundary_edges()
-        lookup = {(int(a), int(b)): True for a, b in bnd}
-        for i, (a, b) in enumerate(ed.astype(np.int64)):
-            if (a, b) in lookup:
-                p, q = a, b
-            elif (b, a) in lookup:
-                p, q = b, a
-            else:
-                raise ModelError(f"edge {i} ({a}, {b}) is not a boundary edge of a zone",
-                                 key=("edges", i))
+        ed, _ = self._orient(edges, "edges")
+        for p, q in ed:
             d = self.gxy[q] - self.gxy[p]
             n = np.array([d[1], -d[0]])  # outward, times L
             self.gext[p] -= 0.5 * pressure * n
             self.gext[q] -= 0.5 * pressure * n
+
+    def _orient(self, edges, name):
+        """Boundary edges (k, 2) oriented with their zone on the left, and each edge's zone."""
+        ed = np.asarray(edges)
+        if ed.ndim != 2 or ed.shape[1] != 2 or ed.shape[0] == 0:
+            raise ModelError(f"{name} must be a non-empty (k, 2) array of gridpoints",
+                             key=(name,))
+        e = np.stack([self.zg, np.roll(self.zg, -1, axis=1)], axis=2).reshape(-1, 2)
+        key = np.sort(e, axis=1)
+        _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+        single = cnt[inv.ravel()] == 1
+        lookup = {(int(a), int(b)): k // 4 for k, (a, b) in enumerate(e) if single[k]}
+        out = np.zeros((ed.shape[0], 2), np.int64)
+        zone = np.zeros(ed.shape[0], np.int64)
+        for i, (a, b) in enumerate(ed.astype(np.int64)):
+            if (a, b) in lookup:
+                out[i] = a, b
+                zone[i] = lookup[(a, b)]
+            elif (b, a) in lookup:
+                out[i] = b, a
+                zone[i] = lookup[(b, a)]
+            else:
+                raise ModelError(f"{name}: edge {i} ({a}, {b}) is not a boundary edge of a zone",
+                                 key=(name, i))
+        return out, zone
+
+    def add_quiet(self, edges) -> None:
+        """Quiet (viscous) boundary on boundary edges: dashpots ``rho Cp`` normal and
+        ``rho Cs`` tangential per unit length (the material of each edge's zone), lumped half
+        to each end gridpoint, on the absolute velocity (a base or side where the waves leave
+        the model; with an input motion from below, combine with free-field sides).
+
+        Parameters
+        ----------
+        edges : array_like (k, 2) of int
+            Gridpoint pairs, each an edge of exactly one zone (either orientation).
+
+        Raises
+        ------
+        ModelError
+            An edge that is not a boundary edge (key ``("quiet", i)``).
+
+        References
+        ----------
+        Lysmer & Kuhlemeyer (1969); Itasca FLAC, Dynamic Analysis ("quiet boundaries").
+        """
+        ed, zone = self._orient(edges, "quiet")
+        for (a, b), z in zip(ed, zone, strict=True):
+            mt = self.materials[self.zmat[z]]
+            d = self.gxy[b] - self.gxy[a]
+            L = float(np.hypot(d[0], d[1]))
+            n = np.array([d[1], -d[0]]) / L
+            t = d / L
+            C = 0.5 * L * mt.density * (mt.vp * np.outer(n, n) + mt.vs * np.outer(t, t))
+            for g in (a, b):
+                self.gdash[g] += (C[0, 0], C[0, 1], C[1, 1])
 
     def set_base_motion(self, motion=None, velocity: Callable | None = None) -> None:
         """Motion of the ``base`` gridpoints: a GroundMotion (``acc`` and optional ``acc_v``
@@ -563,9 +608,9 @@ class ContinuumModel:
             stresses, ``sigma : C^-1 : sigma / 2`` per triangle, minus its reference value),
             ``plastic`` (work dissipated by plastic flow), ``damping_work`` (work of the
             damping forces, negative), ``base_work`` (work of the fixed and base-driven
-            gridpoints on the zones), ``external_work`` (applied forces) and ``error``: the
-            balance ``kinetic - kinetic_0 + gravity + strain + plastic - (base + external +
-            damping)``, with ``kinetic_0`` the kinetic energy of the reference state.
+            gridpoints on the zones), ``external_work`` (applied forces), ``dashpot_work``
+            (quiet boundaries, negative) and ``error``: the balance ``kinetic - kinetic_0 +
+            gravity + strain + plastic - (base + external + damping + dashpot)``, with ``kinetic_0`` the kinetic energy of the reference state.
         """
         free = self.gfix == 0
         m = self.gmass[:, None]
@@ -575,9 +620,11 @@ class ContinuumModel:
         se = self._strain_energy() - self.E0
         out = {"kinetic": ke, "gravity": pe, "strain": se, "plastic": float(self.zwork.sum()),
                "damping_work": float(self.E[K.E_WDAMP]), "base_work": float(self.E[K.E_WBASE]),
-               "external_work": float(self.E[K.E_WEXT])}
+               "external_work": float(self.E[K.E_WEXT]),
+               "dashpot_work": float(self.E[K.E_WDASH])}
         out["error"] = (ke - self.K0 + pe + se + out["plastic"]
-                        - (out["base_work"] + out["external_work"] + out["damping_work"]))
+                        - (out["base_work"] + out["external_work"] + out["damping_work"]
+                           + out["dashpot_work"]))
         return out
 
     def _strain_energy(self) -> float:
