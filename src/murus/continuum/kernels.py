@@ -209,6 +209,17 @@ def mc_return(sxx, syy, sxy, szz, K, G, nphi, npsi, csn, tens):
     ft = s3 - tens
     if fs >= 0.0 and ft <= 0.0:
         return sxx, syy, sxy, szz, R_ELASTIC, 0.0
+    return _mc_correct(s1, s2, s3, iz, fs, ft, d, r, sxy, K, G, (nphi, npsi, csn, tens))
+
+
+@njit(cache=True, error_model="numpy")
+def _mc_correct(s1, s2, s3, iz, fs, ft, d, r, sxy, K, G, mp):
+    """The plastic correction of :func:`mc_return` (kept out of line: the zone loop inlines
+    only the elastic check): principal stresses ``s1 <= s2 <= s3`` [Pa] with the position
+    ``iz`` of szz, the yield functions ``fs``, ``ft`` [Pa], the in-plane half difference ``d``,
+    radius ``r`` and ``sxy`` of the trial [Pa], the moduli [Pa] and ``mp = (N_phi, N_psi,
+    2 c sqrt(N_phi), sigma_t)``."""
+    nphi, npsi, csn, tens = mp
     a1 = K + 4.0 * G / 3.0
     a2 = K - 2.0 * G / 3.0
     ap = math.sqrt(1.0 + nphi * nphi) + nphi
