@@ -113,9 +113,13 @@ def run(
     """Run a case file: a rocking case writes summary.json, timeseries.csv and response.png;
     a distinct-element case ([dem] table) writes summary.json, histories.csv, blocks.png and
     an optional VTK series."""
+    from murus.continuum.case import is_continuum_case
     from murus.dem.case import is_dem_case
     from murus.outputs import OutputError, check_dir
 
+    if is_continuum_case(case):
+        _run_continuum(case, out, not no_figure, progress)
+        return
     if is_dem_case(case):
         _run_dem(case, out, not no_figure, progress)
         return
@@ -184,6 +188,48 @@ def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
     if not res.ok:
         # the job did not succeed: its outputs say so (summary.json "ok": false), exit 1
         typer.echo(f"error: {case.name}: {res.result.status}: {res.result.message}", err=True)
+        raise typer.Exit(code=1)
+
+
+def _run_continuum(case: Path, out: Path, figure: bool, progress: bool) -> None:
+    """The continuum branch of ``murus run``."""
+    from murus.config import CaseError
+    from murus.continuum.case import (
+        build,
+        load_case,
+        output_names,
+        run_case,
+        summary_line,
+        write_outputs,
+    )
+    from murus.outputs import OutputError, check_dir
+
+    try:
+        check_dir(out)
+        cfg, path, text = load_case(case)
+        figure = figure and cfg.output.figure
+        check_dir(out, output_names(figure))
+        built = build(cfg, path, text)
+    except OutputError as exc:
+        _out_error(exc)
+    except CaseError as exc:
+        fail(cliutil.error_line(exc))
+    from murus.progress import LazyProgress
+
+    with LazyProgress(f"{case.name}", unit="s", quiet=not progress) as bar:
+        res = run_case(built, progress=lambda done, total: bar.update(done, total, info="run"))
+    try:
+        write_outputs(res, out, figure=figure)
+    except OutputError as exc:
+        _out_error(exc)
+    typer.echo(f"{summary_line(case.name, res)} -> {out}")
+    if res.status == "interrupted":
+        cliutil.failed(f"{case.name}: {res.result.message}; the results up to then are in {out} "
+                       "(summary.json status 'interrupted')", code=130)
+    if not res.ok:
+        typer.echo(f"error: {case.name}: {res.status}: "
+                   f"{res.result.message if res.result is not None else res.settled.message}",
+                   err=True)
         raise typer.Exit(code=1)
 
 

@@ -610,7 +610,8 @@ class ContinuumModel:
             damping forces, negative), ``base_work`` (work of the fixed and base-driven
             gridpoints on the zones), ``external_work`` (applied forces), ``dashpot_work``
             (quiet boundaries, negative) and ``error``: the balance ``kinetic - kinetic_0 +
-            gravity + strain + plastic - (base + external + damping + dashpot)``, with ``kinetic_0`` the kinetic energy of the reference state.
+            gravity + strain + plastic - (base + external + damping + dashpot)``, with
+            ``kinetic_0`` the kinetic energy of the reference state.
         """
         free = self.gfix == 0
         m = self.gmass[:, None]
