@@ -603,20 +603,24 @@ class ContinuumModel:
         Returns
         -------
         dict
-            ``kinetic`` (half-step velocities of the free directions), ``gravity``
-            (``-sum m g . u`` over the free directions), ``strain`` (elastic energy of the
-            stresses, ``sigma : C^-1 : sigma / 2`` per triangle, minus its reference value),
-            ``plastic`` (work dissipated by plastic flow), ``damping_work`` (work of the
-            damping forces, negative), ``base_work`` (work of the fixed and base-driven
-            gridpoints on the zones), ``external_work`` (applied forces), ``dashpot_work``
-            (quiet boundaries, negative) and ``error``: the balance ``kinetic - kinetic_0 +
-            gravity + strain + plastic - (base + external + damping + dashpot)``, with ``kinetic_0`` the kinetic energy of the reference state.
+            ``kinetic`` (``m v(t - dt/2) . v(t + dt/2) / 2`` over the free directions, at the
+            time t of the stresses), ``gravity`` (``-sum m g . u(t)`` over the free
+            directions), ``strain`` (elastic energy of the stresses, ``sigma : C^-1 : sigma /
+            2`` per triangle, minus its reference value), ``plastic`` (work dissipated by
+            plastic flow), ``damping_work`` (work of the damping forces, negative),
+            ``base_work`` (work of the fixed and base-driven gridpoints on the zones),
+            ``external_work`` (applied forces), ``dashpot_work`` (quiet boundaries, negative)
+            and ``error``: the balance ``kinetic - kinetic_0 + gravity + strain + plastic -
+            (base + external + damping + dashpot)``, with ``kinetic_0`` the kinetic energy of
+            the reference state.
         """
         free = self.gfix == 0
         m = self.gmass[:, None]
-        ke = 0.5 * float((m * self.gvel ** 2 * free).sum())
+        ke = self._kinetic()
         g = np.array([0.0, -self.gravity])
-        pe = -float((m * self.gdisp * g * free).sum())
+        # displacement at the time of the stresses (one step behind the gridpoints)
+        u = self.gdisp - self.dt * self.gvel
+        pe = -float((m * u * g * free).sum())
         se = self._strain_energy() - self.E0
         out = {"kinetic": ke, "gravity": pe, "strain": se, "plastic": float(self.zwork.sum()),
                "damping_work": float(self.E[K.E_WDAMP]), "base_work": float(self.E[K.E_WBASE]),
@@ -626,6 +630,13 @@ class ContinuumModel:
                         - (out["base_work"] + out["external_work"] + out["damping_work"]
                            + out["dashpot_work"]))
         return out
+
+    def _kinetic(self) -> float:
+        """Kinetic energy at the time of the stresses, ``m v(t - dt/2) . v(t + dt/2) / 2``
+        over the free directions (the leapfrog's conserved form)."""
+        free = self.gfix == 0
+        vm = self.gvel - self.dt * self.gacc
+        return 0.5 * float((self.gmass[:, None] * self.gvel * vm * free).sum())
 
     def _strain_energy(self) -> float:
         a2, _ = _tri_geometry(self.gxy, self.zg)
@@ -645,8 +656,7 @@ class ContinuumModel:
         self.E[:] = 0.0
         self.zwork[:] = 0.0
         self.E0 = self._strain_energy()
-        free = self.gfix == 0
-        self.K0 = 0.5 * float((self.gmass[:, None] * self.gvel ** 2 * free).sum())
+        self.K0 = self._kinetic()
 
     # ------------------------------------------------------------------ run
     def settle(self, **kw):
