@@ -369,6 +369,10 @@ def test_bad_models_raise_with_the_key():
     with pytest.raises(RunError) as e:
         m.settle(alpha=1.0)
     assert e.value.key == ("alpha",)
+    with pytest.raises(ModelError) as e:
+        m.set_dt(1.01 * m.critical_dt())
+    assert e.value.key == ("dt",)
+    assert m.set_dt(m.critical_dt()) == m.critical_dt()
 
 
 # ---------------------------------------------------------------------- quiet base

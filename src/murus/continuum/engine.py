@@ -179,7 +179,7 @@ def _recheck_dt(m) -> str | None:
 
 def settle(m, tol: float = 1e-5, alpha: float = 0.8, max_steps: int = 200_000,
            check_every: int = 100, elastic_first: bool = True, reset: bool = True,
-           threads: int | None = 1) -> SettleResult:
+           threads: int | None = None) -> SettleResult:
     """Static equilibrium under gravity, the applied forces and the fixities, with local
     damping (module doc).
 
@@ -200,7 +200,8 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.8, max_steps: int = 200_000,
     reset : bool
         Take the settled state as the reference of displacements and energies.
     threads : int or None
-        numba threads (None: numba's setting).
+        numba threads (None: numba's setting); below ``P_PARMIN`` zones (4000) the loops run
+        serially whatever the setting.
 
     Returns
     -------
@@ -330,7 +331,7 @@ def run(m, duration: float, *, motion=None, velocity=None, xi: float = 0.0,
         freq: float | None = None, local_damping: float = 0.0, monitors: dict | None = None,
         sample_dt: float | None = None, every: int | None = None,
         damping_frame: str = "base", max_steps: int | None = None,
-        threads: int | None = 1) -> RunResult:
+        threads: int | None = None) -> RunResult:
     """Dynamic run over ``duration`` [s] from the current model time.
 
     Parameters
@@ -359,7 +360,8 @@ def run(m, duration: float, *, motion=None, velocity=None, xi: float = 0.0,
     max_steps : int, optional
         Largest number of steps of this call.
     threads : int or None
-        numba threads (None: numba's setting).
+        numba threads (None: numba's setting); below ``P_PARMIN`` zones (4000) the loops run
+        serially whatever the setting.
 
     Returns
     -------

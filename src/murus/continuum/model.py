@@ -263,6 +263,34 @@ class ContinuumModel:
         """
         return (self.safety if safety is None else float(safety)) * self.critical_dt()
 
+    def set_dt(self, dt: float | None = None) -> float:
+        """Set the time step: ``dt`` [s] (a mixed model passes the smaller of the zones' and
+        the contacts' steps), or None for :meth:`stable_dt`.
+
+        Parameters
+        ----------
+        dt : float or None
+            The step [s], ``0 < dt <= critical_dt()``.
+
+        Returns
+        -------
+        float
+            The step set [s].
+
+        Raises
+        ------
+        ModelError
+            A step above the zones' critical step (key ``("dt",)``).
+        """
+        if dt is None:
+            dt = self.stable_dt()
+        crit = self.critical_dt()
+        if not (math.isfinite(dt) and 0.0 < dt <= crit):
+            raise ModelError(f"dt must be in (0, {crit:.4g}] s (the zones' critical step), "
+                             f"got {dt!r}", key=("dt",))
+        self.P[K.P_DT] = float(dt)
+        return float(dt)
+
     # ------------------------------------------------------------------ boundaries
     def fix(self, gridpoints, x: bool = True, y: bool = True) -> None:
         """Fix gridpoints (zero velocity) in x and/or y; ``x=True, y=False`` is a roller on a
