@@ -796,22 +796,20 @@ def zone_dt(gxy, zg, zmat, mprops):
     for z in range(nz):
         p = mprops[zmat[z]]
         cp = math.sqrt((p[M_K] + 4.0 * p[M_G] / 3.0) / p[M_RHO])
-        x = np.empty(4)
-        y = np.empty(4)
-        for c in range(4):
-            x[c] = gxy[zg[z, c], 0]
-            y[c] = gxy[zg[z, c], 1]
-        a = 0.0
-        for c in range(4):
-            a += x[c] * y[(c + 1) % 4] - x[(c + 1) % 4] * y[c]
-        a *= 0.5
-        lmax = 0.0
-        for i in range(4):
-            for j in range(i + 1, 4):
-                L = math.hypot(x[i] - x[j], y[i] - y[j])
-                if L > lmax:
-                    lmax = L
-        out[z] = a / (cp * lmax) if a > 0.0 else 0.0
+        x0 = gxy[zg[z, 0], 0]
+        y0 = gxy[zg[z, 0], 1]
+        x1 = gxy[zg[z, 1], 0]
+        y1 = gxy[zg[z, 1], 1]
+        x2 = gxy[zg[z, 2], 0]
+        y2 = gxy[zg[z, 2], 1]
+        x3 = gxy[zg[z, 3], 0]
+        y3 = gxy[zg[z, 3], 1]
+        a = 0.5 * ((x0 * y1 - x1 * y0) + (x1 * y2 - x2 * y1) + (x2 * y3 - x3 * y2)
+                   + (x3 * y0 - x0 * y3))
+        l2 = max((x1 - x0) ** 2 + (y1 - y0) ** 2, (x2 - x1) ** 2 + (y2 - y1) ** 2,
+                 (x3 - x2) ** 2 + (y3 - y2) ** 2, (x0 - x3) ** 2 + (y0 - y3) ** 2,
+                 (x2 - x0) ** 2 + (y2 - y0) ** 2, (x3 - x1) ** 2 + (y3 - y1) ** 2)
+        out[z] = a / (cp * math.sqrt(l2)) if a > 0.0 else 0.0
     return out
 
 
