@@ -280,10 +280,11 @@ def test_shear_column_on_a_shaking_base_follows_the_damped_transfer_function():
     tail = res.t > 12.0 - 2.0 / f1
     got = np.abs(res["u"][tail]).max() / ub
     assert got == pytest.approx(amp, rel=0.05)
-    # energy balance of the driven, damped run
+    # energy balance of the driven, damped run: central differences balance the energy of a
+    # linear system exactly in the form of ContinuumModel.energy (round-off only)
     e = res.values
     scale = np.abs(e["energy.base_work"]).max()
-    assert np.abs(e["energy.error"]).max() < 0.01 * scale
+    assert np.abs(e["energy.error"]).max() < 1e-9 * scale
 
 
 # ---------------------------------------------------------------------- Mohr-Coulomb
@@ -311,7 +312,11 @@ def test_biaxial_compression_yields_at_the_mohr_coulomb_strength():
     assert -res["sxx"][-1] == pytest.approx(p, rel=0.01)
     assert int(res["state"][-1]) & K.ST_SHEAR_NOW
     assert (m.plastic_state() & K.ST_SHEAR_PAST).all()
-    assert m.energy()["plastic"] > 0
+    e = m.energy()
+    assert e["plastic"] > 0
+    # energy balance with plastic flow, local damping, a driven platen and a pressure: closes
+    # to a small fraction of the work put in (the plastic work is first order in the step)
+    assert abs(e["error"]) < 1e-3 * e["base_work"]
 
 
 # ---------------------------------------------------------------------- bad inputs
@@ -413,7 +418,8 @@ def test_a_pulse_leaves_through_the_quiet_base(wave):
     e = m.energy()
     left_in = e["kinetic"] + e["strain"] + m.E0
     assert left_in < 0.03 * e0
-    assert -e["dashpot_work"] == pytest.approx(e0 - left_in, rel=0.01)
+    # the energy that left is the dashpots' work, exactly (linear system, energy() form)
+    assert -e["dashpot_work"] == pytest.approx(e0 - left_in, rel=1e-9)
 
 
 def test_large_strain_rotates_the_stress_with_the_body():

@@ -77,7 +77,13 @@ E_WDAMP = 0  # work of the damping forces (negative) [J]
 E_WBASE = 1  # work of the fixed and base-driven gridpoints on the zones [J]
 E_WEXT = 2  # work of the applied forces gext [J]
 E_WDASH = 3  # work of the quiet-boundary dashpots (negative) [J]
-NE = 4
+# the share of the last step's work done after the time of its stresses (``dt F . v+ / 2``):
+# the energy at that time (:meth:`murus.continuum.model.ContinuumModel.energy`) subtracts it
+E_TDAMP = 4
+E_TBASE = 5
+E_TEXT = 6
+E_TDASH = 7
+NE = 8
 
 # ---- counters and statistics -----------------------------------------------------------------
 C_STEP = 0
@@ -94,7 +100,11 @@ Q_WDAMP = 3
 Q_WBASE = 4
 Q_WEXT = 5
 Q_WDASH = 6
-NQ = 7
+Q_TDAMP = 7
+Q_TBASE = 8
+Q_TEXT = 9
+Q_TDASH = 10
+NQ = 11
 
 #: Blocks of the gridpoint loop (fixed, so the partial sums are combined in the same order on
 #: any number of threads).
@@ -604,6 +614,10 @@ def _grid_block(blk, P, fr, grid, zf, part):
     wbase = 0.0
     wext = 0.0
     wdash = 0.0
+    tdamp = 0.0
+    tbase = 0.0
+    text = 0.0
+    tdash = 0.0
     for g in range(lo, hi):
         fix_x = gfix[g, 0]
         fix_y = gfix[g, 1]
@@ -644,15 +658,23 @@ def _grid_block(blk, P, fr, grid, zf, part):
                 v1 = ((v0 * (1.0 - cm - cd) + dt * (f + fd + fc) / m + 2.0 * cm * db)
                       / (1.0 + cm + cd))
                 vm = 0.5 * (v0 + v1)
-                wdamp += dt * (fd - amass * m * (vm - db)) * vm
-                wdash += dt * (fc - cdd * vm) * vm
+                f_damp = fd - amass * m * (vm - db)
+                f_dash = fc - cdd * vm
+                wdamp += dt * f_damp * vm
+                wdash += dt * f_dash * vm
                 wext += dt * gext[g, d] * vm
+                tdamp += 0.5 * dt * f_damp * v1
+                tdash += 0.5 * dt * f_dash * v1
+                text += 0.5 * dt * gext[g, d] * v1
             elif fix == 1:
                 v1 = 0.0
             else:
+                # moved by the base: its work on the zones, with the force at t and the mean
+                # of the half-step velocities around t (the form in which the leapfrog's
+                # kinetic energy m v- . v+ / 2 and the strain energy balance exactly)
                 v1 = fr.vhx if d == 0 else fr.vhy
-                vf = fr.vx if d == 0 else fr.vy
-                wbase -= dt * fint * vf
+                wbase -= dt * fint * 0.5 * (v0 + v1)
+                tbase -= 0.5 * dt * fint * v1
             gacc[g, d] = (v1 - v0) / dt
             gvel[g, d] = v1
             gdisp[g, d] += v1 * dt
@@ -671,6 +693,10 @@ def _grid_block(blk, P, fr, grid, zf, part):
     part[blk, Q_WBASE] = wbase
     part[blk, Q_WEXT] = wext
     part[blk, Q_WDASH] = wdash
+    part[blk, Q_TDAMP] = tdamp
+    part[blk, Q_TBASE] = tbase
+    part[blk, Q_TEXT] = text
+    part[blk, Q_TDASH] = tdash
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
@@ -742,6 +768,10 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part):
         unbal = 0.0
         fsum = 0.0
         nfree = 0.0
+        E[E_TDAMP] = 0.0
+        E[E_TBASE] = 0.0
+        E[E_TEXT] = 0.0
+        E[E_TDASH] = 0.0
         for blk in range(NBLK):
             unbal = max(unbal, part[blk, Q_UNBAL])
             fsum += part[blk, Q_FSUM]
@@ -750,6 +780,10 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part):
             E[E_WBASE] += part[blk, Q_WBASE]
             E[E_WEXT] += part[blk, Q_WEXT]
             E[E_WDASH] += part[blk, Q_WDASH]
+            E[E_TDAMP] += part[blk, Q_TDAMP]
+            E[E_TBASE] += part[blk, Q_TBASE]
+            E[E_TEXT] += part[blk, Q_TEXT]
+            E[E_TDASH] += part[blk, Q_TDASH]
         S[S_UNBAL] = unbal
         S[S_MEANF] = fsum / nfree if nfree > 0.0 else 0.0
         C[C_STEP] += 1

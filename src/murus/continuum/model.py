@@ -514,7 +514,8 @@ class ContinuumModel:
 
     # ------------------------------------------------------------------ stresses
     def set_stress(self, sxx, syy, sxy=0.0, szz=None, zones=None) -> None:
-        """Set the stress of zones (all four triangles) [Pa, tension positive].
+        """Set the stress of zones (all four triangles) [Pa, tension positive]: initial
+        stresses, which become the reference of the strain energy (:meth:`energy`).
 
         Parameters
         ----------
@@ -537,6 +538,7 @@ class ContinuumModel:
         if not np.all(np.isfinite(s)):
             raise ModelError("stresses must be finite", key=("stress",))
         self.zsig[z] = s[:, None, :]
+        self.E0 = self._strain_energy()  # initial stresses: the reference of the strain energy
 
     def initial_stress_k0(self, k0=None, surface: float | None = None) -> None:
         """Geostatic initial stresses: ``syy = -rho g (surface - y)`` at each zone centroid,
@@ -640,7 +642,10 @@ class ContinuumModel:
             ``external_work`` (applied forces), ``dashpot_work`` (quiet boundaries, negative)
             and ``error``: the balance ``kinetic - kinetic_0 + gravity + strain + plastic -
             (base + external + damping + dashpot)``, with ``kinetic_0`` the kinetic energy of
-            the reference state.
+            the reference state. The works are those done up to the time t of the stresses
+            (the force of a step times the mean of the half-step velocities around it; of the
+            last step, only the half before t), the form in which central differences balance
+            the energy of a linear system exactly.
         """
         free = self.gfix == 0
         m = self.gmass[:, None]
@@ -651,9 +656,10 @@ class ContinuumModel:
         pe = -float((m * u * g * free).sum())
         se = self._strain_energy() - self.E0
         out = {"kinetic": ke, "gravity": pe, "strain": se, "plastic": float(self.zwork.sum()),
-               "damping_work": float(self.E[K.E_WDAMP]), "base_work": float(self.E[K.E_WBASE]),
-               "external_work": float(self.E[K.E_WEXT]),
-               "dashpot_work": float(self.E[K.E_WDASH])}
+               "damping_work": float(self.E[K.E_WDAMP] - self.E[K.E_TDAMP]),
+               "base_work": float(self.E[K.E_WBASE] - self.E[K.E_TBASE]),
+               "external_work": float(self.E[K.E_WEXT] - self.E[K.E_TEXT]),
+               "dashpot_work": float(self.E[K.E_WDASH] - self.E[K.E_TDASH])}
         out["error"] = (ke - self.K0 + pe + se + out["plastic"]
                         - (out["base_work"] + out["external_work"] + out["damping_work"]
                            + out["dashpot_work"]))
