@@ -398,7 +398,8 @@ def _grad(xi, yi, xj, yj, xk, yk, ui, uj, uk, vi, vj, vk):
 def _tri_stress(s, exx, eyy, exy, w, K, G, p, large, plastic):
     """Stress update of one triangle (row ``s`` of 4: sxx, syy, sxy, szz [Pa]) by the strain
     increments ``exx, eyy, exy`` (tensor shear) and the rotation ``w`` [rad] of the step;
-    material row ``p``. Returns (flag of :func:`mc_return`, plastic work density [J/m³])."""
+    material row ``p``. Returns (flag of :func:`mc_return`, plastic work density [J/m³],
+    stress work density ``(sigma_old + sigma_new) / 2 : de`` [J/m³])."""
     sxx = s[0]
     syy = s[1]
     sxy = s[2]
@@ -409,6 +410,9 @@ def _tri_stress(s, exx, eyy, exy, w, K, G, p, large, plastic):
         sxx -= rr
         syy += rr
         sxy += dd
+    ox = sxx
+    oy = syy
+    oxy = sxy
     lam = K - 2.0 * G / 3.0
     ev = lam * (exx + eyy)
     sxx += 2.0 * G * exx + ev
@@ -424,7 +428,8 @@ def _tri_stress(s, exx, eyy, exy, w, K, G, p, large, plastic):
     s[1] = syy
     s[2] = sxy
     s[3] = szz
-    return flag, dwp
+    dws = 0.5 * ((ox + sxx) * exx + (oy + syy) * eyy + 2.0 * (oxy + sxy) * exy)
+    return flag, dwp, dws
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -472,16 +477,16 @@ def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     s = zsig[z]
     # triangle 0 of A
     h = 0.5 * (evA - a11 - a22)
-    f0, w0 = _tri_stress(s[0], a11 + h, a22 + h, 0.5 * (a12 + a21), 0.5 * (a21 - a12), K, G, p,
+    f0, w0, q0 = _tri_stress(s[0], a11 + h, a22 + h, 0.5 * (a12 + a21), 0.5 * (a21 - a12), K, G, p,
                          large, plastic)
     h = 0.5 * (evA - b11 - b22)
-    f1, w1 = _tri_stress(s[1], b11 + h, b22 + h, 0.5 * (b12 + b21), 0.5 * (b21 - b12), K, G, p,
+    f1, w1, q1 = _tri_stress(s[1], b11 + h, b22 + h, 0.5 * (b12 + b21), 0.5 * (b21 - b12), K, G, p,
                          large, plastic)
     h = 0.5 * (evB - c11 - c22)
-    f2, w2 = _tri_stress(s[2], c11 + h, c22 + h, 0.5 * (c12 + c21), 0.5 * (c21 - c12), K, G, p,
+    f2, w2, q2 = _tri_stress(s[2], c11 + h, c22 + h, 0.5 * (c12 + c21), 0.5 * (c21 - c12), K, G, p,
                          large, plastic)
     h = 0.5 * (evB - d11 - d22)
-    f3, w3 = _tri_stress(s[3], d11 + h, d22 + h, 0.5 * (d12 + d21), 0.5 * (d21 - d12), K, G, p,
+    f3, w3, q3 = _tri_stress(s[3], d11 + h, d22 + h, 0.5 * (d12 + d21), 0.5 * (d21 - d12), K, G, p,
                          large, plastic)
     fl = f0 | f1 | f2 | f3
     if fl & R_SHEAR:
@@ -489,9 +494,10 @@ def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     if fl & R_TENSION:
         st |= ST_TENSION_NOW | ST_TENSION_PAST
     zstate[z] = st
+    # each triangle's volume is a2 / 2 and each overlay counts one half
     if fl != 0:
-        # each triangle's volume is a2 / 2 and each overlay counts one half
-        zwork[z] += 0.25 * (aA1 * w0 + aA2 * w1 + aB1 * w2 + aB2 * w3)
+        zwork[z, 0] += 0.25 * (aA1 * w0 + aA2 * w1 + aB1 * w2 + aB2 * w3)
+    zwork[z, 1] += 0.25 * (aA1 * q0 + aA2 * q1 + aB1 * q2 + aB2 * q3)
     # corner forces, -(sxx b + sxy c, sxy b + syy c) / 2 per triangle, halved per overlay
     fx0 = 0.0
     fy0 = 0.0

@@ -179,7 +179,7 @@ class ContinuumModel:
         self.zmat = np.ascontiguousarray(zm.astype(np.int64))
         self.zsig = np.zeros((nz, 4, 4))
         self.zstate = np.zeros(nz, np.int64)
-        self.zwork = np.zeros(nz)
+        self.zwork = np.zeros((nz, 2))
         self.zf = np.zeros((4 * nz, 2))
         self.mprops = np.array([mt.row() for mt in mats])
         # CSR incidence gridpoint -> zone corners (ascending 4 z + c)
@@ -204,7 +204,6 @@ class ContinuumModel:
         self.P[K.P_PLASTIC] = 1.0
         self.P[K.P_PARMIN] = 4000.0
         self.time = 0.0
-        self.E0 = 0.0
         self.K0 = 0.0
         self._motion_kind = "none"
         self._motion_dt = 0.0
@@ -514,8 +513,7 @@ class ContinuumModel:
 
     # ------------------------------------------------------------------ stresses
     def set_stress(self, sxx, syy, sxy=0.0, szz=None, zones=None) -> None:
-        """Set the stress of zones (all four triangles) [Pa, tension positive]: initial
-        stresses, which become the reference of the strain energy (:meth:`energy`).
+        """Set the stress of zones (all four triangles) [Pa, tension positive].
 
         Parameters
         ----------
@@ -538,7 +536,6 @@ class ContinuumModel:
         if not np.all(np.isfinite(s)):
             raise ModelError("stresses must be finite", key=("stress",))
         self.zsig[z] = s[:, None, :]
-        self.E0 = self._strain_energy()  # initial stresses: the reference of the strain energy
 
     def initial_stress_k0(self, k0=None, surface: float | None = None) -> None:
         """Geostatic initial stresses: ``syy = -rho g (surface - y)`` at each zone centroid,
@@ -635,10 +632,12 @@ class ContinuumModel:
         dict
             ``kinetic`` (``m v(t - dt/2) . v(t + dt/2) / 2`` over the free directions, at the
             time t of the stresses), ``gravity`` (``-sum m g . u(t)`` over the free
-            directions), ``strain`` (elastic energy of the stresses, ``sigma : C^-1 : sigma /
-            2`` per triangle, minus its reference value), ``plastic`` (work dissipated by
-            plastic flow), ``damping_work`` (work of the damping forces, negative),
-            ``base_work`` (work of the fixed and base-driven gridpoints on the zones),
+            directions), ``strain`` (elastic strain energy stored since the reference: the
+            work of the stresses on the strain increments, ``(sigma_old + sigma_new) / 2 :
+            de`` per triangle and step, minus the plastic work; for a linear elastic zone in
+            small strain, exactly the change of ``sigma : C^-1 : sigma / 2``), ``plastic``
+            (work dissipated by plastic flow), ``damping_work`` (work of the damping forces,
+            negative), ``base_work`` (work of the fixed and base-driven gridpoints on the zones),
             ``external_work`` (applied forces), ``dashpot_work`` (quiet boundaries, negative)
             and ``error``: the balance ``kinetic - kinetic_0 + gravity + strain + plastic -
             (base + external + damping + dashpot)``, with ``kinetic_0`` the kinetic energy of
@@ -654,8 +653,9 @@ class ContinuumModel:
         # displacement at the time of the stresses (one step behind the gridpoints)
         u = self.gdisp - self.dt * self.gvel
         pe = -float((m * u * g * free).sum())
-        se = self._strain_energy() - self.E0
-        out = {"kinetic": ke, "gravity": pe, "strain": se, "plastic": float(self.zwork.sum()),
+        plastic = float(self.zwork[:, 0].sum())
+        se = float(self.zwork[:, 1].sum()) - plastic
+        out = {"kinetic": ke, "gravity": pe, "strain": se, "plastic": plastic,
                "damping_work": float(self.E[K.E_WDAMP] - self.E[K.E_TDAMP]),
                "base_work": float(self.E[K.E_WBASE] - self.E[K.E_TBASE]),
                "external_work": float(self.E[K.E_WEXT] - self.E[K.E_TEXT]),
@@ -671,6 +671,16 @@ class ContinuumModel:
         free = self.gfix == 0
         vm = self.gvel - self.dt * self.gacc
         return 0.5 * float((self.gmass[:, None] * self.gvel * vm * free).sum())
+
+    def stored_strain_energy(self) -> float:
+        """Elastic energy of the current stresses, ``sum sigma : C^-1 : sigma / 2`` over the
+        triangles (each weighted by half its area) [J/m] (initial stresses included).
+
+        Returns
+        -------
+        float
+        """
+        return self._strain_energy()
 
     def _strain_energy(self) -> float:
         a2, _ = _tri_geometry(self.gxy, self.zg)
@@ -689,7 +699,6 @@ class ContinuumModel:
         self.gx0[:] = self.gxy
         self.E[:] = 0.0
         self.zwork[:] = 0.0
-        self.E0 = self._strain_energy()
         self.K0 = self._kinetic()
 
     # ------------------------------------------------------------------ run
