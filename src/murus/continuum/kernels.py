@@ -90,6 +90,7 @@ C_STEP = 0
 NC = 1
 S_UNBAL = 0  # largest unbalanced force of a gridpoint (free directions) at the last step [N]
 S_MEANF = 1  # mean over gridpoints of the sum of the magnitudes of their corner forces [N]
+#              (computed with local damping on, i.e. when settling; 0 otherwise)
 NS = 2
 
 # ---- partial sums of the gridpoint blocks ----------------------------------------------------
@@ -610,6 +611,8 @@ def _grid_block(blk, P, fr, grid, zf, part):
     amass = P[P_AMASS]
     drel = P[P_DREL]
     large = P[P_LARGE] > 0.0
+    # the mean force of the unbalanced-force ratio: needed when settling (local damping on)
+    ratio = alocal > 0.0
     cm = 0.5 * amass * dt
     lo = blk * ng // NBLK
     hi = (blk + 1) * ng // NBLK
@@ -636,7 +639,8 @@ def _grid_block(blk, P, fr, grid, zf, part):
             ay = zf[r, 1]
             fx += ax
             fy += ay
-            fa += math.sqrt(ax * ax + ay * ay)
+            if ratio:
+                fa += math.sqrt(ax * ax + ay * ay)
         m = gmass[g]
         vx0 = gvel[g, 0]
         vy0 = gvel[g, 1]
