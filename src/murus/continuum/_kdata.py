@@ -49,7 +49,10 @@ Zones.__doc__ = """Zones (``nz`` rows each).
   triangles: overlay A (diagonal 0-2) triangles (0, 1, 2) and (0, 2, 3), overlay B (diagonal
   1-3) triangles (0, 1, 3) and (1, 2, 3);
 - ``zstate (nz,)`` int64: plastic state bits ``ST_*`` of :mod:`murus.continuum.kernels`;
-- ``zwork (nz,)``: plastic work dissipated in the zone [J] (per out-of-plane thickness);
+- ``zwork (nz, 2)``: work in the zone [J] (per out-of-plane thickness) since the reference
+  state: column 0 dissipated by plastic flow (``sigma : de_p``), column 1 the stress work
+  ``(sigma_old + sigma_new) / 2 : de`` of the strain increments (stored elastic energy plus
+  plastic work);
 - ``zf (4 nz, 2)``: force of zone z on its corner c, row ``4 z + c`` [N] (internal stresses
   only, written by the zone loop, gathered by the gridpoint loop).
 """

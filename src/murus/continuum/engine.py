@@ -2,9 +2,9 @@
 monitors, energy.
 
 Time step: ``dt = safety * min_z A_z / (Cp_z L_z)`` (:meth:`ContinuumModel.critical_dt`, Itasca
-FLAC, Theory and Background), rechecked every chunk of steps in large-strain mode: it only
-shrinks as zones distort. A run stops (status ``"distorted"``) when a triangle of a zone turns
-inside out.
+FLAC, Theory and Background), rechecked every :data:`RECHECK_EVERY` steps (at the end of a chunk
+of steps) in large-strain mode: it only shrinks as zones distort. A run stops (status
+``"distorted"``) when a triangle of a zone turns inside out.
 
 Settling (FLAC's "solve" to a ratio): Cundall's local non-viscous damping (alpha = 0.8) until the
 unbalanced-force ratio, the largest unbalanced force of a gridpoint (free directions) over the
@@ -163,12 +163,17 @@ def _chunk(m, n: int, moving: bool, threads: int | None) -> None:
         numba.set_num_threads(nth)
 
 
-def _recheck_dt(m) -> str | None:
-    """Shrink the step if the zones distorted; a message when a zone is inverted."""
+#: Steps between two rechecks of the time step in large strain.
+RECHECK_EVERY = 100
+
+
+def _recheck_dt(m, full: bool = True) -> str | None:
+    """Shrink the step if the zones distorted (``full``: recompute the zones' critical step);
+    a message when a zone is inverted."""
     if np.any(m.zstate & K.ST_INVERTED):
         z = int(np.flatnonzero(m.zstate & K.ST_INVERTED)[0])
         return f"zone {z} turned inside out (too distorted: large strain)"
-    if m.large_strain:
+    if m.large_strain and full:
         crit = m.critical_dt()
         if crit <= 0.0:
             return "a zone has a non-positive area"
@@ -179,7 +184,7 @@ def _recheck_dt(m) -> str | None:
 
 def settle(m, tol: float = 1e-5, alpha: float = 0.8, max_steps: int = 200_000,
            check_every: int = 100, elastic_first: bool = True, reset: bool = True,
-           threads: int | None = 1) -> SettleResult:
+           threads: int | None = None) -> SettleResult:
     """Static equilibrium under gravity, the applied forces and the fixities, with local
     damping (module doc).
 
@@ -200,7 +205,8 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.8, max_steps: int = 200_000,
     reset : bool
         Take the settled state as the reference of displacements and energies.
     threads : int or None
-        numba threads (None: numba's setting).
+        numba threads (None: numba's setting); below ``P_PARMIN`` zones (4000) the loops run
+        serially whatever the setting.
 
     Returns
     -------
@@ -330,7 +336,7 @@ def run(m, duration: float, *, motion=None, velocity=None, xi: float = 0.0,
         freq: float | None = None, local_damping: float = 0.0, monitors: dict | None = None,
         sample_dt: float | None = None, every: int | None = None,
         damping_frame: str = "base", max_steps: int | None = None,
-        threads: int | None = 1) -> RunResult:
+        threads: int | None = None) -> RunResult:
     """Dynamic run over ``duration`` [s] from the current model time.
 
     Parameters
@@ -359,7 +365,8 @@ def run(m, duration: float, *, motion=None, velocity=None, xi: float = 0.0,
     max_steps : int, optional
         Largest number of steps of this call.
     threads : int or None
-        numba threads (None: numba's setting).
+        numba threads (None: numba's setting); below ``P_PARMIN`` zones (4000) the loops run
+        serially whatever the setting.
 
     Returns
     -------
@@ -401,6 +408,7 @@ def run(m, duration: float, *, motion=None, velocity=None, xi: float = 0.0,
     message = ""
     done = 0
     since = 0
+    last_check = 0
     t0 = _time.perf_counter()
     while m.time < t_end - 0.5 * m.dt:
         remaining = int(math.ceil((t_end - m.time) / m.dt - 1e-9))
@@ -422,7 +430,10 @@ def run(m, duration: float, *, motion=None, velocity=None, xi: float = 0.0,
             status = "unstable"
             message = f"non-finite velocities at t={m.time:.6g} s (lower the time step)"
             break
-        problem = _recheck_dt(m)
+        full = done - last_check >= RECHECK_EVERY
+        if full:
+            last_check = done
+        problem = _recheck_dt(m, full)
         if problem is not None:
             status = "distorted"
             message = f"at t={m.time:.6g} s {problem}"

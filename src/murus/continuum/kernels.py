@@ -77,13 +77,20 @@ E_WDAMP = 0  # work of the damping forces (negative) [J]
 E_WBASE = 1  # work of the fixed and base-driven gridpoints on the zones [J]
 E_WEXT = 2  # work of the applied forces gext [J]
 E_WDASH = 3  # work of the quiet-boundary dashpots (negative) [J]
-NE = 4
+# the share of the last step's work done after the time of its stresses (``dt F . v+ / 2``):
+# the energy at that time (:meth:`murus.continuum.model.ContinuumModel.energy`) subtracts it
+E_TDAMP = 4
+E_TBASE = 5
+E_TEXT = 6
+E_TDASH = 7
+NE = 8
 
 # ---- counters and statistics -----------------------------------------------------------------
 C_STEP = 0
 NC = 1
 S_UNBAL = 0  # largest unbalanced force of a gridpoint (free directions) at the last step [N]
 S_MEANF = 1  # mean over gridpoints of the sum of the magnitudes of their corner forces [N]
+#              (computed with local damping on, i.e. when settling; 0 otherwise)
 NS = 2
 
 # ---- partial sums of the gridpoint blocks ----------------------------------------------------
@@ -94,7 +101,11 @@ Q_WDAMP = 3
 Q_WBASE = 4
 Q_WEXT = 5
 Q_WDASH = 6
-NQ = 7
+Q_TDAMP = 7
+Q_TBASE = 8
+Q_TEXT = 9
+Q_TDASH = 10
+NQ = 11
 
 #: Blocks of the gridpoint loop (fixed, so the partial sums are combined in the same order on
 #: any number of threads).
@@ -388,7 +399,8 @@ def _grad(xi, yi, xj, yj, xk, yk, ui, uj, uk, vi, vj, vk):
 def _tri_stress(s, exx, eyy, exy, w, K, G, p, large, plastic):
     """Stress update of one triangle (row ``s`` of 4: sxx, syy, sxy, szz [Pa]) by the strain
     increments ``exx, eyy, exy`` (tensor shear) and the rotation ``w`` [rad] of the step;
-    material row ``p``. Returns (flag of :func:`mc_return`, plastic work density [J/m³])."""
+    material row ``p``. Returns (flag of :func:`mc_return`, plastic work density [J/m³],
+    stress work density ``(sigma_old + sigma_new) / 2 : de`` [J/m³])."""
     sxx = s[0]
     syy = s[1]
     sxy = s[2]
@@ -399,6 +411,9 @@ def _tri_stress(s, exx, eyy, exy, w, K, G, p, large, plastic):
         sxx -= rr
         syy += rr
         sxy += dd
+    ox = sxx
+    oy = syy
+    oxy = sxy
     lam = K - 2.0 * G / 3.0
     ev = lam * (exx + eyy)
     sxx += 2.0 * G * exx + ev
@@ -414,7 +429,8 @@ def _tri_stress(s, exx, eyy, exy, w, K, G, p, large, plastic):
     s[1] = syy
     s[2] = sxy
     s[3] = szz
-    return flag, dwp
+    dws = 0.5 * ((ox + sxx) * exx + (oy + syy) * eyy + 2.0 * (oxy + sxy) * exy)
+    return flag, dwp, dws
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -462,16 +478,16 @@ def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     s = zsig[z]
     # triangle 0 of A
     h = 0.5 * (evA - a11 - a22)
-    f0, w0 = _tri_stress(s[0], a11 + h, a22 + h, 0.5 * (a12 + a21), 0.5 * (a21 - a12), K, G, p,
+    f0, w0, q0 = _tri_stress(s[0], a11 + h, a22 + h, 0.5 * (a12 + a21), 0.5 * (a21 - a12), K, G, p,
                          large, plastic)
     h = 0.5 * (evA - b11 - b22)
-    f1, w1 = _tri_stress(s[1], b11 + h, b22 + h, 0.5 * (b12 + b21), 0.5 * (b21 - b12), K, G, p,
+    f1, w1, q1 = _tri_stress(s[1], b11 + h, b22 + h, 0.5 * (b12 + b21), 0.5 * (b21 - b12), K, G, p,
                          large, plastic)
     h = 0.5 * (evB - c11 - c22)
-    f2, w2 = _tri_stress(s[2], c11 + h, c22 + h, 0.5 * (c12 + c21), 0.5 * (c21 - c12), K, G, p,
+    f2, w2, q2 = _tri_stress(s[2], c11 + h, c22 + h, 0.5 * (c12 + c21), 0.5 * (c21 - c12), K, G, p,
                          large, plastic)
     h = 0.5 * (evB - d11 - d22)
-    f3, w3 = _tri_stress(s[3], d11 + h, d22 + h, 0.5 * (d12 + d21), 0.5 * (d21 - d12), K, G, p,
+    f3, w3, q3 = _tri_stress(s[3], d11 + h, d22 + h, 0.5 * (d12 + d21), 0.5 * (d21 - d12), K, G, p,
                          large, plastic)
     fl = f0 | f1 | f2 | f3
     if fl & R_SHEAR:
@@ -479,9 +495,10 @@ def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     if fl & R_TENSION:
         st |= ST_TENSION_NOW | ST_TENSION_PAST
     zstate[z] = st
+    # each triangle's volume is a2 / 2 and each overlay counts one half
     if fl != 0:
-        # each triangle's volume is a2 / 2 and each overlay counts one half
-        zwork[z] += 0.25 * (aA1 * w0 + aA2 * w1 + aB1 * w2 + aB2 * w3)
+        zwork[z, 0] += 0.25 * (aA1 * w0 + aA2 * w1 + aB1 * w2 + aB2 * w3)
+    zwork[z, 1] += 0.25 * (aA1 * q0 + aA2 * q1 + aB1 * q2 + aB2 * q3)
     # corner forces, -(sxx b + sxy c, sxy b + syy c) / 2 per triangle, halved per overlay
     fx0 = 0.0
     fy0 = 0.0
@@ -594,6 +611,8 @@ def _grid_block(blk, P, fr, grid, zf, part):
     amass = P[P_AMASS]
     drel = P[P_DREL]
     large = P[P_LARGE] > 0.0
+    # the mean force of the unbalanced-force ratio: needed when settling (local damping on)
+    ratio = alocal > 0.0
     cm = 0.5 * amass * dt
     lo = blk * ng // NBLK
     hi = (blk + 1) * ng // NBLK
@@ -604,6 +623,10 @@ def _grid_block(blk, P, fr, grid, zf, part):
     wbase = 0.0
     wext = 0.0
     wdash = 0.0
+    tdamp = 0.0
+    tbase = 0.0
+    text = 0.0
+    tdash = 0.0
     for g in range(lo, hi):
         fix_x = gfix[g, 0]
         fix_y = gfix[g, 1]
@@ -616,7 +639,8 @@ def _grid_block(blk, P, fr, grid, zf, part):
             ay = zf[r, 1]
             fx += ax
             fy += ay
-            fa += math.sqrt(ax * ax + ay * ay)
+            if ratio:
+                fa += math.sqrt(ax * ax + ay * ay)
         m = gmass[g]
         vx0 = gvel[g, 0]
         vy0 = gvel[g, 1]
@@ -644,15 +668,23 @@ def _grid_block(blk, P, fr, grid, zf, part):
                 v1 = ((v0 * (1.0 - cm - cd) + dt * (f + fd + fc) / m + 2.0 * cm * db)
                       / (1.0 + cm + cd))
                 vm = 0.5 * (v0 + v1)
-                wdamp += dt * (fd - amass * m * (vm - db)) * vm
-                wdash += dt * (fc - cdd * vm) * vm
+                f_damp = fd - amass * m * (vm - db)
+                f_dash = fc - cdd * vm
+                wdamp += dt * f_damp * vm
+                wdash += dt * f_dash * vm
                 wext += dt * gext[g, d] * vm
+                tdamp += 0.5 * dt * f_damp * v1
+                tdash += 0.5 * dt * f_dash * v1
+                text += 0.5 * dt * gext[g, d] * v1
             elif fix == 1:
                 v1 = 0.0
             else:
+                # moved by the base: its work on the zones, with the force at t and the mean
+                # of the half-step velocities around t (the form in which the leapfrog's
+                # kinetic energy m v- . v+ / 2 and the strain energy balance exactly)
                 v1 = fr.vhx if d == 0 else fr.vhy
-                vf = fr.vx if d == 0 else fr.vy
-                wbase -= dt * fint * vf
+                wbase -= dt * fint * 0.5 * (v0 + v1)
+                tbase -= 0.5 * dt * fint * v1
             gacc[g, d] = (v1 - v0) / dt
             gvel[g, d] = v1
             gdisp[g, d] += v1 * dt
@@ -671,6 +703,10 @@ def _grid_block(blk, P, fr, grid, zf, part):
     part[blk, Q_WBASE] = wbase
     part[blk, Q_WEXT] = wext
     part[blk, Q_WDASH] = wdash
+    part[blk, Q_TDAMP] = tdamp
+    part[blk, Q_TBASE] = tbase
+    part[blk, Q_TEXT] = text
+    part[blk, Q_TDASH] = tdash
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
@@ -742,6 +778,10 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part):
         unbal = 0.0
         fsum = 0.0
         nfree = 0.0
+        E[E_TDAMP] = 0.0
+        E[E_TBASE] = 0.0
+        E[E_TEXT] = 0.0
+        E[E_TDASH] = 0.0
         for blk in range(NBLK):
             unbal = max(unbal, part[blk, Q_UNBAL])
             fsum += part[blk, Q_FSUM]
@@ -750,6 +790,10 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part):
             E[E_WBASE] += part[blk, Q_WBASE]
             E[E_WEXT] += part[blk, Q_WEXT]
             E[E_WDASH] += part[blk, Q_WDASH]
+            E[E_TDAMP] += part[blk, Q_TDAMP]
+            E[E_TBASE] += part[blk, Q_TBASE]
+            E[E_TEXT] += part[blk, Q_TEXT]
+            E[E_TDASH] += part[blk, Q_TDASH]
         S[S_UNBAL] = unbal
         S[S_MEANF] = fsum / nfree if nfree > 0.0 else 0.0
         C[C_STEP] += 1
@@ -796,22 +840,20 @@ def zone_dt(gxy, zg, zmat, mprops):
     for z in range(nz):
         p = mprops[zmat[z]]
         cp = math.sqrt((p[M_K] + 4.0 * p[M_G] / 3.0) / p[M_RHO])
-        x = np.empty(4)
-        y = np.empty(4)
-        for c in range(4):
-            x[c] = gxy[zg[z, c], 0]
-            y[c] = gxy[zg[z, c], 1]
-        a = 0.0
-        for c in range(4):
-            a += x[c] * y[(c + 1) % 4] - x[(c + 1) % 4] * y[c]
-        a *= 0.5
-        lmax = 0.0
-        for i in range(4):
-            for j in range(i + 1, 4):
-                L = math.hypot(x[i] - x[j], y[i] - y[j])
-                if L > lmax:
-                    lmax = L
-        out[z] = a / (cp * lmax) if a > 0.0 else 0.0
+        x0 = gxy[zg[z, 0], 0]
+        y0 = gxy[zg[z, 0], 1]
+        x1 = gxy[zg[z, 1], 0]
+        y1 = gxy[zg[z, 1], 1]
+        x2 = gxy[zg[z, 2], 0]
+        y2 = gxy[zg[z, 2], 1]
+        x3 = gxy[zg[z, 3], 0]
+        y3 = gxy[zg[z, 3], 1]
+        a = 0.5 * ((x0 * y1 - x1 * y0) + (x1 * y2 - x2 * y1) + (x2 * y3 - x3 * y2)
+                   + (x3 * y0 - x0 * y3))
+        l2 = max((x1 - x0) ** 2 + (y1 - y0) ** 2, (x2 - x1) ** 2 + (y2 - y1) ** 2,
+                 (x3 - x2) ** 2 + (y3 - y2) ** 2, (x0 - x3) ** 2 + (y0 - y3) ** 2,
+                 (x2 - x0) ** 2 + (y2 - y0) ** 2, (x3 - x1) ** 2 + (y3 - y1) ** 2)
+        out[z] = a / (cp * math.sqrt(l2)) if a > 0.0 else 0.0
     return out
 
 

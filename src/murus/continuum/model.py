@@ -179,7 +179,7 @@ class ContinuumModel:
         self.zmat = np.ascontiguousarray(zm.astype(np.int64))
         self.zsig = np.zeros((nz, 4, 4))
         self.zstate = np.zeros(nz, np.int64)
-        self.zwork = np.zeros(nz)
+        self.zwork = np.zeros((nz, 2))
         self.zf = np.zeros((4 * nz, 2))
         self.mprops = np.array([mt.row() for mt in mats])
         # CSR incidence gridpoint -> zone corners (ascending 4 z + c)
@@ -204,7 +204,6 @@ class ContinuumModel:
         self.P[K.P_PLASTIC] = 1.0
         self.P[K.P_PARMIN] = 4000.0
         self.time = 0.0
-        self.E0 = 0.0
         self.K0 = 0.0
         self._motion_kind = "none"
         self._motion_dt = 0.0
@@ -262,6 +261,34 @@ class ContinuumModel:
             The time step [s].
         """
         return (self.safety if safety is None else float(safety)) * self.critical_dt()
+
+    def set_dt(self, dt: float | None = None) -> float:
+        """Set the time step: ``dt`` [s] (a mixed model passes the smaller of the zones' and
+        the contacts' steps), or None for :meth:`stable_dt`.
+
+        Parameters
+        ----------
+        dt : float or None
+            The step [s], ``0 < dt <= critical_dt()``.
+
+        Returns
+        -------
+        float
+            The step set [s].
+
+        Raises
+        ------
+        ModelError
+            A step above the zones' critical step (key ``("dt",)``).
+        """
+        if dt is None:
+            dt = self.stable_dt()
+        crit = self.critical_dt()
+        if not (math.isfinite(dt) and 0.0 < dt <= crit):
+            raise ModelError(f"dt must be in (0, {crit:.4g}] s (the zones' critical step), "
+                             f"got {dt!r}", key=("dt",))
+        self.P[K.P_DT] = float(dt)
+        return float(dt)
 
     # ------------------------------------------------------------------ boundaries
     def fix(self, gridpoints, x: bool = True, y: bool = True) -> None:
@@ -603,30 +630,57 @@ class ContinuumModel:
         Returns
         -------
         dict
-            ``kinetic`` (half-step velocities of the free directions), ``gravity``
-            (``-sum m g . u`` over the free directions), ``strain`` (elastic energy of the
-            stresses, ``sigma : C^-1 : sigma / 2`` per triangle, minus its reference value),
-            ``plastic`` (work dissipated by plastic flow), ``damping_work`` (work of the
-            damping forces, negative), ``base_work`` (work of the fixed and base-driven
-            gridpoints on the zones), ``external_work`` (applied forces), ``dashpot_work``
-            (quiet boundaries, negative) and ``error``: the balance ``kinetic - kinetic_0 +
-            gravity + strain + plastic - (base + external + damping + dashpot)``, with
-            ``kinetic_0`` the kinetic energy of the reference state.
+            ``kinetic`` (``m v(t - dt/2) . v(t + dt/2) / 2`` over the free directions, at the
+            time t of the stresses), ``gravity`` (``-sum m g . u(t)`` over the free
+            directions), ``strain`` (elastic strain energy stored since the reference: the
+            work of the stresses on the strain increments, ``(sigma_old + sigma_new) / 2 :
+            de`` per triangle and step, minus the plastic work; for a linear elastic zone in
+            small strain, exactly the change of ``sigma : C^-1 : sigma / 2``), ``plastic``
+            (work dissipated by plastic flow), ``damping_work`` (work of the damping forces,
+            negative), ``base_work`` (work of the fixed and base-driven gridpoints on the zones),
+            ``external_work`` (applied forces), ``dashpot_work`` (quiet boundaries, negative)
+            and ``error``: the balance ``kinetic - kinetic_0 + gravity + strain + plastic -
+            (base + external + damping + dashpot)``, with ``kinetic_0`` the kinetic energy of
+            the reference state. The works are those done up to the time t of the stresses
+            (the force of a step times the mean of the half-step velocities around it; of the
+            last step, only the half before t), the form in which central differences balance
+            the energy of a linear system exactly.
         """
         free = self.gfix == 0
         m = self.gmass[:, None]
-        ke = 0.5 * float((m * self.gvel ** 2 * free).sum())
+        ke = self._kinetic()
         g = np.array([0.0, -self.gravity])
-        pe = -float((m * self.gdisp * g * free).sum())
-        se = self._strain_energy() - self.E0
-        out = {"kinetic": ke, "gravity": pe, "strain": se, "plastic": float(self.zwork.sum()),
-               "damping_work": float(self.E[K.E_WDAMP]), "base_work": float(self.E[K.E_WBASE]),
-               "external_work": float(self.E[K.E_WEXT]),
-               "dashpot_work": float(self.E[K.E_WDASH])}
+        # displacement at the time of the stresses (one step behind the gridpoints)
+        u = self.gdisp - self.dt * self.gvel
+        pe = -float((m * u * g * free).sum())
+        plastic = float(self.zwork[:, 0].sum())
+        se = float(self.zwork[:, 1].sum()) - plastic
+        out = {"kinetic": ke, "gravity": pe, "strain": se, "plastic": plastic,
+               "damping_work": float(self.E[K.E_WDAMP] - self.E[K.E_TDAMP]),
+               "base_work": float(self.E[K.E_WBASE] - self.E[K.E_TBASE]),
+               "external_work": float(self.E[K.E_WEXT] - self.E[K.E_TEXT]),
+               "dashpot_work": float(self.E[K.E_WDASH] - self.E[K.E_TDASH])}
         out["error"] = (ke - self.K0 + pe + se + out["plastic"]
                         - (out["base_work"] + out["external_work"] + out["damping_work"]
                            + out["dashpot_work"]))
         return out
+
+    def _kinetic(self) -> float:
+        """Kinetic energy at the time of the stresses, ``m v(t - dt/2) . v(t + dt/2) / 2``
+        over the free directions (the leapfrog's conserved form)."""
+        free = self.gfix == 0
+        vm = self.gvel - self.dt * self.gacc
+        return 0.5 * float((self.gmass[:, None] * self.gvel * vm * free).sum())
+
+    def stored_strain_energy(self) -> float:
+        """Elastic energy of the current stresses, ``sum sigma : C^-1 : sigma / 2`` over the
+        triangles (each weighted by half its area) [J/m] (initial stresses included).
+
+        Returns
+        -------
+        float
+        """
+        return self._strain_energy()
 
     def _strain_energy(self) -> float:
         a2, _ = _tri_geometry(self.gxy, self.zg)
@@ -645,9 +699,7 @@ class ContinuumModel:
         self.gx0[:] = self.gxy
         self.E[:] = 0.0
         self.zwork[:] = 0.0
-        self.E0 = self._strain_energy()
-        free = self.gfix == 0
-        self.K0 = 0.5 * float((self.gmass[:, None] * self.gvel ** 2 * free).sum())
+        self.K0 = self._kinetic()
 
     # ------------------------------------------------------------------ run
     def settle(self, **kw):
