@@ -112,3 +112,40 @@ def test_a_side_that_is_not_vertical_is_refused():
     with pytest.raises(FreeFieldError, match="vertical") as e:
         build_free_field(m, [left, bottom])
     assert e.value.key[0] == 1
+
+
+def test_a_wide_layer_with_free_field_sides_moves_as_the_column():
+    """Issue 17, item 7 ("free field"): a layer with free-field sides under a vertically
+    propagating S wave (harmonic base motion at the first frequency, 5 % mass-proportional
+    damping) moves at its sides as the 1D column, within 2 %, and as the damped layer's closed
+    form within 5 %."""
+    G = RHO * VS * VS
+    mat = Elastic(density=RHO, E=2 * G * (1 + NU), nu=NU)
+    xy, zones = rect_mesh(8, 10, 40.0, H)
+    m = ContinuumModel(xy, zones, mat, gravity=0.0, large_strain=False)
+    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
+    m.set_base(bottom, x=True, y=False)
+    m.fix(bottom, x=False, y=True)
+    m.add_free_field([left, right])
+    f1, xi, ub = VS / (4 * H), 0.05, 1e-3
+    w = 2 * math.pi * f1
+    tl = int(top[np.argmin(xy[top, 0])])
+    tc = int(top[np.argmin(np.abs(xy[top, 0] - 20.0))])
+    col_top = int(m.ff.fstart[1] - 1)
+
+    def ff_top(model):
+        return float(model.ff.fdisp[col_top, 0])
+
+    res = m.run(12.0, velocity=lambda tt: ub * w * np.cos(w * tt), xi=xi, freq=f1,
+                monitors={"side": ("gp", tl, "ux"), "centre": ("gp", tc, "ux"), "ff": ff_top},
+                every=4)
+    assert res.success, res.message
+    tail = res.t > 12.0 - 2.0 / f1
+    amp = np.abs(res["ff"][tail]).max()
+    assert np.abs(res["side"][tail] - res["ff"][tail]).max() < 0.02 * amp
+    assert np.abs(res["centre"][tail] - res["ff"][tail]).max() < 0.02 * amp
+    want = layer_transfer_rayleigh(f1, VS, H, 4 * math.pi * xi * f1, relative=True)
+    assert amp / ub == pytest.approx(want, rel=0.05)
+    # the energy balance closes with the free field's work counted as external work
+    e = res.values
+    assert np.abs(e["energy.error"]).max() < 0.01 * np.abs(e["energy.base_work"]).max()

@@ -22,7 +22,7 @@ __all__ = ["Grid", "Zones", "STATE_ARRAYS", "pack", "IG_GXY", "IG_GVEL", "IG_GDI
            "IG_GACC", "IZ_ZSIG", "IZ_ZSTATE", "IZ_ZWORK", "IZ_ZF"]
 
 Grid = namedtuple("Grid", ["gxy", "gvel", "gacc", "gdisp", "gmass", "gfix", "gext", "gdash",
-                           "gsp", "gzc"])
+                           "gff", "gsp", "gzc"])
 Grid.__doc__ = """Gridpoints (``ng`` rows each).
 
 - ``gxy (ng, 2)``: coordinates [m] (updated each step in large-strain mode, fixed in
@@ -36,6 +36,10 @@ Grid.__doc__ = """Gridpoints (``ng`` rows each).
 - ``gext (ng, 2)``: applied force [N] (point loads and boundary pressures);
 - ``gdash (ng, 3)``: quiet-boundary dashpot matrix ``(cxx, cxy, cyy)`` [N s/m] of the gridpoint,
   the sum over its quiet edges of ``L/2 (rho Cp n n^T + rho Cs t t^T)`` (zero elsewhere);
+- ``gff (ng, 4)``: the free field's action on the gridpoints of a free-field side
+  (:mod:`murus.continuum.freefield`), written each step: force ``L sigma_ff . n`` (x, y) [N]
+  and the velocity ``v_ff`` (x, y) [m/s] that the side's dashpots act against (zero elsewhere:
+  a quiet boundary's dashpots act against rest);
 - ``gsp (ng + 1,)``, ``gzc (nzc,)`` int64: CSR incidence, the zone corners ``4 z + c`` of each
   gridpoint (ascending), by which the gridpoint loop gathers the corner forces.
 """

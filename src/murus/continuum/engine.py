@@ -158,7 +158,7 @@ def _chunk(m, n: int, moving: bool, threads: int | None) -> None:
         if threads is not None:
             numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
         K.run_chunk(n, m.P, m.E, m.C, m.S, drive, kd.pack(kd.Grid, m), kd.pack(kd.Zones, m),
-                    m.mprops, m.part)
+                    m.mprops, m.part, m.ff)
     finally:
         numba.set_num_threads(nth)
 

@@ -51,7 +51,7 @@ from murus.continuum import kernels as K
 from murus.continuum.kernels import _tri_stress
 from murus.errors import MurusError
 
-__all__ = ["FreeField", "FreeFieldError", "build_free_field", "freefield_step", "empty"]
+__all__ = ["FreeField", "FreeFieldError", "build_free_field", "freefield_step", "empty", "merge"]
 
 
 class FreeFieldError(MurusError, ValueError):
@@ -83,6 +83,26 @@ def empty() -> FreeField:
     return FreeField(np.zeros(1, np.int64), z(0), z((0, 2)), z((0, 2)), z(0),
                      np.zeros((0, 2), np.int64), np.zeros(0, np.int64), z(0), z((0, 2)),
                      z((0, 4)), np.zeros(0, np.int64), np.zeros(0, np.int64))
+
+
+def merge(a: FreeField, b: FreeField) -> FreeField:
+    """The columns of two free fields in one (``b``'s after ``a``'s).
+
+    Parameters
+    ----------
+    a, b : FreeField
+        The free fields.
+
+    Returns
+    -------
+    FreeField
+    """
+    if a.fy.size == 0:
+        return b
+    if b.fy.size == 0:
+        return a
+    start = np.concatenate([a.fstart, b.fstart[1:] + a.fstart[-1]])
+    return FreeField(start, *[np.concatenate([x, y]) for x, y in zip(a[1:], b[1:], strict=True)])
 
 
 @njit(cache=True, error_model="numpy")

@@ -603,6 +603,7 @@ def _grid_block(blk, P, fr, grid, zf, part):
     gfix = grid.gfix
     gext = grid.gext
     gdash = grid.gdash
+    gff = grid.gff
     gsp = grid.gsp
     gzc = grid.gzc
     ng = gmass.size
@@ -654,7 +655,8 @@ def _grid_block(blk, P, fr, grid, zf, part):
                 gg = fr.gx if d == 0 else fr.gy
                 vb = fr.vx if d == 0 else fr.vy
                 db = drel * vb
-                f = fint + gext[g, d] + m * gg
+                fe = gext[g, d] + gff[g, d]  # applied forces and the free field's stresses
+                f = fint + fe + m * gg
                 un2 += f * f
                 fd = 0.0
                 wv = v0 - db
@@ -662,20 +664,22 @@ def _grid_block(blk, P, fr, grid, zf, part):
                     fd = -alocal * abs(f) * (1.0 if wv > 0.0 else -1.0)
                 # quiet dashpots: the diagonal term on the mean velocity of the step (as the
                 # mass damping), the coupling term on the other direction's half-step velocity
+                # (relative to the free field's velocity on a free-field side, else to rest)
                 cdd = gdash[g, 0] if d == 0 else gdash[g, 2]
-                fc = -cxy * (vy0 if d == 0 else vx0)
+                vref = gff[g, 2 + d]
+                fc = -cxy * ((vy0 - gff[g, 3]) if d == 0 else (vx0 - gff[g, 2]))
                 cd = 0.5 * cdd * dt / m
-                v1 = ((v0 * (1.0 - cm - cd) + dt * (f + fd + fc) / m + 2.0 * cm * db)
-                      / (1.0 + cm + cd))
+                v1 = ((v0 * (1.0 - cm - cd) + dt * (f + fd + fc) / m + 2.0 * cm * db
+                       + 2.0 * cd * vref) / (1.0 + cm + cd))
                 vm = 0.5 * (v0 + v1)
                 f_damp = fd - amass * m * (vm - db)
-                f_dash = fc - cdd * vm
+                f_dash = fc - cdd * (vm - vref)
                 wdamp += dt * f_damp * vm
                 wdash += dt * f_dash * vm
-                wext += dt * gext[g, d] * vm
+                wext += dt * fe * vm
                 tdamp += 0.5 * dt * f_damp * v1
                 tdash += 0.5 * dt * f_dash * v1
-                text += 0.5 * dt * gext[g, d] * v1
+                text += 0.5 * dt * fe * v1
             elif fix == 1:
                 v1 = 0.0
             else:
@@ -724,7 +728,7 @@ def _grid_ser(P, fr, grid, zf, part):
 
 
 @njit(cache=True, error_model="numpy")
-def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part):
+def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part, ff):
     """Advance ``nsteps`` central-difference steps of the zones (module doc).
 
     Parameters
@@ -745,6 +749,9 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part):
         Material rows.
     part : ndarray (NBLK, NQ)
         Work array of the partial sums of the gridpoint blocks.
+    ff : murus.continuum.freefield.FreeField
+        The free-field columns (none: :func:`murus.continuum.freefield.empty`), advanced
+        before the gridpoints in each step.
 
     Returns
     -------
@@ -765,12 +772,15 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part):
     gxy = grid.gxy
     gvel = grid.gvel
     par = zg.shape[0] >= P[P_PARMIN]
+    nff = ff.fy.size > 0
     for i in range(nsteps):
         if par:
             _zones_par(zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
         else:
             _zones_ser(zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
         fr = _frame(i, drive)
+        if nff:
+            freefield_step(P, fr, ff, mprops, grid.gff)
         if par:
             _grid_par(P, fr, grid, zf, part)
         else:
@@ -859,4 +869,8 @@ def zone_dt(gxy, zg, zmat, mprops):
 
 # numba's cache checks only this file: flush it when the structure layouts and field positions
 # it compiles in change
-_guard_cache(globals(), deps=("murus.continuum._kdata", "murus.dem._kdata"))
+# the free-field step, compiled into run_chunk (imported last: it reads this module's law)
+from murus.continuum.freefield import freefield_step  # noqa: E402
+
+_guard_cache(globals(), deps=("murus.continuum._kdata", "murus.dem._kdata",
+                              "murus.continuum.freefield"))

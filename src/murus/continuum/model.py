@@ -175,6 +175,10 @@ class ContinuumModel:
         self.gfix = np.zeros((ng, 2), np.int64)
         self.gext = np.zeros((ng, 2))
         self.gdash = np.zeros((ng, 3))
+        self.gff = np.zeros((ng, 4))
+        from murus.continuum.freefield import empty as _no_free_field
+
+        self.ff = _no_free_field()
         self.zg = np.ascontiguousarray(zg)
         self.zmat = np.ascontiguousarray(zm.astype(np.int64))
         self.zsig = np.zeros((nz, 4, 4))
@@ -453,6 +457,30 @@ class ContinuumModel:
             C = 0.5 * L * mt.density * (mt.vp * np.outer(n, n) + mt.vs * np.outer(t, t))
             for g in (a, b):
                 self.gdash[g] += (C[0, 0], C[0, 1], C[1, 1])
+
+    def add_free_field(self, sides) -> None:
+        """Free-field lateral boundaries on vertical sides (:mod:`murus.continuum.freefield`),
+        in the current state: call it after the static stage, as in FLAC (the columns take the
+        stresses of the zones beside them; the sides are released horizontally and get the
+        dashpots ``L rho Cp``, ``L rho Cs``).
+
+        Parameters
+        ----------
+        sides : sequence of array_like of int
+            The gridpoints of each vertical side.
+
+        Raises
+        ------
+        murus.continuum.freefield.FreeFieldError
+            A side that is not vertical or not on the boundary (key: the side's index).
+
+        References
+        ----------
+        Itasca FLAC, Dynamic Analysis, "Free-field boundaries".
+        """
+        from murus.continuum.freefield import build_free_field, merge
+
+        self.ff = merge(self.ff, build_free_field(self, sides))
 
     def set_base_motion(self, motion=None, velocity: Callable | None = None) -> None:
         """Motion of the ``base`` gridpoints: a GroundMotion (``acc`` and optional ``acc_v``
