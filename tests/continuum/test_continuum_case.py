@@ -139,8 +139,8 @@ BAD = {
         "boundaries[1].line", "no gridpoint"),
     "unknown material": (('material = "soil"', 'material = "sand"'), "zones[0].material",
                          "unknown material"),
-    "free field not yet": (('kind = "fixed"', 'kind = "free-field"'), "boundaries[2].kind",
-                           "not available yet"),
+    "free field on a horizontal side": (('kind = "fixed"', 'kind = "free-field"'),
+                                        "boundaries[2]", "must be vertical"),
     "motion without a base": (("[[monitors]]", '[motion]\ntype = "sine-pulse"\namplitude = 1.0\n'
                                                'frequency = 2.0\n\n[[monitors]]'),
                               "motion", "kind 'base'"),
@@ -164,3 +164,19 @@ def test_bad_input_is_one_line_exit_2_and_no_output(tmp_path, kind):
     assert words in err, err
     assert not out.exists()
     assert not list(tmp_path.glob(".out*"))
+
+
+@pytest.mark.parametrize("name", ["soil_column", "layer_free_field"])
+def test_examples_run_briefly(tmp_path, name):
+    import re
+
+    from murus.continuum.case import run_case
+
+    text = re.sub(r"duration = [0-9.]+", "duration = 0.2",
+                  (EXAMPLES / f"{name}.toml").read_text())
+    case = tmp_path / f"{name}.toml"
+    case.write_text(text)
+    cfg, path, text = load_case(case)
+    run = run_case(build(cfg, path, text))
+    assert run.ok, run.summary()
+    assert run.result.t[-1] == pytest.approx(0.2, abs=0.01)

@@ -35,7 +35,9 @@ have ``[dem]``, rocking cases ``[body]``). Example (every table is optional exce
     [[boundaries]]              # kind: "fixed", "roller" (direction = the fixed one: "x" |
     kind = "base"               # "y"), "base" (moved by [motion]; direction "x", "y" or
     side = "soil.bottom"        # "both"), "quiet" (viscous dashpots), "pressure" (pressure
-                                # [Pa], compression positive); where: side = "REGION.SIDE"
+                                # [Pa], compression positive), "free-field" (a vertical
+                                # side: a 1D column beside it, attached after the static
+                                # stage); where: side = "REGION.SIDE"
                                 # (bottom, right, top, left), line = [[x0, y0], [x1, y1]]
                                 # with tol [m], or box = [xmin, ymin, xmax, ymax]
 
@@ -56,8 +58,9 @@ have ``[dem]``, rocking cases ``[body]``). Example (every table is optional exce
     figure = true               # zones.png: the final zones, plastic state and displacement
 
 Later boundaries at a table's position override earlier ones at shared gridpoints (a corner
-both "base" and "roller" takes the later). Free-field lateral boundaries and zones against
-blocks are not available yet: such a case is refused with its key.
+both "base" and "roller" takes the later). A free-field side is usually also a "roller"
+(direction "x") for the static stage: the free field releases it. Zones against blocks are
+not available yet in case files.
 
 SI units; angles in degrees (``*_deg``). Errors are one line naming the file, the line and the
 key (:class:`murus.config.CaseError`), before anything is run or written.
@@ -294,7 +297,7 @@ def load_case(path) -> tuple[ContinuumCase, Path, str]:
 class Built:
     """What :func:`build` returns: the model, its mesh and what the run needs."""
 
-    def __init__(self, case, model, mesh, motion, duration, monitors, base_gp):
+    def __init__(self, case, model, mesh, motion, duration, monitors, base_gp, ff_sides):
         self.case = case
         self.model = model
         self.mesh = mesh
@@ -302,6 +305,7 @@ class Built:
         self.duration = duration
         self.monitors = monitors
         self.base_gp = base_gp
+        self.ff_sides = ff_sides
 
 
 def _select(mesh, b: BoundaryCfg, i: int):
@@ -311,6 +315,20 @@ def _select(mesh, b: BoundaryCfg, i: int):
     if b.line is not None:
         return mesh.on_line(b.line[0], b.line[1], b.tol, key=key + ("line",))
     return mesh.in_box(*b.box, tol=b.tol, key=key + ("box",))
+
+
+def _check_free_field_side(mesh, g, key, path, text) -> None:
+    """A free-field side must be vertical and run along the boundary (checked before the run;
+    the columns are built after the static stage)."""
+    from murus.continuum.freefield import FreeFieldError, _side_chain
+
+    try:
+        chain = _side_chain(mesh.xy, g, 1e-9 * mesh.size)
+    except FreeFieldError as exc:
+        raise fail_at(path, text, key, f"kind 'free-field': {exc}") from None
+    if mesh.edges_of(chain).shape[0] != chain.size - 1:
+        raise fail_at(path, text, key, "kind 'free-field': the gridpoints selected are not one "
+                      "run of boundary edges")
 
 
 def _monitor_spec(mesh, model, mon: MonitorCfg, base_gp):
@@ -411,11 +429,8 @@ def build(case: ContinuumCase, path: Path, text: str) -> Built:
         raise locate(exc, path, text, (), default=("zones",), indices=True) from None
     # boundaries
     base_gp = None
+    ff_sides = []
     for i, b in enumerate(case.boundaries):
-        if b.kind == "free-field":
-            raise fail_at(path, text, ("boundaries", i, "kind"),
-                          "free-field boundaries are not available yet: use 'quiet' sides "
-                          "far enough from the structure, or 'roller' sides")
         try:
             g = _select(mesh, b, i)
             x = b.direction in (None, "x", "both")
@@ -427,6 +442,9 @@ def build(case: ContinuumCase, path: Path, text: str) -> Built:
             elif b.kind == "base":
                 model.set_base(g, x, y)
                 base_gp = int(g[0])
+            elif b.kind == "free-field":
+                _check_free_field_side(mesh, g, ("boundaries", i), path, text)
+                ff_sides.append(g)
             else:
                 edges = mesh.edges_of(g)
                 if edges.shape[0] == 0:
@@ -473,7 +491,7 @@ def build(case: ContinuumCase, path: Path, text: str) -> Built:
             raise fail_at(path, text, ("monitors", case.monitors.index(mon), "relative"),
                           "relative needs a boundary of kind 'base'")
         monitors[mon.name] = _monitor_spec(mesh, model, mon, base_gp)
-    return Built(case, model, mesh, motion, float(duration), monitors, base_gp)
+    return Built(case, model, mesh, motion, float(duration), monitors, base_gp, ff_sides)
 
 
 # ---------------------------------------------------------------------- running
@@ -566,6 +584,8 @@ def run_case(built: Built, progress=None) -> CaseRun:
                            reset=dynamic)
         if not settled.converged:
             return CaseRun(built, settled, None, [])
+    if built.ff_sides:
+        m.add_free_field(built.ff_sides)  # after the static stage, as in FLAC
     if dynamic:
         m.reset_reference()
     frames = [(m.time, _frame(m))] if case.output.vtk_every else []

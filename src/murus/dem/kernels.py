@@ -1192,6 +1192,117 @@ def _moved(bodies, margin):
     return False
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def step_forces(P, E, C, S, bodies, shapes, joints, c, work):
+    """The forces of one step on the bodies: the pair list rebuilt when due, the contact loop
+    (:func:`_contacts_parallel`), the resultants scattered to the bodies (:func:`_sum_pairs`).
+
+    The first half of a step of :func:`run_chunk`, also called by loops that add forces of their
+    own before the bodies move (the zones of :mod:`murus.continuum`).
+
+    Parameters
+    ----------
+    P, E, C, S : ndarray
+        Parameters, energy accumulators, counters, statistics (``P_*``, ``E_*``, ``C_*``,
+        ``S_*``).
+    bodies, shapes, joints : Bodies, Shapes, Joints
+        The state (:mod:`murus.dem._kdata`).
+    c : Contacts
+        The candidate pairs (a new structure when the list is rebuilt).
+    work : tuple
+        ``(pw, nact, fb)``: per-pair work records ``(cap, NW)``, active sub-contacts per pair
+        ``(cap,)`` (both grown when the pairs outnumber them), and the body forces
+        ``fb (nb, 3)`` [N, N m], overwritten with the contacts' resultants.
+
+    Returns
+    -------
+    tuple
+        ``(c, pw, nact, par)``: the pairs, the work records and whether the body update runs
+        in parallel (at least ``P_PARMIN`` pairs).
+    """
+    pw, nact, fb = work
+    if C[C_NEED_REBUILD] != 0:
+        newp = broad_phase(shapes, bodies.bkin, P[P_MARGIN])
+        c = transfer(c, newp, shapes.sgroup, joints.jtab, 0)
+        bpos = bodies.bpos
+        bang = bodies.bang
+        blast = bodies.blast
+        for b in range(bpos.shape[0]):
+            blast[b, 0] = bpos[b, 0]
+            blast[b, 1] = bpos[b, 1]
+            blast[b, 2] = bang[b]
+        C[C_NEED_REBUILD] = 0
+        C[C_REBUILD] += 1
+    npair = c.pairs.shape[0]
+    if npair > pw.shape[0]:
+        cap = npair + npair // 4 + 16
+        pw = np.zeros((cap, NW))
+        nact = np.zeros(cap, np.int64)
+    _contacts_parallel(c, pw, shapes, bodies, joints.jprops, P[P_DT], P[P_THICK],
+                       P[P_REACH], nact)
+    nactive = _sum_pairs(c.pairs, shapes.sbody, nact, pw, E, fb)
+    C[C_UPDATES] += nactive
+    S[S_NACTIVE] = nactive
+    return c, pw, nact, npair >= int(P[P_PARMIN])
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def step_update(P, E, C, S, fr, fb, bodies, shapes, bpart, inc, par):
+    """The move of one step: the bodies under the forces ``fb`` (:func:`_update_block` over the
+    ``NBLK`` blocks, parallel when ``par``), their partial sums combined in block order into
+    the energies, the largest unbalanced force and the rebuild flag.
+
+    The second half of a step of :func:`run_chunk`.
+
+    Parameters
+    ----------
+    P, E, C, S : ndarray
+        Parameters, energy accumulators, counters, statistics.
+    fr : Frame
+        The step's base velocities and gravity.
+    fb : ndarray (nb, 3)
+        Forces and moments on the bodies [N, N m].
+    bodies, shapes : Bodies, Shapes
+        The state, updated in place.
+    bpart : ndarray (NBLK, NQ)
+        Work array of the partial sums.
+    inc : tuple
+        ``(bsp, bsh)``: the shapes of each body (:func:`incidence`).
+    par : bool
+        Run the body loop in parallel.
+
+    Returns
+    -------
+    None
+    """
+    bsp, bsh = inc
+    if par:
+        _update_bodies_par(P, fr, fb, bodies, shapes, bpart, bsp, bsh)
+    else:
+        _update_bodies_ser(P, fr, fb, bodies, shapes, bpart, bsp, bsh)
+    unbal = 0.0
+    wdamp = 0.0
+    wbase = 0.0
+    wext = 0.0
+    need = 0.0
+    wtilt = 0.0
+    for blk in range(NBLK):
+        unbal = max(unbal, bpart[blk, Q_UNBAL])
+        wtilt += bpart[blk, Q_WTILT]
+        wdamp += bpart[blk, Q_WDAMP]
+        wbase += bpart[blk, Q_WBASE]
+        wext += bpart[blk, Q_WEXT]
+        need = max(need, bpart[blk, Q_NEED])
+    if need > 0.0:
+        C[C_NEED_REBUILD] = 1
+    E[E_WDAMP] += wdamp
+    E[E_WBASE] += wbase
+    E[E_WEXT] += wext
+    E[E_WTILT] += wtilt
+    C[C_STEP] += 1
+    S[S_UNBAL] = unbal
+
+
 @njit(cache=True, error_model="numpy")
 def run_chunk(nsteps, P, E, C, S, drive, bodies, shapes, joints, contacts):
     """Advance ``nsteps`` central-difference steps (Savalle et al. (2022), eq. 2).
@@ -1223,15 +1334,9 @@ def run_chunk(nsteps, P, E, C, S, drive, bodies, shapes, joints, contacts):
     and stalls on a loaded machine. The contact loop is always the parallel one, which numba
     compiles into code 2-5 times faster than a plain loop of the same body
     (benchmarks/RESULTS_dem.md)."""
-    dt = P[P_DT]
-    thick = P[P_THICK]
     margin = P[P_MARGIN]
-    reach = P[P_REACH]
-    parmin = int(P[P_PARMIN])
     bpos = bodies.bpos
     bang = bodies.bang
-    blast = bodies.blast
-    jprops = joints.jprops
     nb = bodies.bmass.size
     c = contacts
     fb = np.zeros((nb, 3))
@@ -1245,50 +1350,8 @@ def run_chunk(nsteps, P, E, C, S, drive, bodies, shapes, joints, contacts):
     world_vertices(bpos, bang, shapes)
     bsp, bsh = incidence(shapes.sbody, nb)
     for i in range(nsteps):
-        if C[C_NEED_REBUILD] != 0:
-            newp = broad_phase(shapes, bodies.bkin, margin)
-            c = transfer(c, newp, shapes.sgroup, joints.jtab, 0)
-            for b in range(nb):
-                blast[b, 0] = bpos[b, 0]
-                blast[b, 1] = bpos[b, 1]
-                blast[b, 2] = bang[b]
-            C[C_NEED_REBUILD] = 0
-            C[C_REBUILD] += 1
-        npair = c.pairs.shape[0]
-        if npair > cap:
-            cap = npair + npair // 4 + 16
-            pw = np.zeros((cap, NW))
-            nact = np.zeros(cap, np.int64)
-        _contacts_parallel(c, pw, shapes, bodies, jprops, dt, thick, reach, nact)
-        nactive = _sum_pairs(c.pairs, shapes.sbody, nact, pw, E, fb)
-        C[C_UPDATES] += nactive
-        fr = _frame(i, drive)
-        if npair < parmin:
-            _update_bodies_ser(P, fr, fb, bodies, shapes, bpart, bsp, bsh)
-        else:
-            _update_bodies_par(P, fr, fb, bodies, shapes, bpart, bsp, bsh)
-        unbal = 0.0
-        wdamp = 0.0
-        wbase = 0.0
-        wext = 0.0
-        need = 0.0
-        wtilt = 0.0
-        for blk in range(NBLK):
-            unbal = max(unbal, bpart[blk, Q_UNBAL])
-            wtilt += bpart[blk, Q_WTILT]
-            wdamp += bpart[blk, Q_WDAMP]
-            wbase += bpart[blk, Q_WBASE]
-            wext += bpart[blk, Q_WEXT]
-            need = max(need, bpart[blk, Q_NEED])
-        if need > 0.0:
-            C[C_NEED_REBUILD] = 1
-        E[E_WDAMP] += wdamp
-        E[E_WBASE] += wbase
-        E[E_WEXT] += wext
-        E[E_WTILT] += wtilt
-        C[C_STEP] += 1
-        S[S_UNBAL] = unbal
-        S[S_NACTIVE] = nactive
+        c, pw, nact, par = step_forces(P, E, C, S, bodies, shapes, joints, c, (pw, nact, fb))
+        step_update(P, E, C, S, _frame(i, drive), fb, bodies, shapes, bpart, (bsp, bsh), par)
     # mean contact force at the end of the chunk
     tot = 0.0
     na = 0
