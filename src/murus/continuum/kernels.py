@@ -434,6 +434,23 @@ def _tri_stress(s, exx, eyy, exy, w, K, G, p, large, plastic):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _iso_mean(s, t, a, b):
+    """Give the stresses ``s`` and ``t`` (sxx, syy, sxy, szz [Pa]) of two triangles of areas
+    ``a`` and ``b`` their area-weighted mean isotropic stress, keeping their deviators."""
+    ps = (s[0] + s[1] + s[3]) / 3.0
+    pt = (t[0] + t[1] + t[3]) / 3.0
+    pm = (a * ps + b * pt) / (a + b)
+    ds = pm - ps
+    dt = pm - pt
+    s[0] += ds
+    s[1] += ds
+    s[3] += ds
+    t[0] += dt
+    t[1] += dt
+    t[3] += dt
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     """Zone ``z``: strain increments of its four triangles (mixed discretisation), stress
     update, plastic state and work, forces on its four corners (module doc)."""
@@ -490,6 +507,15 @@ def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     f3, w3, q3 = _tri_stress(s[3], d11 + h, d22 + h, 0.5 * (d12 + d21), 0.5 * (d21 - d12), K, G, p,
                          large, plastic)
     fl = f0 | f1 | f2 | f3
+    if fl != 0:
+        # mixed discretisation of a nonlinear law: the isotropic stress is constant over each
+        # overlay (Marti & Cundall (1982); FLAC: "isotropic stress and strain components are
+        # taken to be constant over the whole quadrilateral element"), so the two triangles
+        # of an overlay, whose plastic corrections differ, take their area-weighted mean
+        # pressure again (the work of this exchange is zero: both have the same volumetric
+        # increment and the weighted corrections sum to zero)
+        _iso_mean(s[0], s[1], aA1, aA2)
+        _iso_mean(s[2], s[3], aB1, aB2)
     if fl & R_SHEAR:
         st |= ST_SHEAR_NOW | ST_SHEAR_PAST
     if fl & R_TENSION:
@@ -727,6 +753,94 @@ def _grid_ser(P, fr, grid, zf, part):
         _grid_block(blk, P, fr, grid, zf, part)
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def zone_forces(P, grid, zones, mprops, par):
+    """The first half of a step: every zone's strain increments, stress update and corner
+    forces ``zones.zf`` (:func:`_zone`), parallel over the zones when ``par``.
+
+    Parameters
+    ----------
+    P : ndarray
+        Parameters (``P_*``).
+    grid : Grid
+        Gridpoints (read: coordinates and half-step velocities).
+    zones : Zones
+        Zones, updated in place.
+    mprops : ndarray (nmat, NM)
+        Material rows.
+    par : bool
+        Run the zone loop in parallel.
+
+    Returns
+    -------
+    None
+    """
+    if par:
+        _zones_par(zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
+                   grid.gxy, grid.gvel, mprops, P)
+    else:
+        _zones_ser(zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
+                   grid.gxy, grid.gvel, mprops, P)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def grid_update(P, E, C, S, fr, grid, zf, work, par):
+    """The second half of a step: the free-field columns (their action written to
+    ``grid.gff``), then the gridpoints under the corner forces ``zf`` and every other force
+    (:func:`_grid_block`), their partial sums combined in block order into the energies and
+    statistics.
+
+    Parameters
+    ----------
+    P, E, C, S : ndarray
+        Parameters, energy accumulators, counters, statistics.
+    fr : murus.dem._kdata.Frame
+        The step's base velocities and gravity.
+    grid : Grid
+        Gridpoints, updated in place.
+    zf : ndarray (4 nz, 2)
+        Corner forces of the zones [N].
+    work : tuple
+        ``(part, ff, mprops)``: the partial sums ``(NBLK, NQ)``, the free-field columns
+        (:mod:`murus.continuum.freefield`) and the material rows.
+    par : bool
+        Run the gridpoint loop in parallel.
+
+    Returns
+    -------
+    None
+    """
+    part, ff, mprops = work
+    if ff.fy.size > 0:
+        freefield_step(P, fr, ff, mprops, grid.gff)
+    if par:
+        _grid_par(P, fr, grid, zf, part)
+    else:
+        _grid_ser(P, fr, grid, zf, part)
+    unbal = 0.0
+    fsum = 0.0
+    nfree = 0.0
+    E[E_TDAMP] = 0.0
+    E[E_TBASE] = 0.0
+    E[E_TEXT] = 0.0
+    E[E_TDASH] = 0.0
+    for blk in range(NBLK):
+        unbal = max(unbal, part[blk, Q_UNBAL])
+        fsum += part[blk, Q_FSUM]
+        nfree += part[blk, Q_NFREE]
+        E[E_WDAMP] += part[blk, Q_WDAMP]
+        E[E_WBASE] += part[blk, Q_WBASE]
+        E[E_WEXT] += part[blk, Q_WEXT]
+        E[E_WDASH] += part[blk, Q_WDASH]
+        E[E_TDAMP] += part[blk, Q_TDAMP]
+        E[E_TBASE] += part[blk, Q_TBASE]
+        E[E_TEXT] += part[blk, Q_TEXT]
+        E[E_TDASH] += part[blk, Q_TDASH]
+    S[S_UNBAL] = unbal
+    S[S_MEANF] = fsum / nfree if nfree > 0.0 else 0.0
+    C[C_STEP] += 1
+
+
 @njit(cache=True, error_model="numpy")
 def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part, ff):
     """Advance ``nsteps`` central-difference steps of the zones (module doc).
@@ -763,50 +877,10 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part, ff):
     Marti & Cundall (1982); Itasca FLAC, Theory and Background (explicit finite-difference
     scheme, mixed discretisation).
     """
-    zg = zones.zg
-    zmat = zones.zmat
-    zsig = zones.zsig
-    zstate = zones.zstate
-    zwork = zones.zwork
-    zf = zones.zf
-    gxy = grid.gxy
-    gvel = grid.gvel
-    par = zg.shape[0] >= P[P_PARMIN]
-    nff = ff.fy.size > 0
+    par = zones.zg.shape[0] >= P[P_PARMIN]
     for i in range(nsteps):
-        if par:
-            _zones_par(zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
-        else:
-            _zones_ser(zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
-        fr = _frame(i, drive)
-        if nff:
-            freefield_step(P, fr, ff, mprops, grid.gff)
-        if par:
-            _grid_par(P, fr, grid, zf, part)
-        else:
-            _grid_ser(P, fr, grid, zf, part)
-        unbal = 0.0
-        fsum = 0.0
-        nfree = 0.0
-        E[E_TDAMP] = 0.0
-        E[E_TBASE] = 0.0
-        E[E_TEXT] = 0.0
-        E[E_TDASH] = 0.0
-        for blk in range(NBLK):
-            unbal = max(unbal, part[blk, Q_UNBAL])
-            fsum += part[blk, Q_FSUM]
-            nfree += part[blk, Q_NFREE]
-            E[E_WDAMP] += part[blk, Q_WDAMP]
-            E[E_WBASE] += part[blk, Q_WBASE]
-            E[E_WEXT] += part[blk, Q_WEXT]
-            E[E_WDASH] += part[blk, Q_WDASH]
-            E[E_TDAMP] += part[blk, Q_TDAMP]
-            E[E_TBASE] += part[blk, Q_TBASE]
-            E[E_TEXT] += part[blk, Q_TEXT]
-            E[E_TDASH] += part[blk, Q_TDASH]
-        S[S_UNBAL] = unbal
-        S[S_MEANF] = fsum / nfree if nfree > 0.0 else 0.0
-        C[C_STEP] += 1
+        zone_forces(P, grid, zones, mprops, par)
+        grid_update(P, E, C, S, _frame(i, drive), grid, zones.zf, (part, ff, mprops), par)
     return 0
 
 
