@@ -245,3 +245,77 @@ def case_hole(quick=False):
         err = float(np.abs(got - want).max() / p0) if res.converged else math.nan
         rows.append(_bound_row(f"{name} {lab} stress to 5a, max |error| / P0 (abs)", err, 0.03))
     return rows
+
+
+# ---------------------------------------------------------------------- 6. oedometer, energy
+def case_oedometer(quick=False):
+    """An elastic layer (t = 2 m, E = 20 MPa, nu = 0.35, 4 m wide, rollers on the sides, fixed
+    base, weightless) under a uniform pressure s = 100 kPa on its top, settled with local
+    damping: the settlement of the top within 2 % of ``s t / M``
+    (:func:`~murus.continuum.closed_forms.oedometric_settlement`). The rigid block pressed on
+    the layer needs the zone-block interfaces (listed as not yet available)."""
+    t, s, E, nu = 2.0, 1e5, 2e7, 0.35
+    nx, ny = (4, 4) if quick else (8, 16)
+    mat = Elastic(density=RHO, E=E, nu=nu)
+    msh = cmesh.rectangle(0.0, 0.0, 4.0, t, nx=nx, ny=ny, name="layer")
+    m = ContinuumModel(msh.xy, msh.zones, mat, gravity=0.0)
+    m.fix(np.concatenate([msh.side("layer.left"), msh.side("layer.right")]), x=True, y=False)
+    m.fix(msh.side("layer.bottom"))
+    top = msh.side("layer.top")
+    m.apply_pressure(np.column_stack([top[:-1], top[1:]]), s)
+    res = m.settle(tol=1e-7, reset=False)
+    got = float(-m.gdisp[top, 1].mean()) if res.converged else math.nan
+    want = cf.oedometric_settlement(s, t, E, nu)
+    return [_row(f"oedometric settlement of an elastic layer under a uniform pressure, {nx} x {ny} "
+                 "zones: s t / M [m]", want, got, 0.02),
+            _not_available("oedometric settlement under a rigid block", 0.02,
+                           "zone-block interfaces")]
+
+
+def case_energy(quick=False):
+    """Energy balance of a dynamic run with plasticity: a Mohr-Coulomb soil (10 m x 5 m,
+    phi = 30 deg, c = 5 kPa, psi = 0) under gravity (K0 stresses, then settled), on a rigid
+    base shaking horizontally (0.5 g sine at 2 Hz, 2 s, 1 s quick), quiet dashpots on both sides,
+    5 % mass-proportional damping at 2 Hz, large strain. :meth:`ContinuumModel.energy` gives the
+    kinetic, strain and gravity energies, the plastic work, the work of the damping, of the
+    dashpots and of the base; their balance closes within 1 % of the largest term over the run
+    (the row names the plastic work's share of that scale, so that plasticity is exercised).
+
+    With a dilation (psi > 0) the balance does not close (16 % with psi = 10 deg on the quick
+    mesh): the plastic return gives the two triangles of an overlay different mean stresses,
+    and the work of the mixed discretisation's volumetric averaging, ``sum_t (p_t - p_mean)
+    dev_t A_t``, is in no term of :meth:`ContinuumModel.energy` (reported, not worked around
+    here)."""
+    Lx, H = 10.0, 5.0
+    nx, ny = (10, 5) if quick else (20, 10)
+    mat = MohrCoulomb(density=1900.0, E=3e7, nu=0.3, friction_deg=30.0, cohesion=5e3,
+                      dilation_deg=0.0)
+    msh = cmesh.rectangle(0.0, 0.0, Lx, H, nx=nx, ny=ny, name="soil")
+    m = ContinuumModel(msh.xy, msh.zones, mat)
+    left, right = msh.side("soil.left"), msh.side("soil.right")
+    bottom = msh.side("soil.bottom")
+    m.fix(np.concatenate([left, right]), x=True, y=False)
+    m.fix(bottom)
+    m.initial_stress_k0()
+    m.settle(tol=1e-6)
+    # dynamic: the sides free, with dashpots; the base shakes
+    m.free(np.concatenate([left, right]), x=True, y=False)
+    m.set_base(bottom)
+    m.add_quiet(np.column_stack([left[:-1], left[1:]]))
+    m.add_quiet(np.column_stack([right[:-1], right[1:]]))
+    m.reset_reference()
+    f, amax = 2.0, 0.5 * G_ACC
+    w = 2 * np.pi * f
+    res = m.run(1.0 if quick else 2.0, velocity=lambda tt: amax / w * np.sin(w * tt), xi=0.05,
+                freq=f, every=20)
+    e = res.values
+    terms = ("kinetic", "strain", "gravity", "plastic", "damping_work", "dashpot_work",
+             "base_work")
+    scale = max(float(np.abs(e["energy." + k]).max()) for k in terms)
+    err = float(np.abs(e["energy.error"]).max() / scale) if res.success else math.nan
+    share = float(e["energy.plastic"][-1] / scale)
+    return [_bound_row(f"energy balance of a shaken Mohr-Coulomb soil, {nx} x {ny} zones "
+                       f"(plastic work {share:.0%} of the largest term): max |error| / largest "
+                       "term (abs)", err, 0.01),
+            _not_available("energy balance with zone-block contacts", 0.01,
+                           "zone-block interfaces")]
