@@ -103,3 +103,16 @@ def test_rows_are_plain_numbers(name):
     for r in V.CASES[name](quick=True):
         for k in ("expected", "obtained", "error", "tolerance"):
             assert isinstance(r[k], float)
+
+
+def test_public_functions_have_numpydoc_sections():
+    import inspect
+    import re
+
+    for name in V.__all__:
+        obj = getattr(V, name)
+        if not inspect.isfunction(obj):
+            continue
+        doc = inspect.getdoc(obj) or ""
+        for sec in ("Parameters", "Returns", "References"):
+            assert re.search(rf"^{sec}\n-{{3,}}$", doc, re.M), (name, sec)

@@ -36,7 +36,9 @@ from murus.continuum import mesh as cmesh
 from murus.continuum.materials import Elastic, MohrCoulomb
 from murus.continuum.model import ContinuumModel
 
-__all__ = ["CASES", "run_verification"]
+__all__ = ["CASES", "run_verification", "footing_limit_pressure", "case_shear_column",
+           "case_quiet_base", "case_free_field", "case_hole", "case_prandtl", "case_rankine",
+           "case_oedometer", "case_energy"]
 
 RHO = 2000.0
 G_ACC = 9.81
@@ -85,7 +87,22 @@ def case_shear_column(quick=False):
     shear beam): the first frequency from a free vibration of the first mode, within 1 % of
     ``Vs / 4H``; the steady amplification ``|u_top / u_base|`` when the base shakes at ``f1``
     with 5 % mass-proportional damping (on the velocity relative to the base), within 5 % of
-    :func:`~murus.continuum.closed_forms.layer_transfer_rayleigh` (``relative=True``)."""
+    :func:`~murus.continuum.closed_forms.layer_transfer_rayleigh` (``relative=True``).
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh or shorter run (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    Kramer, S. L. (1996). Geotechnical Earthquake Engineering, ch. 7 (layer on a rigid base).
+    """
     H, vs, nu, xi = 10.0, 100.0, 0.3, 0.05
     n = 10 if quick else 40
     G = RHO * vs * vs
@@ -170,7 +187,23 @@ def case_quiet_base(quick=False):
     velocity ``c f'`` and the matching stresses) leave through the base. The energy left in the
     column once the pulse has crossed the base is the reflected energy, 0 for the exact plane
     wave at normal incidence (:func:`~murus.continuum.closed_forms.quiet_boundary_reflection`);
-    below 3 % of the pulse's energy."""
+    below 3 % of the pulse's energy.
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh or shorter run (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    Lysmer, J. and Kuhlemeyer, R. L. (1969). Finite dynamic model for infinite media. J. Eng.
+    Mech. Div. ASCE 95(EM4), 859-877.
+    """
     rows = []
     for wave in ("P", "S"):
         want = cf.quiet_boundary_reflection(0.0, 1.0, 0.5, wave=wave)
@@ -207,7 +240,23 @@ def case_hole(quick=False):
     the yield line ``sigma_t = Kp sigma_r + q``; this also absorbs the finite outer radius),
     within 3 %; the radial and tangential stresses at the zone centroids out to 5 a, the
     largest difference from :func:`~murus.continuum.closed_forms.hole_stresses` (averaged over
-    each zone's radial span) as a fraction of P0, within 3 %."""
+    each zone's radial span) as a fraction of P0, within 3 %.
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh or shorter run (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    Salençon, J. (1969); Itasca, FLAC Verification Problems: "Cylindrical hole in an infinite
+    Mohr-Coulomb medium".
+    """
     a, b = 1.0, 20.0
     G, K = 2.8e9, 3.9e9
     c, phi, p0 = 3.45e6, 30.0, 30e6
@@ -253,7 +302,23 @@ def case_oedometer(quick=False):
     base, weightless) under a uniform pressure s = 100 kPa on its top, settled with local
     damping: the settlement of the top within 2 % of ``s t / M``
     (:func:`~murus.continuum.closed_forms.oedometric_settlement`). The rigid block pressed on
-    the layer needs the zone-block interfaces (listed as not yet available)."""
+    the layer needs the zone-block interfaces (listed as not yet available).
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh or shorter run (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    The oedometric modulus ``M = E (1 - nu) / ((1 + nu)(1 - 2 nu))``
+    (:func:`~murus.continuum.closed_forms.oedometric_modulus`).
+    """
     t, s, E, nu = 2.0, 1e5, 2e7, 0.35
     nx, ny = (4, 4) if quick else (8, 16)
     mat = Elastic(density=RHO, E=E, nu=nu)
@@ -285,7 +350,23 @@ def case_energy(quick=False):
     mesh): the plastic return gives the two triangles of an overlay different mean stresses,
     and the work of the mixed discretisation's volumetric averaging, ``sum_t (p_t - p_mean)
     dev_t A_t``, is in no term of :meth:`ContinuumModel.energy` (reported, not worked around
-    here)."""
+    here).
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh or shorter run (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    Itasca FLAC, Theory and Background (explicit scheme); the balance of
+    :meth:`ContinuumModel.energy`.
+    """
     Lx, H = 10.0, 5.0
     nx, ny = (10, 5) if quick else (20, 10)
     mat = MohrCoulomb(density=1900.0, E=3e7, nu=0.3, friction_deg=30.0, cohesion=5e3,
@@ -331,7 +412,22 @@ def case_rankine(quick=False):
     zones' forces on the wall gridpoints, within 5 % of Rankine's ``1/2 K_A gamma H²``
     (:func:`~murus.continuum.closed_forms.rankine_thrust`). The rough wall (Coulomb) and the
     pseudo-static Mononobe-Okabe thrust need the zone-block interfaces (listed as not yet
-    available)."""
+    available).
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh or shorter run (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    Rankine, W. J. M. (1857) (:func:`~murus.continuum.closed_forms.rankine_thrust`).
+    """
     H, Lx, phi = 4.0, 8.0, 30.0
     nx, ny = (16, 8) if quick else (32, 16)
     rho = 18e3 / G_ACC
@@ -403,6 +499,11 @@ def footing_limit_pressure(phi_deg, n_footing, *, psi_deg=0.0, rough=False, G_ov
     -------
     tuple
         (limit pressure / c [-], the load history / (B c) [-], the model).
+
+    References
+    ----------
+    Prandtl, L. (1920); Itasca FLAC, Theory and Background (local damping, velocities
+    prescribed at gridpoints).
     """
     B, c, nu = 1.0, 1e5, 0.3
     G = G_over_c * c
@@ -432,7 +533,23 @@ def case_prandtl(quick=False):
     within 5 %; with friction (phi = 30 deg), the Prandtl-Reissner factor ``N_c = 30.14``
     within 10 % (:func:`~murus.continuum.closed_forms.strip_footing_capacity`); smooth rigid
     footing, :func:`footing_limit_pressure`. The frictional case uses psi = 0 (non-associated):
-    a dilation makes the engine diverge (see the report of the verification)."""
+    a dilation makes the engine diverge (see the report of the verification).
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh or shorter run (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    Prandtl, L. (1920); Reissner, H. (1924)
+    (:func:`~murus.continuum.closed_forms.bearing_capacity_factors`).
+    """
     rows = []
     for phi, nf, G_c, s, tol in ((0.0, 12 if quick else 24, 1000.0, 0.025, 0.05),
                                  (30.0, 8 if quick else 16, 5000.0, 0.05, 0.10)):
@@ -447,7 +564,22 @@ def case_prandtl(quick=False):
 
 def case_free_field(quick=False):
     """Free-field lateral boundaries (a wide model under a vertically propagating S wave moves
-    at its sides as the 1D column within 2 %): not built yet, listed as not yet available."""
+    at its sides as the 1D column within 2 %): not built yet, listed as not yet available.
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh or shorter run (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    Itasca FLAC, Dynamic Analysis (free-field boundaries).
+    """
     return [_not_available("free-field sides follow the 1D column under an S wave", 0.02,
                            "free-field boundaries")]
 
@@ -476,6 +608,10 @@ def run_verification(quick: bool = False) -> list[dict]:
     -------
     list of dict
         One row per check; rows of problems not yet available have ``passed=None``.
+
+    References
+    ----------
+    The closed forms of :mod:`murus.continuum.closed_forms` (module doc).
     """
     rows = []
     for fn in CASES.values():
