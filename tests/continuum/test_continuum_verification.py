@@ -73,8 +73,10 @@ def test_energy_balance_of_a_shaken_plastic_soil():
     _check(rows, 1)
 
 
-def test_free_field_is_listed_not_passed():
-    _check(V.case_free_field(quick=True), 0)
+def test_free_field_sides_follow_the_column():
+    """Side and centre within 2 % of the 1D column; the column's amplitude the damped layer's
+    (5 %)."""
+    _check(V.case_free_field(quick=True), 3)
     assert set(V.CASES) >= {"shear_column", "quiet_base", "free_field", "hole", "prandtl",
                             "rankine", "oedometer", "energy"}
 
@@ -84,8 +86,8 @@ def test_verify_continuum_cli_prints_the_table_and_exits_1_on_a_failure(monkeypa
 
     from murus.cli import app
 
-    r = CliRunner().invoke(app, ["verify", "continuum", "--quick", "-c", "oedometer",
-                                 "-c", "free_field"], env={"COLUMNS": "200"})
+    r = CliRunner().invoke(app, ["verify", "continuum", "--quick", "-c", "oedometer"],
+                           env={"COLUMNS": "200"})
     assert r.exit_code == 0, r.output
     assert "s t / M [m]" in r.output and "pass" in r.output and "n/a" in r.output
     assert "murus" in r.output and "tolerance" in r.output
