@@ -44,6 +44,7 @@ def main() -> None:
     # Ctrl-C stops everything (a handler of ours: the DEM engine then does not catch it to end
     # a run early, which would cache a truncated run)
     signal.signal(signal.SIGINT, _interrupt)
+    import continuum
     import eurocode
     import identify
     import mordant_series_model
@@ -67,7 +68,8 @@ def main() -> None:
                 ("retaining_dynamic", retaining_dynamic.section),
                 ("retaining_behaviour", retaining_behaviour.section),
                 ("retaining_backfill", retaining_backfill.section),
-                ("studies", studies.section), ("identify", identify.section)]
+                ("studies", studies.section), ("identify", identify.section),
+                ("continuum", continuum.section)]
     parts = [HEADER]
     t0 = time.monotonic()
     name = sections[0][0]
