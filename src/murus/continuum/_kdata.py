@@ -18,6 +18,8 @@ from __future__ import annotations
 
 from collections import namedtuple
 
+from murus.dem._kdata import pack  # the same: a named tuple of the arrays of a holder
+
 __all__ = ["Grid", "Zones", "STATE_ARRAYS", "pack", "IG_GXY", "IG_GVEL", "IG_GDISP",
            "IG_GACC", "IZ_ZSIG", "IZ_ZSTATE", "IZ_ZWORK", "IZ_ZF"]
 
@@ -63,25 +65,6 @@ Zones.__doc__ = """Zones (``nz`` rows each).
 
 #: State arrays of a model that the kernels read or write (a checkpoint saves them).
 STATE_ARRAYS = Grid._fields + Zones._fields
-
-
-def pack(cls, obj):
-    """The structure ``cls`` (:class:`Grid` or :class:`Zones`) of the arrays of ``obj`` of the
-    same names.
-
-    Parameters
-    ----------
-    cls : type
-        A named tuple class of this module.
-    obj : object
-        Holder of the arrays as attributes.
-
-    Returns
-    -------
-    cls
-        The named tuple of the arrays (no copy).
-    """
-    return cls(*[getattr(obj, f) for f in cls._fields])
 
 
 # Positions of the fields written inside parallel loops (numba drops a write through a

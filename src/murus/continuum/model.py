@@ -523,21 +523,9 @@ class ContinuumModel:
         -------
         ndarray (n, 2)
         """
-        from murus.dem.model import _record_velocity
+        from murus.dem.model import motion_velocity
 
-        t = np.atleast_1d(np.asarray(t, float))
-        out = np.zeros((t.size, 2))
-        if self._motion_kind == "record":
-            for j, acc in enumerate((self._motion_acc, self._motion_accv)):
-                out[:, j] = _record_velocity(acc, self._motion_dt, t)
-        elif self._motion_kind == "callable":
-            v = self._motion_callable(t)
-            if isinstance(v, tuple):
-                out[:, 0] = v[0]
-                out[:, 1] = v[1]
-            else:
-                out[:, 0] = v
-        return out
+        return motion_velocity(self, t)
 
     # ------------------------------------------------------------------ stresses
     def set_stress(self, sxx, syy, sxy=0.0, szz=None, zones=None) -> None:

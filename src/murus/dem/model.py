@@ -513,19 +513,7 @@ class Model:
 
     def base_velocity(self, t) -> np.ndarray:
         """Velocity of the ``"base"`` bodies [m/s] at times t (n, 2)."""
-        t = np.atleast_1d(np.asarray(t, float))
-        out = np.zeros((t.size, 2))
-        if self._motion_kind == "record":
-            for j, acc in enumerate((self._motion_acc, self._motion_accv)):
-                out[:, j] = _record_velocity(acc, self._motion_dt, t)
-        elif self._motion_kind == "callable":
-            v = self._motion_callable(t)
-            if isinstance(v, tuple):
-                out[:, 0] = v[0]
-                out[:, 1] = v[1]
-            else:
-                out[:, 0] = v
-        return out
+        return motion_velocity(self, t)
 
     # ------------------------------------------------------------------ outputs
     def world_polygons(self) -> list[np.ndarray]:
@@ -706,6 +694,39 @@ def _check_parts_apart(parts, where: str) -> None:
                 raise ModelError(f"{where}: clump parts {i} and {j} overlap by {d:.3g} m (their "
                                  "common area would be counted twice in the mass): split the "
                                  "clump into parts that only touch")
+
+
+def motion_velocity(holder, t) -> np.ndarray:
+    """Velocity of a base [m/s] at times t (n, 2), from the motion a model holds: its
+    ``_motion_kind`` ("record": the accelerations ``_motion_acc`` and ``_motion_accv`` [m/s²]
+    sampled at ``_motion_dt`` [s], integrated exactly, zero after their end; "callable":
+    ``_motion_callable(t)`` returning vx or (vx, vy); else at rest). One function for the
+    blocks and the zones, so that both read the same base motion.
+
+    Parameters
+    ----------
+    holder : object
+        A :class:`Model` or a :class:`murus.continuum.ContinuumModel`.
+    t : array_like
+        Times [s].
+
+    Returns
+    -------
+    ndarray (n, 2)
+    """
+    t = np.atleast_1d(np.asarray(t, float))
+    out = np.zeros((t.size, 2))
+    if holder._motion_kind == "record":
+        for j, acc in enumerate((holder._motion_acc, holder._motion_accv)):
+            out[:, j] = _record_velocity(acc, holder._motion_dt, t)
+    elif holder._motion_kind == "callable":
+        v = holder._motion_callable(t)
+        if isinstance(v, tuple):
+            out[:, 0] = v[0]
+            out[:, 1] = v[1]
+        else:
+            out[:, 0] = v
+    return out
 
 
 def _record_velocity(acc: np.ndarray, dt: float, t: np.ndarray) -> np.ndarray:
