@@ -333,3 +333,36 @@ def test_block_resting_on_an_elastic_layer():
     assert fz == pytest.approx(weight, rel=5e-3)
     assert -fg[:, 1].sum() == pytest.approx(weight, rel=5e-3)
     assert m.bpos[0, 1] < 0.25  # the block has settled into the layer
+
+
+def test_public_api_has_numpydoc_sections():
+    """Every exported function and class of the module has its numpydoc sections (Parameters
+    naming each parameter, Returns and References for functions; Attributes or Parameters for
+    classes), the numba kernels included."""
+    import inspect
+    import re
+
+    def section(doc, name):
+        return re.search(rf"^\s*{name}\s*\n\s*-{{3,}}\s*$", doc, re.M) is not None
+
+    seen = 0
+    for name in I.__all__:
+        obj = getattr(I, name)
+        func = getattr(obj, "py_func", obj)
+        if inspect.isclass(obj):
+            if issubclass(obj, BaseException):
+                continue
+            doc = obj.__doc__ or ""
+            assert section(doc, "Attributes") or section(doc, "Parameters"), name
+            seen += 1
+        elif inspect.isfunction(func):
+            doc = inspect.getdoc(func) or ""
+            params = [p for p in inspect.signature(func).parameters if p not in ("self", "cls")]
+            assert section(doc, "Returns") and section(doc, "References"), name
+            if params:
+                assert section(doc, "Parameters"), name
+                for p in params:
+                    assert re.search(rf"^\s*(\*\*)?{p}\b", doc, re.M) or f", {p}" in doc, \
+                        (name, p)
+            seen += 1
+    assert seen >= 9

@@ -29,14 +29,21 @@ law is the same code as block-block joints; Savalle et al. (2022), eqs. 3-4; Ita
    adjacent block edges that face the zone edge (outward normals opposed), half the edge's
    length projected on the zone edge (the measure of the distinct-element clipping, where a
    vertex on a face carries half the clipped incident edge), but only from the block edges that
-   had **no gridpoint contact in step 1 of this step**. Reason: a block face resting on
+   had **no gridpoint contact in step 1 of this step** (a gridpoint touching the edge, gap
+   <= 0, or bonded to it and carrying a force). Reason: a block face resting on
    gridpoints is already carried by them, each with its own tributary length, so that counting
    its corners too would put the face's stiffness in twice (a flat face on a row of gridpoints
    carries ``kn t delta`` times the covered length, not more); while a corner that pokes into a
    zone edge between two gridpoints of a coarse mesh touches no gridpoint, and is then held by
    the edge with its full share. A gridpoint whose nearest core point is a vertex marks both
    edges at that vertex. A disc gets ``2 R`` (the disc-polygon tributary of the blocks) unless a
-   gridpoint touches it.
+   gridpoint touches it. Of the vertices of a shape within reach of an edge, the two of least
+   gap are kept (a convex shape touches a straight edge with two vertices at most).
+
+The reach (largest positive gap at which a contact is kept, ``IP_REACH``) is by default twice
+the joint's ``T / kn``: a bond pulled beyond its tensile strength then breaks through the joint
+law and keeps its residual tension up to that gap (with the blocks' reach, ``T / kn``, a bond
+would vanish at the very gap where it breaks). A dry joint (``T = 0``) has reach 0.
 
 Contact state across steps (the distinct-element layout, :class:`murus.dem._kdata.Contacts`):
 candidate pairs are rebuilt (:func:`rebuild`) when an interface gridpoint or a body has moved
@@ -125,33 +132,59 @@ IC_CORNERS = 4  # active corner contacts at the last step
 NIC = 5
 
 GridSide = namedtuple("GridSide", ["gxy", "gvel"])
-GridSide.__doc__ = """The zone side read by the interface kernels: gridpoint coordinates ``gxy
-(ng, 2)`` [m] and velocities ``gvel (ng, 2)`` at the half step ``t - dt/2`` [m/s] (a
-:class:`murus.continuum._kdata.Grid` has the same fields and may be passed instead)."""
+GridSide.__doc__ = """The zone side read by the interface kernels (a
+:class:`murus.continuum._kdata.Grid` has the same fields and may be passed instead).
+
+Attributes
+----------
+gxy : ndarray (ng, 2)
+    Gridpoint coordinates [m].
+gvel : ndarray (ng, 2)
+    Gridpoint velocities at the half step ``t - dt/2`` [m/s].
+"""
 
 IfaceGeom = namedtuple("IfaceGeom", ["ig", "gloc", "ie", "jsel"])
 IfaceGeom.__doc__ = """The interface (fixed during a run).
 
-- ``ig (ni,)`` int64: the interface gridpoints (global gridpoint indices, sorted);
-- ``gloc (ng,)`` int64: local index into ``ig`` of each gridpoint, -1 off the interface;
-- ``ie (ne, 2)`` int64: the interface edges (global gridpoint indices), each a zone boundary
-  edge oriented with its zone on the left (outward normal ``(dy, -dx) / L``);
-- ``jsel (ngroup,)`` int64: the joint row (of ``jprops``) of each block group.
+Attributes
+----------
+ig : ndarray (ni,) int64
+    The interface gridpoints (global gridpoint indices, sorted).
+gloc : ndarray (ng,) int64
+    Local index into ``ig`` of each gridpoint, -1 off the interface.
+ie : ndarray (ne, 2) int64
+    The interface edges (global gridpoint indices), each a zone boundary edge oriented with
+    its zone on the left (outward normal ``(dy, -dx) / L``).
+jsel : ndarray (ngroup,) int64
+    The joint row (of ``jprops``) of the contacts with the blocks of each group.
 """
 
 IfaceState = namedtuple("IfaceState", ["glast", "blast"])
-IfaceState.__doc__ = """Reference positions of the last rebuild: ``glast (ni, 2)`` of the
-interface gridpoints [m], ``blast (nb, 3)`` of the bodies (x, y [m], angle [rad])."""
+IfaceState.__doc__ = """Reference positions of the last rebuild of the candidate pairs.
+
+Attributes
+----------
+glast : ndarray (ni, 2)
+    Positions of the interface gridpoints [m].
+blast : ndarray (nb, 3)
+    Positions and angles of the bodies (x, y [m], angle [rad]).
+"""
 
 IfaceWork = namedtuple("IfaceWork", ["fg", "fb", "itrib", "eflag"])
 IfaceWork.__doc__ = """Outputs and scratch arrays of a step (allocated once).
 
-- ``fg (ng, 2)``: interface forces on the gridpoints [N], added to by :func:`step`;
-- ``fb (nb, 3)``: interface forces (Fx, Fy) [N] and moments about the centroid [N m] on the
-  bodies, added to by :func:`step`;
-- ``itrib (ni,)``: tributary length of each interface gridpoint [m] (written by :func:`step`);
-- ``eflag (nv,)`` int8: 1 for the core edges (indexed by their first global vertex) and discs
-  (their centre) touched by a gridpoint in this step (zero between steps).
+Attributes
+----------
+fg : ndarray (ng, 2)
+    Interface forces on the gridpoints [N], added to by :func:`step`.
+fb : ndarray (nb, 3)
+    Interface forces (Fx, Fy) [N] and moments about the centroids [N m] on the bodies, added
+    to by :func:`step`.
+itrib : ndarray (ni,)
+    Tributary length of each interface gridpoint [m] (written by :func:`step`).
+eflag : ndarray (nv,) int8
+    1 for the core edges (indexed by their first global vertex) and the discs (their centre)
+    carried by a gridpoint in this step (zero between steps).
 """
 
 
@@ -306,8 +339,35 @@ def rebuild(P, E, C, geo, gxy, bodies, shapes, nodes, corners, state, bond_new):
     that remain (:func:`transfer`); the shear energy of active contacts whose pair left the
     list is added to ``E[IE_DBREAK]``; the reference positions ``state`` are reset.
 
-    Returns the arrays of the new node and corner :class:`~murus.dem._kdata.Contacts`, as one
-    plain tuple of 12 arrays (the fields of the node structure, then of the corner one)."""
+    Parameters
+    ----------
+    P, E, C : ndarray
+        Parameters ``IP_*``, energies ``IE_*`` [J] (added to), counters ``IC_*``.
+    geo : IfaceGeom
+        The interface.
+    gxy : ndarray (ng, 2)
+        Gridpoint coordinates [m].
+    bodies, shapes : murus.dem._kdata.Bodies, murus.dem._kdata.Shapes
+        The blocks (``shapes.wv`` current).
+    nodes, corners : murus.dem._kdata.Contacts
+        The current gridpoint and corner contacts.
+    state : IfaceState
+        Reference positions, reset here.
+    bond_new : int
+        1: the new pairs start bonded (the first list), 0: unbonded.
+
+    Returns
+    -------
+    tuple of 12 arrays
+        The arrays of the new node and corner contacts (the fields of
+        :class:`murus.dem._kdata.Contacts` of the nodes, then of the corners): a plain tuple,
+        which numba boxes without calling a Python class (as
+        :func:`murus.dem.kernels.transfer_arrays`).
+
+    References
+    ----------
+    Itasca UDEC, Theory and Background (contact detection with a margin).
+    """
     ns = shapes.svs.size
     npairs, cpairs = candidates(geo, gxy, shapes, P[IP_MARGIN])
     E[IE_DBREAK] += (_released_pairs(nodes, npairs, ns) + _released_pairs(corners, cpairs, ns))
