@@ -276,12 +276,10 @@ def test_bad_edges_are_refused():
     assert ifc.geo.ie.tolist() == [[4, 3], [5, 4]]
 
 
-def test_block_resting_on_an_elastic_layer():
-    """A rigid block on a weightless elastic layer (fixed base, rollers on the sides), both
-    integrated with central differences and local damping in a loop written here (the zones by
-    the public continuum kernel, one step at a time, the interface forces as applied gridpoint
-    forces): at equilibrium the interface normal forces sum to the block's weight within 0.5 %,
-    and the gridpoints receive the opposite."""
+def _layer_and_block(friction_deg=30.0):
+    """A weightless elastic layer 2 m x 1 m (8 x 4 zones, fixed base, rollers on the sides,
+    top at y = 0) and a 1 m x 0.5 m block (1000 kg per metre) resting on it, with the interface
+    along the top; returns the pieces of the explicit loop of :func:`_run`."""
     from murus.continuum import ContinuumModel, Elastic
     from murus.continuum import _kdata as ckd
     from murus.continuum import kernels as CK
@@ -296,43 +294,85 @@ def test_block_resting_on_an_elastic_layer():
     edges = be[top[be[:, 0]] & top[be[:, 1]]]
     kn = 2.0e8
     m = Model(thickness=1.0, rounding=0.005, margin=0.05,
-              joint=Joint(kn=kn, ks=kn, friction_deg=30.0))
+              joint=Joint(kn=kn, ks=kn, friction_deg=friction_deg))
     m.add_rectangle(1.0, 0.5, center=(0.1, 0.25), density=2000.0)
     ifc = I.Interface(cm, edges, m)
-    mass = float(m.bmass[0])
-    inert = float(m.binert[0])
-    g = 9.81
-    hz = 0.25
     mtop = float(cm.gmass[top].min())
-    dt = min(cm.stable_dt(), 0.2 * math.sqrt(mtop / (kn * hz)), 0.2 * math.sqrt(mass / (kn)))
-    alpha = 0.8
+    dt = min(cm.stable_dt(), 0.2 * math.sqrt(mtop / (kn * 0.25)),
+             0.2 * math.sqrt(float(m.bmass[0]) / kn))
     cm.P[CK.P_DT] = dt
-    cm.P[CK.P_ALOCAL] = alpha
     z = np.zeros((1, 2))
     drive = Drive(z, z, z, z)  # no base motion, no gravity on the (weightless) layer
-    grid = ckd.pack(ckd.Grid, cm)
-    zn = ckd.pack(ckd.Zones, cm)
-    fz = 0.0
-    for _ in range(2500):
+    return SimpleNamespace(cm=cm, m=m, ifc=ifc, dt=dt, drive=drive, CK=CK,
+                           grid=ckd.pack(ckd.Grid, cm), zones=ckd.pack(ckd.Zones, cm))
+
+
+def _run(s, nsteps, alpha, record=None):
+    """``nsteps`` central-difference steps of the layer and the block with local damping
+    ``alpha``: interface forces at the positions of the step, the zones by the public kernel
+    (the gridpoint reactions as applied forces, per metre: thickness 1), the block by
+    ``v += dt F / m``, ``x += v dt``. ``record``: a list receiving, at each step, the energies
+    at the time of the force evaluation (kinetic energies with the mean of the two half-step
+    velocities)."""
+    cm, m, ifc, dt, CK = s.cm, s.m, s.ifc, s.dt, s.CK
+    cm.P[CK.P_ALOCAL] = alpha
+    g = 9.81
+    mass = float(m.bmass[0])
+    m3 = np.array([mass, mass, float(m.binert[0])])
+    free = cm.gfix == 0
+    fg = fb = None
+    for _ in range(nsteps):
         fg, fb = ifc.forces(dt)
-        cm.gext[:] = fg  # thickness 1: per metre
-        CK.run_chunk(1, cm.P, cm.E, cm.C, cm.S, drive, grid, zn, cm.mprops, cm.part)
+        cm.gext[:] = fg
+        CK.run_chunk(1, cm.P, cm.E, cm.C, cm.S, s.drive, s.grid, s.zones, cm.mprops, cm.part)
         f = fb[0] + np.array([0.0, -mass * g, 0.0])
-        for d, mm in enumerate((mass, mass, inert)):
-            v = m.bvel[0, d] if d < 2 else m.bomg[0]
-            fd = f[d] - alpha * abs(f[d]) * np.sign(v)
-            v += dt * fd / mm
-            if d < 2:
-                m.bvel[0, d] = v
-                m.bpos[0, d] += v * dt
-            else:
-                m.bomg[0] = v
-                m.bang[0] += v * dt
-        fz = ifc.normal_force()
-    weight = mass * g
-    assert fz == pytest.approx(weight, rel=5e-3)
+        v0 = np.array([m.bvel[0, 0], m.bvel[0, 1], m.bomg[0]])
+        v1 = v0 + dt * (f - alpha * np.abs(f) * np.sign(v0)) / m3
+        if record is not None:
+            vm = 0.5 * (v0 + v1)
+            gvm = cm.gvel - 0.5 * dt * cm.gacc
+            e = ifc.energy
+            record.append(0.5 * float(m3 @ vm ** 2) + mass * g * m.bpos[0, 1]
+                          + 0.5 * float((cm.gmass[:, None] * gvm ** 2 * free).sum())
+                          + cm.energy()["strain"] + e["stored"] + e["slip"] + e["break"])
+        m.bvel[0] = v1[:2]
+        m.bomg[0] = v1[2]
+        m.bpos[0] += v1[:2] * dt
+        m.bang[0] += v1[2] * dt
+    return fg, fb
+
+
+def test_block_resting_on_an_elastic_layer():
+    """A rigid block on a weightless elastic layer, both integrated with central differences
+    and local damping in a loop written here (:func:`_run`): at equilibrium the interface
+    normal forces sum to the block's weight within 0.5 %, the gridpoints receive the opposite,
+    and the block has sunk into the layer."""
+    s = _layer_and_block()
+    fg, fb = _run(s, 2500, 0.8)
+    weight = float(s.m.bmass[0]) * 9.81
+    assert s.ifc.normal_force() == pytest.approx(weight, rel=5e-3)
     assert -fg[:, 1].sum() == pytest.approx(weight, rel=5e-3)
-    assert m.bpos[0, 1] < 0.25  # the block has settled into the layer
+    assert s.m.bpos[0, 1] < 0.25
+    assert s.ifc.C[I.IC_NODES] == 4
+
+
+def test_energy_of_a_block_sliding_on_an_elastic_layer():
+    """The settled block is launched at 0.05 m/s along the layer, no damping: it slides with
+    friction (20°) and stops. The total energy (block kinetic and potential, zones kinetic and
+    strain, interface springs) plus the interface's slip and break dissipation stays constant
+    within 1 % of the initial kinetic energy, while the slip dissipation takes most of it."""
+    s = _layer_and_block(friction_deg=20.0)
+    _run(s, 1500, 0.8)
+    s.cm.reset_reference()
+    s.ifc.E[:] = 0.0
+    s.m.bvel[0, 0] = 0.05
+    ke0 = 0.5 * float(s.m.bmass[0]) * 0.05 ** 2
+    rec = []
+    _run(s, 3000, 0.0, rec)
+    tot = np.array(rec)
+    assert np.abs(tot - tot[0]).max() < 0.01 * ke0
+    assert s.ifc.energy["slip"] > 0.5 * ke0
+    assert abs(s.m.bvel[0, 0]) < 0.5 * 0.05
 
 
 def test_public_api_has_numpydoc_sections():
