@@ -406,3 +406,35 @@ def test_public_api_has_numpydoc_sections():
                         (name, p)
             seen += 1
     assert seen >= 9
+
+
+def test_a_step_allocates_nothing():
+    """Without a rebuild, a step (:func:`murus.continuum.interface.step`, run by a numba loop)
+    makes no allocation of numba's runtime: the count of allocations of 1 step and of 21 steps
+    is the same."""
+    from numba import njit
+    from numba.core.runtime import _nrt_python, rtsys
+
+    @njit
+    def loop(n, P, E, C, geo, side, bodies, shapes, jprops, c, state, work):
+        for _ in range(n):
+            I.step(P, E, C, geo, side, bodies, shapes, jprops, c[0], c[1], state, work)
+        return 0
+
+    grid, edges = _surface(5, h=0.1)
+    m = _model()
+    m.add_rectangle(0.25, 0.2, center=(0.2, 0.1 - 1e-4), angle=0.01)
+    ifc = I.Interface(grid, edges, m)
+    ifc.P[I.IP_DT] = 1e-4
+    m.bvel[0] = (0.01, 0.0)
+    args = (ifc.P, ifc.E, ifc.C, ifc.geo, I.GridSide(grid.gxy, grid.gvel), ifc.bodies,
+            ifc.shapes, ifc.jprops, (ifc.nodes, ifc.corners), ifc.state, ifc.work)
+    loop(1, *args)
+    _nrt_python.memsys_enable_stats()
+    s0 = rtsys.get_allocation_stats().alloc
+    loop(1, *args)
+    s1 = rtsys.get_allocation_stats().alloc
+    loop(21, *args)
+    s2 = rtsys.get_allocation_stats().alloc
+    assert ifc.C[I.IC_NODES] + ifc.C[I.IC_CORNERS] >= 2 and ifc.C[I.IC_REBUILD] == 0
+    assert s2 - s1 == s1 - s0
