@@ -9,7 +9,9 @@ double-count rule); a corner between two gridpoints of a coarse mesh is split ``
 Conservation: the forces on the gridpoints and the blocks are equal and opposite, in force and
 in moment. A static check couples a block and an elastic layer in a short explicit loop written
 here (the public continuum kernel :func:`murus.continuum.kernels.run_chunk`, one step at a time,
-with the interface forces as applied gridpoint forces).
+with the interface forces as applied gridpoint forces): the interface carries the block's weight
+within 0.5 %; the same loop without damping conserves the total energy, the interface's slip
+dissipation included, within 1 % of the initial kinetic energy. A step allocates nothing.
 """
 
 from __future__ import annotations
@@ -227,6 +229,34 @@ def test_corner_between_two_gridpoints_of_a_coarse_mesh(s):
     assert fg[0, 1] == pytest.approx(-(1 - sc) * f, rel=1e-9)
     assert fg[1, 1] == pytest.approx(-sc * f, rel=1e-9)
     assert abs(fb[0, 2] + _moment_of(fg, grid.gxy, m.bpos[0])) < 1e-12 * f
+
+
+def test_disc_on_a_gridpoint_and_between_two():
+    """A disc of radius R pressed by delta: on a gridpoint, ``kn h t delta`` from the gridpoint
+    alone (the disc is carried by it: no edge contact); between the two gridpoints of a coarse
+    edge, an edge contact of tributary 2 R (the blocks' disc-polygon tributary) split
+    ``(1 - s, s)``."""
+    R = 0.1
+    delta = 1e-4
+    grid, edges = _surface(3, x0=-H)
+    m = _model()
+    m.add_disc((0.0, R - delta), R)
+    ifc = I.Interface(grid, edges, m)
+    fg, fb = ifc.forces(0.0)
+    assert fb[0, 1] == pytest.approx(KN * H * T * delta, rel=1e-9)
+    assert fg[1, 1] == pytest.approx(-KN * H * T * delta, rel=1e-9)
+    assert ifc.C[I.IC_NODES] == 1 and ifc.C[I.IC_CORNERS] == 0
+    sc = 0.3
+    grid, edges = _surface(2, h=1.0)
+    m = _model()
+    m.add_disc((sc, R - delta), R)
+    ifc = I.Interface(grid, edges, m)
+    fg, fb = ifc.forces(0.0)
+    f = KN * 2 * R * T * delta
+    assert ifc.C[I.IC_NODES] == 0 and ifc.C[I.IC_CORNERS] == 1
+    assert fb[0, 1] == pytest.approx(f, rel=1e-9)
+    assert fg[:, 1] == pytest.approx([-(1 - sc) * f, -sc * f], rel=1e-9)
+    assert abs(fb[0, 2]) < 1e-9 * f
 
 
 def test_contact_opens_and_closes_again():
