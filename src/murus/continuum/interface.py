@@ -19,14 +19,14 @@ law is the same code as block-block joints; Savalle et al. (2022), eqs. 3-4; Ita
 2. **Block corners against zone edges.** Each core vertex of a candidate polygon (the centre
    of a disc) whose projection on an interface edge ``(g0, g1)`` falls inside it
    (``0 <= s <= 1``), at a gap ``d - r`` no larger than the reach and no deeper than
-   ``P_DEPTH``, with ``d`` the distance of the vertex from the edge line, positive outside the
+   ``IP_DEPTH``, with ``d`` the distance of the vertex from the edge line, positive outside the
    zones. The normal is the edge's outward normal, the contact point the projection of the
    vertex on the edge, ``(1 - s) x_g0 + s x_g1``; the reaction goes to the two gridpoints with
    the weights ``(1 - s, s)`` (so again no net force nor moment), and the velocity of side a at
    the contact point is ``(1 - s) v_g0 + s v_g1``.
 
    *Tributary length of a corner (the double-count rule).* A corner takes, from each of its two
-   adjacent block edges that face the zone edge (outward normals opposed), half the edge's
+   adjacent block edges that face the zone edge (outward normals at more than 90°), half the edge's
    length projected on the zone edge (the measure of the distinct-element clipping, where a
    vertex on a face carries half the clipped incident edge), but only from the block edges that
    had **no gridpoint contact in step 1 of this step** (a gridpoint touching the edge, gap
@@ -47,7 +47,7 @@ would vanish at the very gap where it breaks). A dry joint (``T = 0``) has reach
 
 Contact state across steps (the distinct-element layout, :class:`murus.dem._kdata.Contacts`):
 candidate pairs are rebuilt (:func:`rebuild`) when an interface gridpoint or a body has moved
-by more than half the margin ``P_MARGIN`` since the last rebuild (as the blocks do, with the
+by more than half the margin ``IP_MARGIN`` since the last rebuild (as the blocks do, with the
 interface's own reference positions), and the state of a pair present before and after a
 rebuild is carried over (merge on sorted keys). Node pairs ``(i, s)``: interface gridpoint
 ``i`` (local index into ``ig``) and shape ``s``, key ``i * ns + s``, one slot (slot 0; its key
@@ -59,6 +59,9 @@ those of :mod:`murus.dem.kernels`. The first pair list starts bonded (contacts p
 start carry the joint's cohesion and tension), later ones unbonded, as for the blocks.
 Contacts form and break as the blocks and the zones move apart and come back (Savalle et al.
 (2022), Figure 11: the backfill follows the wall).
+
+Every block takes part, dynamic or kinematic: zones against a rigid base or a fixed block are
+the same contacts (the coupled loop applies the forces to the dynamic bodies only).
 
 Energy: slip dissipation and the energy released by breaking or opening contacts are
 accumulated in ``E[IE_DSLIP]`` and ``E[IE_DBREAK]`` exactly as the blocks'
