@@ -468,3 +468,17 @@ def test_a_step_allocates_nothing():
     s2 = rtsys.get_allocation_stats().alloc
     assert ifc.C[I.IC_NODES] + ifc.C[I.IC_CORNERS] >= 2 and ifc.C[I.IC_REBUILD] == 0
     assert s2 - s1 == s1 - s0
+
+
+def test_kernels_take_at_most_twelve_arguments():
+    """The interface kernels take named structures: none has more than 12 arguments, and the
+    module guards its numba cache against changes of the joint law it compiles in."""
+    import inspect
+
+    from numba.core.registry import CPUDispatcher
+
+    found = {name: obj for name, obj in vars(I).items()
+             if isinstance(obj, CPUDispatcher) and obj.py_func.__module__ == I.__name__}
+    assert {"step", "rebuild", "node_contacts", "corner_contacts"} <= set(found)
+    assert max(len(inspect.signature(d.py_func).parameters) for d in found.values()) <= 12
+    assert "_guard_cache(globals(), deps=(\"murus.dem.kernels\"" in inspect.getsource(I)
