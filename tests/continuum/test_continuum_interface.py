@@ -259,6 +259,24 @@ def test_disc_on_a_gridpoint_and_between_two():
     assert abs(fb[0, 2]) < 1e-9 * f
 
 
+def test_critical_time_step():
+    """The interface's critical step ``min sqrt(m / k)``: a light gridpoint against the
+    stiffness ``max(kn, ks) L t`` of its tributary length (its mass per metre times t); with
+    heavy gridpoints, the block against its interface contacts (at least the blocks' floor
+    ``max(kn, ks) t`` times its longest edge)."""
+    grid, edges = _surface(3, x0=-H)
+    m = _model()
+    m.add_rectangle(0.25, 0.4, center=(0.0, 0.2 - 1e-4))
+    ifc = I.Interface(grid, edges, m)
+    ifc.forces(0.0)
+    assert ifc.critical_dt(np.full(3, 1.0)) == pytest.approx(math.sqrt(1.0 / (KN * H)),
+                                                             rel=1e-12)
+    kt = max(KN * H * T, KN * T * 0.4)
+    kr = max(KN * H * T * float(m.bpos[0, 1]) ** 2, KN * T * 0.4 * float(m.brad[0]) ** 2)
+    want = min(math.sqrt(float(m.bmass[0]) / kt), math.sqrt(float(m.binert[0]) / kr))
+    assert ifc.critical_dt(np.full(3, 1e9)) == pytest.approx(want, rel=1e-12)
+
+
 def test_contact_opens_and_closes_again():
     """A sheared gridpoint contact that opens releases its shear spring energy; moved away
     beyond the margin the pair leaves the candidate list (rebuild), and coming back the contact
@@ -327,9 +345,7 @@ def _layer_and_block(friction_deg=30.0):
               joint=Joint(kn=kn, ks=kn, friction_deg=friction_deg))
     m.add_rectangle(1.0, 0.5, center=(0.1, 0.25), density=2000.0)
     ifc = I.Interface(cm, edges, m)
-    mtop = float(cm.gmass[top].min())
-    dt = min(cm.stable_dt(), 0.2 * math.sqrt(mtop / (kn * 0.25)),
-             0.2 * math.sqrt(float(m.bmass[0]) / kn))
+    dt = min(cm.stable_dt(), 0.2 * ifc.critical_dt())
     cm.P[CK.P_DT] = dt
     z = np.zeros((1, 2))
     drive = Drive(z, z, z, z)  # no base motion, no gravity on the (weightless) layer

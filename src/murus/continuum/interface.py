@@ -98,7 +98,10 @@ from murus.dem.kernels import (
     F_FS,
     F_KNA,
     F_KSA,
+    F_PX,
+    F_PY,
     J_KN,
+    J_KS,
     J_T,
     NSF,
     _joint_law,
@@ -1089,6 +1092,77 @@ class Interface:
                  self.work)
         self._set(t)
         return self.work.fg, self.work.fb
+
+    def critical_dt(self, gmass=None) -> float:
+        """The interface's part of the stable time step, ``min sqrt(m / k)`` [s] before any
+        safety factor (the blocks' form, :func:`murus.dem.engine.stable_dt`, which applies
+        ``Model.safety``): over the interface gridpoints, their mass against the stiffness
+        ``max(kn, ks) L t`` of their tributary length (whether in contact or not) plus that of
+        the active corner contacts on their edges; over the dynamic bodies of the candidate
+        pairs, mass and inertia against the stiffness of their active interface contacts, at
+        least ``max(kn, ks) t`` times their longest edge (the blocks' floor).
+
+        Parameters
+        ----------
+        gmass : array_like (ng,), optional
+            Gridpoint masses [kg per metre of thickness] (default: ``grid.gmass``).
+
+        Returns
+        -------
+        float
+            The step [s] (``inf`` when nothing limits it).
+
+        References
+        ----------
+        Itasca UDEC, Theory and Background (time step of deformable blocks in contact).
+        """
+        gm = np.asarray(self.grid.gmass if gmass is None else gmass, float)
+        t = self.P[IP_THICK]
+        kmax = float(max(self.jprops[0, J_KN], self.jprops[0, J_KS]))
+        gxy = self.grid.gxy
+        ig = self.geo.ig
+        trib = np.zeros(ig.size)
+        ie = self.geo.ie
+        h = 0.5 * np.hypot(*(gxy[ie[:, 1]] - gxy[ie[:, 0]]).T)
+        np.add.at(trib, self.geo.gloc[ie[:, 0]], h)
+        np.add.at(trib, self.geo.gloc[ie[:, 1]], h)
+        kg = np.zeros(gxy.shape[0])
+        kg[ig] = kmax * t * trib
+        c = self.corners
+        on = c.sid >= 0
+        if on.any():
+            k = np.maximum(c.sf[..., F_KNA], c.sf[..., F_KSA])
+            for col in (0, 1):
+                g = np.repeat(ie[c.pairs[:, 0], col][:, None], 2, 1)[on]
+                np.add.at(kg, g, k[on])  # weight <= 1: an upper bound of the share
+        dt = np.inf
+        sel = ig[kg[ig] > 0]
+        if sel.size:
+            dt = float(np.sqrt(gm[sel] * t / kg[sel]).min())
+        dem = self.dem
+        nb = dem.bpos.shape[0]
+        Kt = np.zeros(nb)
+        Kr = np.zeros(nb)
+        for cc in (self.nodes, c):
+            on = cc.sid >= 0
+            if not on.any():
+                continue
+            k = np.maximum(cc.sf[..., F_KNA], cc.sf[..., F_KSA])[on]
+            b = np.repeat(dem.sbody[cc.pairs[:, 1]][:, None], 2, 1)[on]
+            px = cc.sf[..., F_PX][on]
+            py = cc.sf[..., F_PY][on]
+            np.add.at(Kt, b, k)
+            np.add.at(Kr, b, k * ((px - dem.bpos[b, 0]) ** 2 + (py - dem.bpos[b, 1]) ** 2))
+        near = np.zeros(nb, bool)
+        for cc in (self.nodes, c):
+            near[dem.sbody[cc.pairs[:, 1]]] = True
+        near &= dem.bkin == 0
+        if near.any():
+            floor = kmax * t * dem.blen[near]
+            dtt = np.sqrt(dem.bmass[near] / np.maximum(Kt[near], floor))
+            dtr = np.sqrt(dem.binert[near] / np.maximum(Kr[near], floor * dem.brad[near] ** 2))
+            dt = min(dt, float(dtt.min()), float(dtr.min()))
+        return dt
 
     @property
     def energy(self) -> dict:
