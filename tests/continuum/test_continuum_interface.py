@@ -277,6 +277,34 @@ def test_critical_time_step():
     assert ifc.critical_dt(np.full(3, 1e9)) == pytest.approx(want, rel=1e-12)
 
 
+def test_wall_against_a_backfill_corner():
+    """Two wall blocks pressed 0.02 m (more than the rounding) into the vertical side of a
+    backfill whose top surface is part of the interface too, the bed joint 0.05 m below that
+    surface: the upper block's lower corner, behind the top edge, is no contact with it (the
+    depth limit), so the interface pushes the wall horizontally only; the gridpoint at the top
+    of the side carries half its side edge only (tributary lengths projected on the contact's
+    tangent)."""
+    h = 0.25
+    side = [(0.0, -h * k) for k in range(4, -1, -1)]  # x = 0, y = -1 .. 0
+    top = [(h * k, 0.0) for k in range(1, 5)]  # y = 0, x = 0.25 .. 1
+    xy = np.array(side + top)
+    grid = SimpleNamespace(gxy=xy, gvel=np.zeros((len(xy), 2)))
+    # zones at x > 0, y < 0 on the left of each edge: down the side, right to left on top
+    edges = [(k + 1, k) for k in range(4)] + [(5, 4)] + [(k + 1, k) for k in range(5, 8)]
+    m = _model()
+    pen = 0.02
+    m.add_polygon([[-0.5, -1.0], [pen, -1.0], [pen, -0.05], [-0.5, -0.05]])
+    m.add_polygon([[-0.5, -0.05], [pen, -0.05], [pen, 0.5], [-0.5, 0.5]])
+    ifc = I.Interface(grid, np.array(edges), m)
+    fg, fb = ifc.forces(0.0)
+    assert ifc.C[I.IC_NODES] >= 4 and ifc.C[I.IC_CORNERS] == 0
+    assert fb[:, 0].min() < 0.0
+    assert np.abs(fb[:, 1]).max() < 1e-12 * np.abs(fb[:, 0]).max()
+    # the corner gridpoint of the backfill: half its side edge (its top edge, normal to the
+    # wall's face, projects to nothing)
+    assert fg[4, 0] == pytest.approx(KN * T * pen * h / 2, rel=1e-9)
+
+
 def test_contact_opens_and_closes_again():
     """A sheared gridpoint contact that opens releases its shear spring energy; moved away
     beyond the margin the pair leaves the candidate list (rebuild), and coming back the contact

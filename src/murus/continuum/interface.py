@@ -12,16 +12,21 @@ law is the same code as block-block joints; Savalle et al. (2022), eqs. 3-4; Ita
    ``|p - q| - r``; a gridpoint inside the core takes minus its distance to the nearest core
    edge, the edge of least penetration), for a disc its centre. The normal ``n`` points from
    the gridpoint (side a: a point with no rotation) to the block (side b). The tributary length
-   of a gridpoint is half of each interface edge that ends at it (at the current coordinates),
-   the contact area that length times the thickness ``t``. The contact point is the gridpoint
+   of a gridpoint contact is half of each interface edge that ends at the gridpoint (at the
+   current coordinates), projected on the contact's tangent: on a flat or gently curved
+   boundary, half of each adjacent edge; at a corner of the zone boundary (the top of a
+   backfill against a wall), only the side that runs along the block's face. The contact area
+   is that length times the thickness ``t``. The contact point is the gridpoint
    itself, so that the force on the block (at that point) and the reaction on the gridpoint
    have the same line of action: total force and total moment are exactly zero.
 2. **Block corners against zone edges.** Each core vertex of a candidate polygon (the centre
    of a disc) whose projection on an interface edge ``(g0, g1)`` falls inside it
    (``0 <= s <= 1``), at a gap ``d - r`` no larger than the reach and no deeper than
-   ``IP_DEPTH``, with ``d`` the distance of the vertex from the edge line, positive outside the
-   zones. The normal is the edge's outward normal, the contact point the projection of the
-   vertex on the edge, ``(1 - s) x_g0 + s x_g1``; the reaction goes to the two gridpoints with
+   ``IP_DEPTH`` (by default a tenth of the shortest interface edge: a vertex deeper behind
+   an edge is a vertex near another part of the boundary), with ``d`` the distance of the
+   vertex from the edge line, positive outside the zones. The normal is the edge's outward
+   normal, the contact point the projection of the vertex on the edge,
+   ``(1 - s) x_g0 + s x_g1``; the reaction goes to the two gridpoints with
    the weights ``(1 - s, s)`` (so again no net force nor moment), and the velocity of side a at
    the contact point is ``(1 - s) v_g0 + s v_g1``.
 
@@ -149,7 +154,7 @@ gvel : ndarray (ng, 2)
     Gridpoint velocities at the half step ``t - dt/2`` [m/s].
 """
 
-IfaceGeom = namedtuple("IfaceGeom", ["ig", "gloc", "ie", "jsel"])
+IfaceGeom = namedtuple("IfaceGeom", ["ig", "gloc", "ie", "jsel", "gep", "gei"])
 IfaceGeom.__doc__ = """The interface (fixed during a run).
 
 Attributes
@@ -163,6 +168,9 @@ ie : ndarray (ne, 2) int64
     its zone on the left (outward normal ``(dy, -dx) / L``).
 jsel : ndarray (ngroup,) int64
     The joint row (of ``jprops``) of the contacts with the blocks of each group.
+gep, gei : ndarray (ni + 1,), (2 ne,) int64
+    The interface edges at each interface gridpoint (compressed rows): ``gei[gep[i]:gep[i + 1]]``
+    are the edges (rows of ``ie``) that end at gridpoint ``ig[i]``.
 """
 
 IfaceState = namedtuple("IfaceState", ["glast", "blast"])
@@ -176,7 +184,7 @@ blast : ndarray (nb, 3)
     Positions and angles of the bodies (x, y [m], angle [rad]).
 """
 
-IfaceWork = namedtuple("IfaceWork", ["fg", "fb", "itrib", "eflag"])
+IfaceWork = namedtuple("IfaceWork", ["fg", "fb", "eflag"])
 IfaceWork.__doc__ = """Outputs and scratch arrays of a step (allocated once).
 
 Attributes
@@ -186,8 +194,6 @@ fg : ndarray (ng, 2)
 fb : ndarray (nb, 3)
     Interface forces (Fx, Fy) [N] and moments about the centroids [N m] on the bodies, added
     to by :func:`step`.
-itrib : ndarray (ni,)
-    Tributary length of each interface gridpoint [m] (written by :func:`step`).
 eflag : ndarray (nv,) int8
     1 for the core edges (indexed by their first global vertex) and the discs (their centre)
     carried by a gridpoint in this step (zero between steps).
@@ -506,20 +512,6 @@ def _corner_trib(wv, a0, na, k, tx, ty, nzx, nzy, eflag):
 # ---- the step --------------------------------------------------------------------------------
 
 
-@njit(cache=True, error_model="numpy", inline="always")
-def _tribs(geo, gxy, itrib):
-    """Tributary length of each interface gridpoint: half of each interface edge at it."""
-    gloc = geo.gloc
-    ie = geo.ie
-    itrib[:] = 0.0
-    for e in range(ie.shape[0]):
-        g0 = ie[e, 0]
-        g1 = ie[e, 1]
-        h = 0.5 * math.sqrt((gxy[g1, 0] - gxy[g0, 0]) ** 2 + (gxy[g1, 1] - gxy[g0, 1]) ** 2)
-        itrib[gloc[g0]] += h
-        itrib[gloc[g1]] += h
-
-
 @njit(cache=True, error_model="numpy")
 def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
     """Step 1: the gridpoint contacts of the node pairs ``c`` (:class:`Contacts`), updated in
@@ -528,6 +520,9 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
     gxy = side.gxy
     gvel = side.gvel
     ig = geo.ig
+    ie = geo.ie
+    gep = geo.gep
+    gei = geo.gei
     wv = shapes.wv
     svs = shapes.svs
     svn = shapes.svn
@@ -539,7 +534,6 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
     bomg = bodies.bomg
     fg = work.fg
     fb = work.fb
-    itrib = work.itrib
     eflag = work.eflag
     pairs = c.pairs
     sid = c.sid
@@ -574,7 +568,22 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
             e0 = ic
             e1 = -1
         o = 0 if sid[k, 0] >= 0 else -1
-        if not found or itrib[i] <= 0.0:
+        if not found:
+            if o >= 0:
+                d_break += _released(k, 0, sf)
+            sid[k, 0] = -1
+            sbr[k, 0] = 0
+            continue
+        # tributary length: the halves of the gridpoint's interface edges, projected on the
+        # contact's tangent (the full half-edges on a flat boundary; at a corner of the zone
+        # boundary, only the side along the block's face)
+        trib = 0.0
+        for j in range(gep[i], gep[i + 1]):
+            e = gei[j]
+            ex = gxy[ie[e, 1], 0] - gxy[ie[e, 0], 0]
+            ey = gxy[ie[e, 1], 1] - gxy[ie[e, 0], 1]
+            trib += 0.5 * abs(ny * ex - nx * ey)
+        if trib <= 0.0:
             if o >= 0:
                 d_break += _released(k, 0, sf)
             sid[k, 0] = -1
@@ -583,7 +592,7 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
         b = sbody[s]
         pm = PairMotion(gvel[g, 0], gvel[g, 1], 0.0, px, py, bvel[b, 0], bvel[b, 1], bomg[b],
                         bpos[b, 0], bpos[b, 1])
-        pt = SubContact(px, py, nx, ny, gap, itrib[i])
+        pt = SubContact(px, py, nx, ny, gap, trib)
         (keep, br, pb, fn, fs, mr, kna, ksa, kra, ds, dr, db) = _joint_law(
             o, k, sf, sbr, pbond[k], jprops, c.pj[k], False, 0.0, pt, pm, cst)
         pbond[k] = pb
@@ -802,9 +811,9 @@ def _clear_flags(nodes, shapes, eflag):
 @njit(cache=True, error_model="numpy")
 def step(P, E, C, geo, side, bodies, shapes, jprops, nodes, corners, state, work):
     """One step of the interface: rebuild the candidate pairs when something moved by more
-    than half the margin (:func:`moved`, :func:`rebuild`), the gridpoint tributary lengths,
-    the gridpoint contacts (:func:`node_contacts`), then the corner contacts
-    (:func:`corner_contacts`); forces added to ``work.fg`` [N] and ``work.fb`` [N, N m].
+    than half the margin (:func:`moved`, :func:`rebuild`), then the gridpoint contacts
+    (:func:`node_contacts`), then the corner contacts (:func:`corner_contacts`); forces
+    added to ``work.fg`` [N] and ``work.fb`` [N, N m].
 
     Parameters
     ----------
@@ -844,7 +853,6 @@ def step(P, E, C, geo, side, bodies, shapes, jprops, nodes, corners, state, work
         t = rebuild(P, E, C, geo, gxy, bodies, shapes, nodes, corners, state, 0)
         nodes = Contacts(t[0], t[1], t[2], t[3], t[4], t[5])
         corners = Contacts(t[6], t[7], t[8], t[9], t[10], t[11])
-    _tribs(geo, gxy, work.itrib)
     nn = node_contacts(P, E, geo, side, bodies, shapes, jprops, nodes, work)
     nc = corner_contacts(P, E, geo, side, bodies, shapes, jprops, corners, work)
     _clear_flags(nodes, shapes, work.eflag)
@@ -930,7 +938,10 @@ class Interface:
         and carries its residual tension up to that gap; 0 for a joint without tension).
     depth : float, optional
         Deepest penetration of a block corner behind a zone edge that is still a contact [m]
-        (default: half the shortest interface edge).
+        (default: a tenth of the shortest interface edge). Interface penetrations are small
+        (``F / (kn A)``); the limit keeps a vertex that sits behind a neighbouring zone edge
+        (a wall's bed joint just below the top surface of the backfill, when that surface is
+        part of the interface) from being taken for a contact with that edge.
     bond_initial : bool
         Contacts present at the first call start bonded (the joint's cohesion and tension), as
         the blocks' (default True).
@@ -999,13 +1010,18 @@ class Interface:
         gloc = np.full(ng, -1, np.int64)
         gloc[ig] = np.arange(ig.size)
         ngroup = int(dem.sgroup.max()) + 1 if dem.sgroup.size else 1
-        self.geo = IfaceGeom(ig, gloc, np.ascontiguousarray(ed), np.zeros(ngroup, np.int64))
+        ends = gloc[ed.ravel()]  # the interface gridpoint of each edge end
+        gei = (np.argsort(ends, kind="stable") // 2).astype(np.int64)
+        gep = np.zeros(ig.size + 1, np.int64)
+        np.cumsum(np.bincount(ends, minlength=ig.size), out=gep[1:])
+        self.geo = IfaceGeom(ig, gloc, np.ascontiguousarray(ed), np.zeros(ngroup, np.int64),
+                             gep, gei)
         self.P = np.zeros(NIP)
         self.P[IP_THICK] = dem.thickness
         self.P[IP_MARGIN] = float(dem.margin if margin is None else margin)
         self.P[IP_REACH] = float(2.0 * self.jprops[0, J_T] / self.jprops[0, J_KN]
                                  if reach is None else reach)
-        self.P[IP_DEPTH] = float(0.5 * L.min() if depth is None else depth)
+        self.P[IP_DEPTH] = float(0.1 * L.min() if depth is None else depth)
         for name, i in (("margin", IP_MARGIN), ("depth", IP_DEPTH)):
             if not (math.isfinite(self.P[i]) and self.P[i] > 0):
                 raise InterfaceError(f"{name} must be positive [m], got {self.P[i]!r}",
@@ -1017,7 +1033,7 @@ class Interface:
         self.C = np.zeros(NIC, np.int64)
         nb = dem.bpos.shape[0]
         self.state = IfaceState(np.zeros((ig.size, 2)), np.zeros((nb, 3)))
-        self.work = IfaceWork(np.zeros((ng, 2)), np.zeros((nb, 3)), np.zeros(ig.size),
+        self.work = IfaceWork(np.zeros((ng, 2)), np.zeros((nb, 3)),
                               np.zeros(dem.wv.shape[0], np.int8))
         self._dkd = dkd
         self._DK = DK
