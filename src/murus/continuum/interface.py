@@ -116,7 +116,8 @@ from murus.dem.kernels import (
 from murus.errors import MurusError
 
 __all__ = ["GridSide", "IfaceGeom", "IfaceState", "IfaceWork", "Interface", "InterfaceError",
-           "interface_forces", "step", "rebuild", "stored_energy",
+           "interface_forces", "step", "rebuild", "candidates", "transfer", "moved",
+           "node_contacts", "corner_contacts", "stored_energy",
            "IP_DT", "IP_THICK", "IP_MARGIN", "IP_REACH", "IP_DEPTH", "NIP",
            "IE_DSLIP", "IE_DBREAK", "NIE", "IC_STEP", "IC_REBUILD", "IC_NEED_REBUILD",
            "IC_NODES", "IC_CORNERS", "NIC"]
@@ -255,11 +256,32 @@ def _query(box, order, x0s, wmax, qx0, qy0, qx1, qy1, keys, n, base, ns):
 
 @njit(cache=True, error_model="numpy")
 def candidates(geo, gxy, shapes, margin):
-    """Candidate pairs of the interface: ``(node_pairs (n1, 2), corner_pairs (n2, 2))``,
-    rows ``(interface gridpoint i, shape s)`` and ``(interface edge e, shape s)``, sorted by
-    their keys ``i * ns + s`` and ``e * ns + s``: the shapes whose bounding box (rounded,
-    inflated by ``margin`` [m]) holds the gridpoint or overlaps the edge's box (sort on x and
-    binary search)."""
+    """Candidate pairs of the interface: the shapes whose bounding box (rounded, inflated by
+    ``margin``) holds an interface gridpoint or overlaps an interface edge's box (sort on x and
+    binary search).
+
+    Parameters
+    ----------
+    geo : IfaceGeom
+        The interface.
+    gxy : ndarray (ng, 2)
+        Gridpoint coordinates [m].
+    shapes : murus.dem._kdata.Shapes
+        The blocks' shapes (``wv`` current).
+    margin : float
+        Broad-phase margin [m].
+
+    Returns
+    -------
+    node_pairs : ndarray (n1, 2) int64
+        Rows ``(interface gridpoint i, shape s)``, sorted by ``i * ns + s``.
+    corner_pairs : ndarray (n2, 2) int64
+        Rows ``(interface edge e, shape s)``, sorted by ``e * ns + s``.
+
+    References
+    ----------
+    Itasca UDEC, Theory and Background (contact detection with a margin).
+    """
     box, order, wmax = _shape_boxes(shapes, margin)
     ns = box.shape[0]
     x0s = np.empty(ns)
@@ -297,9 +319,33 @@ def candidates(geo, gxy, shapes, margin):
 
 @njit(cache=True, error_model="numpy")
 def transfer(old, new_pairs, ns, jsel, sgroup, bond_new):
-    """The :class:`murus.dem._kdata.Contacts` of the pair list ``new_pairs`` (rows (i, s),
-    keys ``i * ns + s``), carrying the slots of the pairs present in ``old`` too; the joint of
-    a pair is ``jsel[sgroup[s]]``; new pairs start bonded when ``bond_new`` is 1."""
+    """The contacts of a new pair list, carrying the slots of the pairs present in the old
+    one too (merge on sorted keys, as :func:`murus.dem.kernels.transfer`).
+
+    Parameters
+    ----------
+    old : murus.dem._kdata.Contacts
+        The current contacts.
+    new_pairs : ndarray (n, 2) int64
+        The new pair list, rows (i, s) sorted by ``i * ns + s``.
+    ns : int
+        Number of shapes.
+    jsel : ndarray (ngroup,) int64
+        Joint row of each block group: the joint of a pair is ``jsel[sgroup[s]]``.
+    sgroup : ndarray (ns,) int64
+        Group of each shape.
+    bond_new : int
+        1: the new pairs start bonded.
+
+    Returns
+    -------
+    murus.dem._kdata.Contacts
+        The new contacts.
+
+    References
+    ----------
+    Itasca UDEC, Theory and Background (contact detection with a margin).
+    """
     old_pairs = old.pairs
     n = new_pairs.shape[0]
     nold = old_pairs.shape[0]
@@ -402,8 +448,32 @@ def rebuild(P, E, C, geo, gxy, bodies, shapes, nodes, corners, state, bond_new):
 
 @njit(cache=True, error_model="numpy")
 def moved(geo, gxy, bodies, state, margin):
-    """True when an interface gridpoint or a body has moved by more than half the margin [m]
-    since the last rebuild (a body: translation plus rotation times its bounding radius)."""
+    """Whether an interface gridpoint or a body has moved by more than half the margin since
+    the last rebuild (a body: translation plus rotation times its bounding radius, as
+    :func:`murus.dem.kernels._moved`).
+
+    Parameters
+    ----------
+    geo : IfaceGeom
+        The interface.
+    gxy : ndarray (ng, 2)
+        Gridpoint coordinates [m].
+    bodies : murus.dem._kdata.Bodies
+        The blocks.
+    state : IfaceState
+        Positions at the last rebuild.
+    margin : float
+        Broad-phase margin [m].
+
+    Returns
+    -------
+    bool
+        True when the candidate pairs must be rebuilt.
+
+    References
+    ----------
+    Itasca UDEC, Theory and Background (contact detection with a margin).
+    """
     h = 0.5 * margin
     ig = geo.ig
     for i in range(ig.size):
@@ -514,9 +584,35 @@ def _corner_trib(wv, a0, na, k, tx, ty, nzx, nzy, eflag):
 
 @njit(cache=True, error_model="numpy")
 def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
-    """Step 1: the gridpoint contacts of the node pairs ``c`` (:class:`Contacts`), updated in
-    place; forces added to ``work.fg`` and ``work.fb``, the touched core edges flagged in
-    ``work.eflag``, dissipation added to ``E``. Returns the number of active contacts."""
+    """Step 1: the gridpoint contacts (module doc), with the blocks' joint law; the touched
+    core edges are flagged in ``work.eflag`` for :func:`corner_contacts`.
+
+    Parameters
+    ----------
+    P, E : ndarray
+        Parameters ``IP_*``; energies ``IE_*`` [J], added to.
+    geo : IfaceGeom
+        The interface.
+    side : GridSide
+        Gridpoint coordinates [m] and half-step velocities [m/s].
+    bodies, shapes : murus.dem._kdata.Bodies, murus.dem._kdata.Shapes
+        The blocks.
+    jprops : ndarray (nj, NJ)
+        Joint rows.
+    c : murus.dem._kdata.Contacts
+        The node pairs and their slots, updated in place.
+    work : IfaceWork
+        Forces added to ``fg`` [N] and ``fb`` [N, N m]; ``eflag`` written.
+
+    Returns
+    -------
+    int
+        The number of active contacts.
+
+    References
+    ----------
+    Savalle et al. (2022), eqs. 3-4; Itasca UDEC, Theory and Background.
+    """
     gxy = side.gxy
     gvel = side.gvel
     ig = geo.ig
@@ -621,11 +717,37 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
 
 @njit(cache=True, error_model="numpy")
 def corner_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
-    """Step 2: the block corners (polygon core vertices, disc centres) of the corner pairs
-    ``c`` (:class:`Contacts`) against the interface edges, updated in place (two slots per
-    pair, keyed by the vertex); forces added to ``work.fg`` (weights ``1 - s``, ``s``) and
-    ``work.fb``; tributary lengths by the double-count rule (module doc), read from
-    ``work.eflag``. Returns the number of active contacts."""
+    """Step 2: the block corners (polygon core vertices, disc centres) against the interface
+    edges (module doc), two slots per pair keyed by the vertex, the reactions to the edge's
+    gridpoints with the weights ``(1 - s, s)``, the tributary lengths by the double-count rule
+    (read from ``work.eflag``, written by :func:`node_contacts` in the same step).
+
+    Parameters
+    ----------
+    P, E : ndarray
+        Parameters ``IP_*``; energies ``IE_*`` [J], added to.
+    geo : IfaceGeom
+        The interface.
+    side : GridSide
+        Gridpoint coordinates [m] and half-step velocities [m/s].
+    bodies, shapes : murus.dem._kdata.Bodies, murus.dem._kdata.Shapes
+        The blocks.
+    jprops : ndarray (nj, NJ)
+        Joint rows.
+    c : murus.dem._kdata.Contacts
+        The corner pairs and their slots, updated in place.
+    work : IfaceWork
+        Forces added to ``fg`` [N] and ``fb`` [N, N m]; ``eflag`` read.
+
+    Returns
+    -------
+    int
+        The number of active contacts.
+
+    References
+    ----------
+    Savalle et al. (2022), eqs. 3-4; Itasca UDEC, Theory and Background.
+    """
     gxy = side.gxy
     gvel = side.gvel
     ie = geo.ie
