@@ -146,8 +146,8 @@ class CoupledModel:
     Raises
     ------
     CoupledError
-        The interface was built on other models, or a gridpoint of the interface is also on a
-        free-field side.
+        The zones in small-strain mode, the interface built on other models, or a gridpoint of
+        the interface also on a free-field side.
 
     References
     ----------
@@ -155,6 +155,9 @@ class CoupledModel:
     """
 
     def __init__(self, dem, zones, interface) -> None:
+        if not zones.large_strain:
+            raise CoupledError("the zones must be in large-strain mode: the interface reads the "
+                               "gridpoints' current coordinates", key=("zones",))
         if interface.dem is not dem or interface.grid is not zones:
             raise CoupledError("the interface was built on other models", key=("interface",))
         if zones.ff.fy.size and np.intersect1d(zones.ff.fgp, interface.geo.ig).size:
