@@ -13,7 +13,7 @@ import pytest
 from continuum_inputs import rect_mesh, sides
 
 from murus.continuum import ContinuumModel, Elastic
-from murus.continuum.coupled import CoupledModel, CoupledError
+from murus.continuum.coupled import CoupledError, CoupledModel
 from murus.continuum.interface import Interface
 from murus.dem import Joint, Model
 
