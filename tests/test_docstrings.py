@@ -18,7 +18,10 @@ PACKAGES = ["murus", "murus.motion", "murus.eurocode", "murus.rocking", "murus.d
             # these two is the ``__all__`` of their modules
             "murus.eurocode.ec6", "murus.eurocode.ec8", "murus.eurocode.ec8_5", "murus.motion.core",
             "murus.motion.io", "murus.motion.spectra", "murus.motion.measures",
-            "murus.motion.processing", "murus.motion.synthetic", "murus.motion.artificial"]
+            "murus.motion.processing", "murus.motion.synthetic", "murus.motion.artificial",
+            "murus.continuum", "murus.continuum.mesh", "murus.continuum.closed_forms",
+            "murus.continuum.vtk", "murus.continuum.plots", "murus.continuum.freefield",
+            "murus.continuum.interface", "murus.continuum.coupled"]
 
 #: Names whose docstrings are not converted yet, by module (empty: all converted, issue 16 item 5).
 PENDING = {}

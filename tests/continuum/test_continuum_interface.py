@@ -398,7 +398,8 @@ def _run(s, nsteps, alpha, record=None):
     for _ in range(nsteps):
         fg, fb = ifc.forces(dt)
         cm.gext[:] = fg
-        CK.run_chunk(1, cm.P, cm.E, cm.C, cm.S, s.drive, s.grid, s.zones, cm.mprops, cm.part)
+        CK.run_chunk(1, cm.P, cm.E, cm.C, cm.S, s.drive, s.grid, s.zones, cm.mprops, cm.part,
+                     cm.ff)
         f = fb[0] + np.array([0.0, -mass * g, 0.0])
         v0 = np.array([m.bvel[0, 0], m.bvel[0, 1], m.bomg[0]])
         v1 = v0 + dt * (f - alpha * np.abs(f) * np.sign(v0)) / m3
@@ -453,7 +454,7 @@ def test_layer_follows_a_retreating_block_then_contact_returns():
             fg, fb = ifc.forces(dt)
             cm.gext[:] = fg
             CK.run_chunk(1, cm.P, cm.E, cm.C, cm.S, s.drive, s.grid, s.zones, cm.mprops,
-                         cm.part)
+                         cm.part, cm.ff)
             m.bpos[0, 1] += v * dt
             force.append(ifc.normal_force())
         return np.array(force)

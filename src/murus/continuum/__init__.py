@@ -7,6 +7,12 @@ base-driven gridpoints, boundary pressures, gravity and K0 initial stresses.
   gridpoints and zones;
 - :class:`Elastic`, :class:`MohrCoulomb` (:mod:`murus.continuum.materials`);
 - :func:`settle`, :func:`run` (:mod:`murus.continuum.engine`);
+- free-field sides (:mod:`murus.continuum.freefield`), zone-block interfaces
+  (:class:`Interface`, :mod:`murus.continuum.interface`) and blocks and zones in one time loop
+  (:class:`CoupledModel`, :mod:`murus.continuum.coupled`);
+- meshing (:mod:`murus.continuum.mesh`), case files (:mod:`murus.continuum.case`), closed forms
+  and verification (:mod:`murus.continuum.closed_forms`, :mod:`murus.continuum.verify`), VTK
+  and figures (:mod:`murus.continuum.vtk`, :mod:`murus.continuum.plots`);
 - the kernels: :mod:`murus.continuum.kernels`.
 
 The names below are imported on first use (PEP 562), so that ``murus --help`` does not load
@@ -27,9 +33,13 @@ _EXPORTS = {
     "SettleResult": "engine",
     "RunResult": "engine",
     "RunError": "engine",
+    "Interface": "interface",
+    "CoupledModel": "coupled",
+    "build_free_field": "freefield",
 }
 
 __all__ = sorted(_EXPORTS)
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals(),
-                                    submodules=("mesh", "closed_forms", "vtk", "plots"))
+                                    submodules=("mesh", "closed_forms", "vtk", "plots", "freefield",
+                                                "interface", "coupled", "case", "verify"))

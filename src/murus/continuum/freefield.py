@@ -62,6 +62,11 @@ FreeField = namedtuple("FreeField", ["fstart", "fy", "fvel", "fdisp", "fmass", "
                                      "flen", "fnrm", "fsig", "fmat", "fstate"])
 FreeField.__doc__ = """The free-field columns (``nf`` nodes over ``nc`` columns).
 
+Attributes
+----------
+fstart, fy, fvel, fdisp, fmass, ffix, fgp, flen, fnrm, fsig, fmat, fstate : ndarray
+    As follows.
+
 - ``fstart (nc + 1,)`` int64: nodes of column c are ``fstart[c] .. fstart[c + 1] - 1``, bottom
   first;
 - ``fy (nf,)``: height of each node [m];
