@@ -87,7 +87,8 @@ def section() -> str:
             else:
                 res = "pass" if r["passed"] else "**FAIL**"
                 n_fail += not r["passed"]
-            lines.append(f"| {r['case']} | {_fmt(r['expected'])} | {_fmt(r['obtained'])} | "
+            case = r["case"].replace("|", "\\|")  # a table cell: escape the bars of |x|
+            lines.append(f"| {case} | {_fmt(r['expected'])} | {_fmt(r['obtained'])} | "
                          f"{_fmt(r['error'])} | {r['tolerance']:g} | {res} |")
     fig = _figure(FIG / "hole_and_footing.png")
     lines += ["", f"![Hole and footing]({fig})", "",
