@@ -112,6 +112,7 @@ from murus.dem.kernels import (
     _joint_law,
     _released,
     _store,
+    shape_boxes,
 )
 from murus.errors import MurusError
 
@@ -205,37 +206,6 @@ eflag : ndarray (nv,) int8
 
 
 @njit(cache=True, error_model="numpy")
-def _shape_boxes(shapes, margin):
-    """Bounding boxes ``(ns, 4)`` (x0, y0, x1, y1) of the rounded shapes inflated by
-    ``margin`` [m], the order of their x0 and the largest box width."""
-    wv = shapes.wv
-    svs = shapes.svs
-    svn = shapes.svn
-    srad = shapes.srad
-    ns = svs.size
-    box = np.empty((ns, 4))
-    wmax = 0.0
-    for s in range(ns):
-        x0 = np.inf
-        y0 = np.inf
-        x1 = -np.inf
-        y1 = -np.inf
-        for k in range(svs[s], svs[s] + svn[s]):
-            x0 = min(x0, wv[k, 0])
-            x1 = max(x1, wv[k, 0])
-            y0 = min(y0, wv[k, 1])
-            y1 = max(y1, wv[k, 1])
-        e = srad[s] + margin
-        box[s, 0] = x0 - e
-        box[s, 1] = y0 - e
-        box[s, 2] = x1 + e
-        box[s, 3] = y1 + e
-        wmax = max(wmax, box[s, 2] - box[s, 0])
-    order = np.argsort(box[:, 0], kind="mergesort")
-    return box, order, wmax
-
-
-@njit(cache=True, error_model="numpy")
 def _query(box, order, x0s, wmax, qx0, qy0, qx1, qy1, keys, n, base, ns):
     """Append ``base * ns + s`` to ``keys`` (grown as needed) for every shape s whose box
     overlaps the query box; returns ``(keys, n)``."""
@@ -282,7 +252,7 @@ def candidates(geo, gxy, shapes, margin):
     ----------
     Itasca UDEC, Theory and Background (contact detection with a margin).
     """
-    box, order, wmax = _shape_boxes(shapes, margin)
+    box, order, wmax = shape_boxes(shapes, margin)
     ns = box.shape[0]
     x0s = np.empty(ns)
     for j in range(ns):

@@ -214,17 +214,31 @@ def incidence(owner, nb):
 
 
 @njit(cache=True, error_model="numpy")
-def broad_phase(shapes, bkin, margin):
-    """Candidate pairs (a < b) of ``shapes`` (:class:`Shapes`) by sort and sweep on the
-    bounding boxes inflated by ``margin`` [m], sorted by the key a * ns + b. Pairs of one body
-    and pairs of two non-dynamic bodies (``bkin``) are left out."""
+def shape_boxes(shapes, margin):
+    """Bounding boxes of the rounded shapes inflated by ``margin`` [m], for sort and sweep
+    (the blocks' broad phase, :func:`broad_phase`, and the zone-block interface's,
+    :mod:`murus.continuum.interface`).
+
+    Parameters
+    ----------
+    shapes : Shapes
+        The shapes (world vertices ``wv`` current).
+    margin : float
+        Inflation [m].
+
+    Returns
+    -------
+    tuple
+        ``(box, order, wmax)``: boxes ``(ns, 4)`` (x0, y0, x1, y1) [m], the shapes in the order
+        of their x0, the largest box width [m].
+    """
     wv = shapes.wv
     svs = shapes.svs
     svn = shapes.svn
     srad = shapes.srad
-    sbody = shapes.sbody
-    ns = sbody.size
+    ns = svs.size
     box = np.empty((ns, 4))
+    wmax = 0.0
     for s in range(ns):
         x0 = np.inf
         y0 = np.inf
@@ -240,7 +254,19 @@ def broad_phase(shapes, bkin, margin):
         box[s, 1] = y0 - e
         box[s, 2] = x1 + e
         box[s, 3] = y1 + e
+        wmax = max(wmax, box[s, 2] - box[s, 0])
     order = np.argsort(box[:, 0], kind="mergesort")
+    return box, order, wmax
+
+
+@njit(cache=True, error_model="numpy")
+def broad_phase(shapes, bkin, margin):
+    """Candidate pairs (a < b) of ``shapes`` (:class:`Shapes`) by sort and sweep on the
+    bounding boxes inflated by ``margin`` [m], sorted by the key a * ns + b. Pairs of one body
+    and pairs of two non-dynamic bodies (``bkin``) are left out."""
+    sbody = shapes.sbody
+    ns = sbody.size
+    box, order, _ = shape_boxes(shapes, margin)
     cap = 4 * ns + 16
     keys = np.empty(cap, np.int64)
     n = 0
