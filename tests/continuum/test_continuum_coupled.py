@@ -54,3 +54,19 @@ def test_one_time_step_for_all():
     assert cm.dt <= zm.stable_dt() and cm.dt <= iface.critical_dt() * dm.safety
     with pytest.raises(CoupledError):
         cm.set_dt(2 * cm.stable_dt())
+
+
+def test_a_settled_block_stays_at_rest_in_a_run():
+    """The dynamic loop from a settled state with no base motion: nothing moves (the static
+    solution is an equilibrium of the dynamic equations), and the time advances."""
+    cm, dm, zm, iface = _block_on_layer()
+    assert cm.settle(tol=1e-7, max_steps=400_000)[0]
+    y1 = float(dm.bpos[0, 1])
+    res = cm.run(0.05, xi=0.05, freq=5.0, every=50,
+                 monitors={"y": lambda c: float(c.dem.bpos[0, 1]),
+                           "N": lambda c: c.iface.normal_force()})
+    weight = RHO * (W + 2 * OVER) * HB * G_ACC
+    assert res["t"][-1] == pytest.approx(0.05, abs=cm.dt)
+    # the layer's settlement is ~1.7 mm: rest within a thousandth of it
+    assert np.abs(res["y"] - y1).max() < 2e-6
+    assert np.allclose(res["N"], weight, rtol=0.005)
