@@ -331,7 +331,7 @@ def _check_free_field_side(mesh, g, key, path, text) -> None:
                       "run of boundary edges")
 
 
-def _monitor_spec(mesh, model, mon: MonitorCfg, base_gp):
+def _monitor_spec(mesh, mon: MonitorCfg, base_gp):
     from murus.continuum.engine import monitor_value
 
     if mon.gridpoint is not None:
@@ -490,7 +490,7 @@ def build(case: ContinuumCase, path: Path, text: str) -> Built:
         if mon.relative and base_gp is None:
             raise fail_at(path, text, ("monitors", case.monitors.index(mon), "relative"),
                           "relative needs a boundary of kind 'base'")
-        monitors[mon.name] = _monitor_spec(mesh, model, mon, base_gp)
+        monitors[mon.name] = _monitor_spec(mesh, mon, base_gp)
     return Built(case, model, mesh, motion, float(duration), monitors, base_gp, ff_sides)
 
 
@@ -628,13 +628,6 @@ def run_case(built: Built, progress=None) -> CaseRun:
 
 
 # ---------------------------------------------------------------------- writers
-def histories_csv(result) -> str:
-    """Columns: t_s, the monitors, then the energy terms ``energy.*`` [J/m]."""
-    from murus.dem.case import histories_csv as _csv
-
-    return _csv(result)
-
-
 def output_names(figure: bool = True) -> list[str]:
     """Relative paths written by :func:`write_files` that are known before the run (the
     ``vtk/`` series is checked when it is published)."""
@@ -652,6 +645,8 @@ def write_files(run: CaseRun, folder: Path, figure: bool = True) -> None:
     folder = Path(folder)
     (folder / "summary.json").write_text(json.dumps(_clean(run.summary()), indent=2) + "\n")
     if run.result is not None:
+        from murus.dem.case import histories_csv  # the same columns as the blocks'
+
         (folder / "histories.csv").write_text(histories_csv(run.result))
     else:
         (folder / "histories.csv").write_text("t_s\n")

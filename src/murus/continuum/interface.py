@@ -112,6 +112,7 @@ from murus.dem.kernels import (
     _joint_law,
     _released,
     _store,
+    point_separation,
     shape_boxes,
 )
 from murus.errors import MurusError
@@ -470,19 +471,7 @@ def _node_polygon(px, py, wv, a0, na, r, reach):
     ``(found, nx, ny, gap, e0, e1)`` with the normal from the gridpoint to the polygon, the gap
     to the rounded surface [m], and the core edges (first global vertex index) touched, ``e1``
     -1 unless the nearest core point is a vertex (then both edges at it)."""
-    best = -np.inf
-    be = 0
-    for i in range(na):
-        ax = wv[a0 + i, 0]
-        ay = wv[a0 + i, 1]
-        j1 = a0 + (i + 1) % na
-        ex = wv[j1, 0] - ax
-        ey = wv[j1, 1] - ay
-        L = math.sqrt(ex * ex + ey * ey)
-        d = (ey * (px - ax) - ex * (py - ay)) / L
-        if d > best:
-            best = d
-            be = i
+    best, be = point_separation(wv, a0, na, px, py)
     if best - r > reach:
         return False, 0.0, 0.0, 0.0, -1, -1
     if best <= 0.0:  # inside the core: the edge of least penetration

@@ -542,12 +542,28 @@ def collide_pp(wv, a0, na, ra, b0, nb, rb, reach):
             id1, p1x, p1y, sg * nx, sg * ny, g1, trib)
 
 
-@njit(cache=True, error_model="numpy")
-def collide_pd(wv, a0, na, ra, cx, cy, rd, reach):
-    """Rounded polygon (core ``wv[a0:a0+na]``, rounding ra) against a disc (centre, radius):
-    ``(cnt, px, py, nx, ny, gap, trib)``, one sub-contact at most, n from the polygon to the
-    disc."""
-    # largest separation of the centre from the core edges
+@njit(cache=True, error_model="numpy", inline="always")
+def point_separation(wv, a0, na, px, py):
+    """Largest signed distance [m] of the point (px, py) from the lines of the core edges of
+    the polygon ``wv[a0:a0+na]`` (counter-clockwise; positive outside), and the edge (local
+    index) that gives it: negative when the point is inside the core, where that edge is the
+    one of least penetration. Shared by the disc contact (:func:`collide_pd`) and the
+    gridpoint contact of the zone-block interface (:mod:`murus.continuum.interface`).
+
+    Parameters
+    ----------
+    wv : ndarray (nv, 2)
+        World vertices [m].
+    a0, na : int
+        First vertex and vertex count of the polygon.
+    px, py : float
+        The point [m].
+
+    Returns
+    -------
+    tuple
+        ``(distance, edge)``.
+    """
     best = -np.inf
     be = 0
     for i in range(na):
@@ -557,10 +573,20 @@ def collide_pd(wv, a0, na, ra, cx, cy, rd, reach):
         ex = wv[j1, 0] - ax
         ey = wv[j1, 1] - ay
         L = math.sqrt(ex * ex + ey * ey)
-        d = (ey * (cx - ax) - ex * (cy - ay)) / L
+        d = (ey * (px - ax) - ex * (py - ay)) / L
         if d > best:
             best = d
             be = i
+    return best, be
+
+
+@njit(cache=True, error_model="numpy")
+def collide_pd(wv, a0, na, ra, cx, cy, rd, reach):
+    """Rounded polygon (core ``wv[a0:a0+na]``, rounding ra) against a disc (centre, radius):
+    ``(cnt, px, py, nx, ny, gap, trib)``, one sub-contact at most, n from the polygon to the
+    disc."""
+    # largest separation of the centre from the core edges
+    best, be = point_separation(wv, a0, na, cx, cy)
     rr = ra + rd
     if best > rr + reach:
         return 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
