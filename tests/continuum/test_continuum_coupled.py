@@ -16,6 +16,7 @@ from murus.continuum import ContinuumModel, Elastic
 from murus.continuum.coupled import CoupledError, CoupledModel
 from murus.continuum.interface import Interface
 from murus.dem import Joint, Model
+from murus.dem.engine import body_probe
 
 G_ACC, RHO, E, NU = 9.81, 2000.0, 1e7, 0.25
 W, H, HB, KN, OVER = 2.0, 1.0, 0.5, 1e9, 0.1
@@ -39,8 +40,8 @@ def _block_on_layer():
 def test_block_on_an_elastic_layer_settles_to_the_closed_form():
     cm, dm, zm, iface = _block_on_layer()
     y0 = float(dm.bpos[0, 1])
-    ok, steps, ratio = cm.settle(tol=1e-7, max_steps=400_000)
-    assert ok, (steps, ratio)
+    res = cm.settle(tol=1e-7, max_steps=400_000)
+    assert res.converged, res.message
     weight = RHO * (W + 2 * OVER) * HB * G_ACC
     assert iface.normal_force() == pytest.approx(weight, rel=0.005)
     M = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
@@ -60,13 +61,13 @@ def test_a_settled_block_stays_at_rest_in_a_run():
     """The dynamic loop from a settled state with no base motion: nothing moves (the static
     solution is an equilibrium of the dynamic equations), and the time advances."""
     cm, dm, zm, iface = _block_on_layer()
-    assert cm.settle(tol=1e-7, max_steps=400_000)[0]
+    assert cm.settle(tol=1e-7, max_steps=400_000).converged
     y1 = float(dm.bpos[0, 1])
     res = cm.run(0.05, xi=0.05, freq=5.0, every=50,
-                 monitors={"y": lambda c: float(c.dem.bpos[0, 1]),
-                           "N": lambda c: c.iface.normal_force()})
+                 probes={"y": body_probe(0, "y"), "N": lambda m: iface.normal_force()})
     weight = RHO * (W + 2 * OVER) * HB * G_ACC
-    assert res["t"][-1] == pytest.approx(0.05, abs=cm.dt)
+    assert res.status == "completed"
+    assert res.t[-1] == pytest.approx(0.05, abs=cm.dt)
     # the layer's settlement is ~1.7 mm: rest within a thousandth of it
     assert np.abs(res["y"] - y1).max() < 2e-6
     assert np.allclose(res["N"], weight, rtol=0.005)

@@ -27,7 +27,6 @@ cycle); Savalle et al. (2022), §2 (the wall of blocks and the backfill continuu
 from __future__ import annotations
 
 import math
-import time as _time
 
 import numpy as np
 from numba import njit
@@ -40,7 +39,7 @@ from murus.dem import _kdata as dkd
 from murus.dem import kernels as DK
 from murus.errors import MurusError
 
-__all__ = ["CoupledModel", "CoupledError", "run_chunk"]
+__all__ = ["CoupledModel", "CoupledError", "run_chunk", "stored_energy_of"]
 
 
 class CoupledError(MurusError, ValueError):
@@ -93,6 +92,9 @@ def run_chunk(nsteps, drive, dem, zon, itf):
     wfb = work.fb
     ig = geo.ig
     inv_t = 1.0 / IP[IF.IP_THICK]
+    gvel = grid.gvel
+    gfix = grid.gfix
+    v0 = np.zeros((ig.size, 2))
     for i in range(nsteps):
         c, pw, nact, dpar = DK.step_forces(P, E, C, S, bodies, shapes, joints, c,
                                            (pw, nact, fb))
@@ -114,7 +116,23 @@ def run_chunk(nsteps, drive, dem, zon, itf):
             gff[g, 1] = fg[g, 1] * inv_t
         fr = DK._frame(i, drive)
         DK.step_update(P, E, C, S, fr, fb, bodies, shapes, bpart, (bsp, bsh), dpar)
+        for k in range(ig.size):
+            g = ig[k]
+            v0[k, 0] = gvel[g, 0]
+            v0[k, 1] = gvel[g, 1]
         ZK.grid_update(ZP, ZE, ZC, ZS, fr, grid, zones.zf, (part, ff, mprops), zpar)
+        # the interface's work on the zones' free gridpoints, in the zones' form (the force
+        # at t times the mean of the half-step velocities around it; the half after t kept
+        # apart): the zones count it in their external work (module doc, energy balance)
+        dt = ZP[ZK.P_DT]
+        half = 0.0
+        for k in range(ig.size):
+            g = ig[k]
+            for d in range(2):
+                if gfix[g, d] == 0:
+                    IE[IF.IE_WZONE] += dt * fg[g, d] * 0.5 * (v0[k, d] + gvel[g, d])
+                    half += 0.5 * dt * fg[g, d] * gvel[g, d]
+        IE[IF.IE_TZONE] = half
     # mean force of the blocks' and the interface's active contacts (unbalanced-force ratio)
     tot = 0.0
     na = 0
@@ -132,22 +150,33 @@ def run_chunk(nsteps, drive, dem, zon, itf):
 
 class CoupledModel:
     """A distinct-element model, a continuum and the interfaces between them, advanced in one
-    time loop (module doc).
+    time loop (module doc) by the blocks' engine.
+
+    The coupled model attaches itself to the blocks' model (``dem.coupled``): from then on
+    :func:`murus.dem.engine.settle` and :func:`murus.dem.engine.run` (``dem.settle()``,
+    ``dem.run()``, or :meth:`settle` and :meth:`run` here) advance blocks and zones together
+    with all of the engine's machinery: probes (also of gridpoints and zones,
+    :class:`murus.dem.engine.Probe`), stop conditions, progress, Ctrl-C between chunks of
+    steps, the overlap checks of the blocks, and one energy balance of blocks, zones and
+    interface (:meth:`energy`). The blocks' model holds the gravity (and its tilt, a
+    pseudo-static load), the base motion (it drives the zones' base gridpoints too), the time
+    and the time step.
 
     Parameters
     ----------
     dem : murus.dem.Model
-        The blocks (gravity and base motion are taken from the zones' model: set them there).
+        The blocks.
     zones : murus.continuum.ContinuumModel
-        The zones.
+        The zones (large-strain mode; their gravity must be the blocks' gravity; a base motion
+        set on them and not on the blocks is carried over to the blocks' model).
     interface : murus.continuum.interface.Interface
         The interface between them (built on ``zones`` and ``dem``).
 
     Raises
     ------
     CoupledError
-        The zones in small-strain mode, the interface built on other models, or a gridpoint of
-        the interface also on a free-field side.
+        The zones in small-strain mode, the interface built on other models, a gridpoint of
+        the interface also on a free-field side, or two different gravities.
 
     References
     ----------
@@ -163,11 +192,24 @@ class CoupledModel:
         if zones.ff.fy.size and np.intersect1d(zones.ff.fgp, interface.geo.ig).size:
             raise CoupledError("a gridpoint of the interface is on a free-field side",
                                key=("interface",))
+        if not math.isclose(zones.gravity, dem.gravity, rel_tol=1e-12, abs_tol=1e-12):
+            raise CoupledError(f"the zones' gravity {zones.gravity:g} m/s2 differs from the "
+                               f"blocks' {dem.gravity:g} m/s2", key=("gravity",))
         dem.build()
+        if dem.__dict__.get("coupled") is not None:
+            raise CoupledError("the blocks' model is already coupled to zones", key=("dem",))
+        if zones._motion_kind != "none" and dem._motion_kind == "none":
+            for a in ("_motion_kind", "_motion_dt", "_motion_acc", "_motion_accv",
+                      "_motion_callable"):
+                if hasattr(zones, a):
+                    setattr(dem, a, getattr(zones, a))
         self.dem = dem
         self.zones = zones
         self.iface = interface
+        self.stored0 = 0.0
+        dem.coupled = self
         self.set_dt()
+        self.reset_reference()
 
     # ------------------------------------------------------------------ time step
     def stable_dt(self) -> float:
@@ -178,9 +220,9 @@ class CoupledModel:
         -------
         float
         """
-        from murus.dem.engine import stable_dt as dem_dt
+        from murus.dem.engine import blocks_stable_dt
 
-        d = dem_dt(self.dem)
+        d = blocks_stable_dt(self.dem)
         z = self.zones.stable_dt()
         i = self.iface.critical_dt() * self.dem.safety
         return float(min(d, z, i))
@@ -197,30 +239,29 @@ class CoupledModel:
         dt = s if dt is None else float(dt)
         if not (0 < dt <= s * (1 + 1e-12)):
             raise CoupledError(f"dt = {dt!r} s: must be in (0, {s:.6g}] s", key=("dt",))
-        self.dem.P[DK.P_DT] = dt
-        self.dem.dt = dt
-        self.zones.P[ZK.P_DT] = dt
-        self.iface.P[IF.IP_DT] = dt
+        m = self.dem
+        if m.dt is not None and dt != m.dt:
+            m.time_offset = m.time
+            m.step_offset = int(m.C[DK.C_STEP])
+        m.P[DK.P_DT] = dt
+        m.dt = dt
+        self._sync_dt()
+
+    def _sync_dt(self) -> None:
+        self.zones.P[ZK.P_DT] = self.dem.dt
+        self.iface.P[IF.IP_DT] = self.dem.dt
 
     @property
     def dt(self) -> float:
         """The time step [s]."""
-        return float(self.zones.P[ZK.P_DT])
+        return float(self.dem.dt)
 
-    # ------------------------------------------------------------------ stepping
-    def _chunk(self, n: int, moving: bool) -> None:
+    # ------------------------------------------------------------------ engine hooks
+    def step(self, n: int, drive) -> None:
+        """``n`` steps of blocks, zones and interface with the blocks' ``drive`` (called by
+        :func:`murus.dem.engine._chunk`)."""
         m, z, f = self.dem, self.zones, self.iface
-        dt = self.dt
-        ts = z.time + np.arange(n) * dt
-        if moving:
-            vfull = z.base_velocity(ts)
-            vhalf = z.base_velocity(ts + 0.5 * dt)
-        else:
-            vfull = np.zeros((n, 2))
-            vhalf = vfull
-        grav = np.zeros((n, 2))
-        grav[:, 1] = -z.gravity
-        drive = dkd.Drive(vfull, vhalf, grav, np.zeros((n, 2)))
+        self._sync_dt()
         dem = (m.P, m.E, m.C, m.S, dkd.pack(dkd.Bodies, m), dkd.pack(dkd.Shapes, m),
                dkd.pack(dkd.Joints, m), dkd.pack(dkd.Contacts, m))
         zon = (z.P, z.E, z.C, z.S, ckd.pack(ckd.Grid, z), ckd.pack(ckd.Zones, z), z.mprops,
@@ -230,13 +271,41 @@ class CoupledModel:
         for name, a in zip(dkd.Contacts._fields, out[:6], strict=True):
             setattr(m, name, a)
         f._set(out[6:])
+        self._since_check = getattr(self, "_since_check", 0) + n
 
-    def _damping(self, alocal: float, amass: float, drel: float) -> None:
-        for P, (ia, im, idr) in ((self.dem.P, (DK.P_ALOCAL, DK.P_AMASS, DK.P_DREL)),
-                                 (self.zones.P, (ZK.P_ALOCAL, ZK.P_AMASS, ZK.P_DREL))):
-            P[ia] = alocal
-            P[im] = amass
-            P[idr] = drel
+    def after_chunk(self) -> str | None:
+        """The zones' checks after a chunk of steps: a non-finite gridpoint velocity or an
+        inverted zone (a message), and every 100 steps in large strain the zones' critical
+        step against the time step (the step shrinks when the zones distorted)."""
+        z = self.zones
+        z.time = self.dem.time
+        if not np.all(np.isfinite(z.gvel)):
+            return "non-finite gridpoint velocities (lower the time step)"
+        if np.any(z.zstate & ZK.ST_INVERTED):
+            k = int(np.flatnonzero(z.zstate & ZK.ST_INVERTED)[0])
+            return f"zone {k} turned inside out (too distorted)"
+        if self._since_check >= 100:
+            self._since_check = 0
+            crit = z.critical_dt()
+            if crit <= 0.0:
+                return "a zone has a non-positive area"
+            if z.safety * crit < self.dem.dt:
+                self.set_dt(z.safety * crit)
+        return None
+
+    def set_damping(self, alocal: float, amass: float, drel: float) -> None:
+        """The zones take the blocks' damping (local coefficient, mass-proportional
+        ``alpha_M`` [1/s], frame)."""
+        P = self.zones.P
+        P[ZK.P_ALOCAL] = alocal
+        P[ZK.P_AMASS] = amass
+        P[ZK.P_DREL] = drel
+        P[ZK.P_PLASTIC] = 1.0
+
+    def at_rest(self) -> None:
+        """Zero the gridpoints' velocities and accelerations (the end of a settling)."""
+        self.zones.gvel[:] = 0.0
+        self.zones.gacc[:] = 0.0
 
     def unbalanced_ratio(self) -> float:
         """The largest unbalanced force of a block or a gridpoint (per the blocks' thickness)
@@ -253,90 +322,121 @@ class CoupledModel:
             return math.inf if unbal > 0 else 0.0
         return unbal / mean
 
-    def settle(self, tol: float = 1e-5, alpha: float = 0.8, max_steps: int = 200_000,
-               check_every: int = 100) -> tuple[bool, int, float]:
-        """Static equilibrium of blocks and zones under gravity with local damping.
+    # ------------------------------------------------------------------ energy
+    def reset_reference(self) -> None:
+        """Take the current state of the zones and the interface as the reference of their
+        displacements and energies (called by the blocks' ``reset_reference``)."""
+        self.zones.reset_reference()
+        self.iface.E[:] = 0.0
+        self.stored0 = stored_energy_of(self.iface)
+
+    def energy_terms(self, g) -> dict:
+        """The zones' and the interface's energy terms [J, for the blocks' thickness] since the
+        reference state, and their share of the balance's error (:meth:`energy`).
 
         Parameters
         ----------
-        tol : float
-            Unbalanced-force ratio to reach [-] (:meth:`unbalanced_ratio`).
-        alpha : float
-            Local damping coefficient [-].
-        max_steps : int
-            Largest number of steps.
-        check_every : int
-            Steps between checks of the ratio.
+        g : array_like (2,)
+            The gravity vector now [m/s²] (the blocks' model's, with its tilt).
 
         Returns
         -------
-        tuple
-            ``(converged, steps, ratio)``.
+        dict
         """
-        self._damping(alpha, 0.0, 0.0)
-        self.zones.P[ZK.P_PLASTIC] = 1.0
-        done, ratio = 0, math.inf
-        while done < max_steps:
-            n = min(check_every, max_steps - done)
-            self._chunk(n, moving=False)
-            done += n
-            ratio = self.unbalanced_ratio()
-            if ratio < tol:
-                break
-        self._damping(0.0, 0.0, 0.0)
-        self.dem.bvel[:] = 0.0
-        self.dem.bomg[:] = 0.0
-        self.zones.gvel[:] = 0.0
-        return ratio < tol, done, ratio
+        z = self.zones
+        t = float(self.iface.P[IF.IP_THICK])
+        e = z.energy()
+        free = z.gfix == 0
+        u = z.gdisp - z.dt * z.gvel
+        pe = -float((z.gmass[:, None] * u * np.asarray(g, float)[None, :] * free).sum())
+        fE = self.iface.E
+        wz = float(fE[IF.IE_WZONE] - fE[IF.IE_TZONE])
+        out = {"zones_kinetic": t * (e["kinetic"] - z.K0), "zones_gravity": t * pe,
+               "zones_strain": t * e["strain"], "zones_plastic": t * e["plastic"],
+               "zones_damping_work": t * e["damping_work"],
+               "zones_base_work": t * e["base_work"],
+               "zones_dashpot_work": t * e["dashpot_work"],
+               "zones_external_work": t * e["external_work"] - wz,
+               "interface_elastic": stored_energy_of(self.iface) - self.stored0,
+               "interface_slip": float(fE[IF.IE_DSLIP]),
+               "interface_breaking": float(fE[IF.IE_DBREAK])}
+        out["zones_error"] = (out["zones_kinetic"] + out["zones_gravity"]
+                              + out["zones_strain"] + out["zones_plastic"]
+                              + out["interface_elastic"] + out["interface_slip"]
+                              + out["interface_breaking"]
+                              - (out["zones_damping_work"] + out["zones_base_work"]
+                                 + out["zones_dashpot_work"] + out["zones_external_work"]))
+        return out
 
-    def run(self, duration: float, *, xi: float = 0.0, freq: float | None = None,
-            damping_frame: str = "base", every: int = 100, monitors: dict | None = None):
-        """A dynamic run over ``duration`` [s] with the zones' base motion
-        (:meth:`murus.continuum.ContinuumModel.set_base_motion`) driving the zones' base
-        gridpoints and the blocks of kind "base".
+    def energy(self) -> dict:
+        """One energy balance of blocks, zones and interface [J, for the blocks' thickness]
+        since the reference state (:func:`murus.dem.engine.energy`).
+
+        The blocks' terms keep their names (``kinetic``, ``gravity``, ``elastic`` of the
+        blocks' contacts, ``base_work``, ...); the zones' are prefixed ``zones_`` (their
+        per-metre terms times the thickness), the interface's ``interface_`` (its springs'
+        elastic energy, slip and breaking). The interface's forces are internal: the blocks'
+        balance misses their work on the blocks, the zones count their work on the gridpoints
+        as external; with ``zones_external_work`` the applied forces only, ``error`` closes
+        over everything: ``ΔE_blocks + ΔE_zones + ΔE_interface + dissipation - work of the
+        base, the dampers, the dashpots and the applied forces``.
+
+        Returns
+        -------
+        dict
+        """
+        from murus.dem.engine import energy
+
+        return energy(self.dem)
+
+    # ------------------------------------------------------------------ running
+    def settle(self, **kw):
+        """Static equilibrium of blocks and zones (:func:`murus.dem.engine.settle`).
+
+        Parameters
+        ----------
+        **kw
+            Arguments of :func:`murus.dem.engine.settle` (``tol``, ``alpha``, ``max_steps``,
+            ...).
+
+        Returns
+        -------
+        murus.dem.engine.SettleResult
+        """
+        return self.dem.settle(**kw)
+
+    def run(self, duration: float | None = None, **kw):
+        """A dynamic run of blocks and zones (:func:`murus.dem.engine.run`): the blocks'
+        base motion drives the zones' base gridpoints and the blocks of kind "base".
 
         Parameters
         ----------
         duration : float
             Simulated time [s].
-        xi, freq : float
-            Mass-proportional damping: fraction of critical at ``freq`` [Hz], on blocks and
-            zones (Savalle et al. (2022), §2).
-        damping_frame : {"base", "absolute"}
-            Velocities damped.
-        every : int
-            Steps between samples of the monitors.
-        monitors : dict, optional
-            name -> callable(coupled model) -> float.
+        **kw
+            Arguments of :func:`murus.dem.engine.run` (``xi``, ``freq``, ``probes``, ``stop``,
+            ``progress``, ...): the damping applies to blocks and zones alike.
 
         Returns
         -------
-        dict
-            ``t`` and one array per monitor; ``wall`` [s].
+        murus.dem.engine.RunResult
         """
-        if xi > 0 and not (freq and freq > 0):
-            raise CoupledError("mass-proportional damping needs freq > 0 [Hz]", key=("freq",))
-        amass = 4.0 * math.pi * xi * freq if xi > 0 else 0.0
-        self._damping(0.0, amass, 1.0 if damping_frame == "base" else 0.0)
-        moving = self.zones._motion_kind != "none"
-        monitors = monitors or {}
-        out = {"t": [self.zones.time]} | {k: [float(f(self))] for k, f in monitors.items()}
-        total = int(math.ceil(duration / self.dt - 1e-9))
-        done = 0
-        t0 = _time.perf_counter()
-        while done < total:
-            n = min(every, total - done)
-            self._chunk(n, moving)
-            done += n
-            self.zones.time += n * self.dt
-            self.dem.time_offset = self.zones.time
-            self.dem.step_offset = int(self.dem.C[DK.C_STEP])
-            out["t"].append(self.zones.time)
-            for k, f in monitors.items():
-                out[k].append(float(f(self)))
-        res = {k: np.asarray(v) for k, v in out.items()}
-        res["wall"] = _time.perf_counter() - t0
-        return res
+        return self.dem.run(duration, **kw)
+
+    def save(self, path) -> None:
+        """Checkpoints of a coupled model are not available yet.
+
+        Raises
+        ------
+        CoupledError
+        """
+        raise CoupledError("checkpoints of blocks coupled with zones are not available yet",
+                           key=("save",))
+
+
+def stored_energy_of(iface) -> float:
+    """Elastic energy of the interface's springs now [J] (:func:`interface.stored_energy`)."""
+    return float(IF.stored_energy(iface.nodes, iface.corners))
 
 
 # numba's cache checks only this file: flush it when the kernels it compiles in change

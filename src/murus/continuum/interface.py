@@ -103,6 +103,8 @@ from murus.dem.kernels import (
     F_FS,
     F_KNA,
     F_KSA,
+    F_NX,
+    F_NY,
     F_PX,
     F_PY,
     J_KN,
@@ -121,7 +123,8 @@ __all__ = ["GridSide", "IfaceGeom", "IfaceState", "IfaceWork", "Interface", "Int
            "interface_forces", "step", "rebuild", "candidates", "transfer", "moved",
            "node_contacts", "corner_contacts", "stored_energy",
            "IP_DT", "IP_THICK", "IP_MARGIN", "IP_REACH", "IP_DEPTH", "NIP",
-           "IE_DSLIP", "IE_DBREAK", "NIE", "IC_STEP", "IC_REBUILD", "IC_NEED_REBUILD",
+           "IE_DSLIP", "IE_DBREAK", "IE_WZONE", "IE_TZONE", "NIE", "IC_STEP", "IC_REBUILD",
+           "IC_NEED_REBUILD",
            "IC_NODES", "IC_CORNERS", "NIC"]
 
 # ---- parameter vector ------------------------------------------------------------------------
@@ -135,7 +138,9 @@ NIP = 5
 # ---- energy accumulators ---------------------------------------------------------------------
 IE_DSLIP = 0  # frictional (slip) dissipation [J]
 IE_DBREAK = 1  # elastic energy released by breaking or opening contacts [J]
-NIE = 2
+IE_WZONE = 2  # work of the interface forces on the zones' free gridpoints [J] (coupled loop)
+IE_TZONE = 3  # of it, the half of the last step after the time of the stresses [J]
+NIE = 4
 
 # ---- counters --------------------------------------------------------------------------------
 IC_STEP = 0
@@ -519,6 +524,45 @@ def _node_polygon(px, py, wv, a0, na, r, reach):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _carry(k, o, sf, nx, ny, ksa, kn_ratio):
+    """Carry the shear force of old slot ``o`` of pair k over to the contact of this step,
+    of unit normal (nx, ny), shear stiffness ``ksa`` [N/m] and normal stiffness ``kn_ratio``
+    times the old one, in place; returns the elastic energy released [J] (negative: gained)
+    by the change of stiffness (the normal spring's at its old gap).
+
+    The contact keeps its shear stress, not its force, when its tributary length changes (a
+    gridpoint whose neighbour comes under or leaves a block's face, a block corner whose
+    adjacent faces change): the force scales with the new stiffness, as the normal force does
+    through the gap. When the contact plane turned (a gridpoint going round a block's rounded
+    corner), the force keeps its projection on the new tangent (UDEC, PFC: the shear force
+    rotated with the contact plane). Without this a stiffness that shrinks under a kept force
+    (``fs² / 2 ks A``) was taken for frictional slip, of up to a thousand joules in one step.
+    """
+    # the normal spring: its energy at the old gap, with the old and the new stiffness
+    kno = sf[k, o, F_KNA]
+    out = 0.0
+    if kno > 0.0:
+        fn = sf[k, o, F_FN]
+        out = 0.5 * fn * fn / kno * (1.0 - kn_ratio)
+    fs = sf[k, o, F_FS]
+    ko = sf[k, o, F_KSA]
+    if fs == 0.0 or ko <= 0.0:
+        return out
+    cth = nx * sf[k, o, F_NX] + ny * sf[k, o, F_NY]
+    if cth < 0.0:
+        cth = 0.0
+    elif cth > 1.0:
+        cth = 1.0
+    before = 0.5 * fs * fs / ko
+    if ksa <= 0.0:
+        sf[k, o, F_FS] = 0.0
+        return out + before
+    f1 = fs * cth * ksa / ko
+    sf[k, o, F_FS] = f1
+    return out + before - 0.5 * f1 * f1 / ksa
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _corner_trib(wv, a0, na, k, tx, ty, nzx, nzy, eflag):
     """Tributary length [m] of core vertex ``a0 + k`` against a zone edge of unit direction
     (tx, ty) and outward normal (nzx, nzy): for each of its two adjacent core edges that faces
@@ -645,6 +689,11 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
             sbr[k, 0] = 0
             continue
         b = sbody[s]
+        if o >= 0:
+            jq = c.pj[k]
+            kr = (jprops[jq, J_KN] * trib * thick / sf[k, o, F_KNA] if sf[k, o, F_KNA] > 0.0
+                  else 1.0)
+            d_break += _carry(k, o, sf, nx, ny, jprops[jq, J_KS] * trib * thick, kr)
         pm = PairMotion(gvel[g, 0], gvel[g, 1], 0.0, px, py, bvel[b, 0], bvel[b, 1], bomg[b],
                         bpos[b, 0], bpos[b, 1])
         pt = SubContact(px, py, nx, ny, gap, trib)
@@ -822,6 +871,12 @@ def corner_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
                              (1.0 - u0) * gvel[g0, 1] + u0 * gvel[g1, 1], 0.0, cx0, cy0,
                              pmx[0], pmx[1], pmx[2], pmx[3], pmx[4])
             pt0 = SubContact(cx0, cy0, nzx, nzy, gp0, w0)
+            ks_t = jprops[jp, J_KS] * thick
+            kn_t = jprops[jp, J_KN] * thick
+            if m0 >= 0 and sf[k, m0, F_KNA] > 0.0:
+                d_break += _carry(k, m0, sf, nzx, nzy, ks_t * w0, kn_t * w0 / sf[k, m0, F_KNA])
+            if v1 >= 0 and m1 >= 0 and sf[k, m1, F_KNA] > 0.0:
+                d_break += _carry(k, m1, sf, nzx, nzy, ks_t * w1, kn_t * w1 / sf[k, m1, F_KNA])
             (keep0, br0, pb, fn0, fs0, mr0, kna0, ksa0, kra0, ds, dr, db) = _joint_law(
                 m0, k, sf, sbr, pb, jprops, jp, False, 0.0, pt0, pm0, cst)
             d_slip += ds

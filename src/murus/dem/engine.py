@@ -101,7 +101,10 @@ class Probe:
     spec : tuple
         The kind and its arguments: ``("body", b, q)``: quantity ``q`` of body ``b``;
         ``("relative", b, ref, q)``: the same of body ``b`` minus that of body ``ref`` (``q``
-        in ux, uy, rot); ``("tilt",)``: gravity tilt [deg]; ``("time",)``: model time [s].
+        in ux, uy, rot); ``("tilt",)``: gravity tilt [deg]; ``("time",)``: model time [s];
+        of blocks coupled with zones (:class:`murus.continuum.CoupledModel`), ``("gp", g,
+        q)`` and ``("zone", z, q)``: a gridpoint's or a zone's quantity
+        (:func:`murus.continuum.engine.monitor_value`).
     """
 
     spec: tuple
@@ -118,7 +121,19 @@ class Probe:
             return math.degrees(float(m.tilt_angle(m.time)))
         if kind == "time":
             return float(m.time)
+        if kind in ("gp", "zone"):
+            from murus.continuum.engine import monitor_value
+
+            return monitor_value(_zones_of(m), self.spec)
         raise ValueError(f"unknown probe kind {kind!r}")
+
+
+def _zones_of(m):
+    cp = m.__dict__.get("coupled")
+    if cp is None:
+        raise ValueError("a gridpoint or zone probe needs blocks coupled with zones "
+                         "(murus.continuum.CoupledModel)")
+    return cp.zones
 
 
 def _body_q(m, b, q):
@@ -343,7 +358,17 @@ def detect(m) -> None:
 
 
 def stable_dt(m) -> float:
-    """Stable time step [s] from the current masses and contact stiffnesses (module doc)."""
+    """Stable time step [s] from the current masses and contact stiffnesses (module doc); of
+    blocks coupled with zones, the smallest of the blocks', the zones' and the interface's
+    (:meth:`murus.continuum.coupled.CoupledModel.stable_dt`)."""
+    cp = m.__dict__.get("coupled")
+    if cp is not None:
+        return cp.stable_dt()
+    return blocks_stable_dt(m)
+
+
+def blocks_stable_dt(m) -> float:
+    """Stable time step [s] of the blocks alone (:func:`stable_dt`)."""
     detect(m)
     nb = m.nbody
     kmax = float(np.max(np.maximum(m.jprops[:, K.J_KN], m.jprops[:, K.J_KS])))
@@ -562,6 +587,11 @@ def energy(m) -> dict:
                                            + out["tilt_work"]
                                            + out["damping_work"] - out["slip"]
                                            - out["rolling"] - out["breaking"]))
+    cp = m.__dict__.get("coupled")
+    if cp is not None:  # blocks coupled with zones: one balance (CoupledModel.energy)
+        z = cp.energy_terms(m.gravity_vector(np.array([m.time]))[0])
+        out["error"] += z.pop("zones_error")
+        out.update(z)
     return out
 
 
@@ -581,7 +611,8 @@ def _chunk(m, n: int, moving: bool) -> None:
     # docstring of run_chunk); the results do not depend on the split nor on the count
     nth = numba.get_num_threads()
     gov = getattr(m, "_threads", None)
-    if m.pairs.shape[0] < m.P[K.P_PARMIN]:
+    cp = m.__dict__.get("coupled")
+    if m.pairs.shape[0] < m.P[K.P_PARMIN] and cp is None:
         gov, nth1 = None, 1
     else:
         nth1 = nth
@@ -595,10 +626,13 @@ def _chunk(m, n: int, moving: bool) -> None:
             numba.set_num_threads(th)
             t0 = _time.perf_counter()
             drive = kd.Drive(vfull[s:s + k], vhalf[s:s + k], grav[s:s + k], gdot[s:s + k])
-            out = K.run_chunk(k, m.P, m.E, m.C, m.S, drive, bodies, shapes, joints,
-                              kd.pack(kd.Contacts, m))
-            for name, a in zip(kd.Contacts._fields, out, strict=True):
-                setattr(m, name, a)
+            if cp is not None:
+                cp.step(k, drive)
+            else:
+                out = K.run_chunk(k, m.P, m.E, m.C, m.S, drive, bodies, shapes, joints,
+                                  kd.pack(kd.Contacts, m))
+                for name, a in zip(kd.Contacts._fields, out, strict=True):
+                    setattr(m, name, a)
             if gov is not None:
                 gov.record(th, k, _time.perf_counter() - t0)
             s += k
@@ -638,6 +672,9 @@ class _SigInt:
 
 
 def unbalanced_ratio(m) -> float:
+    cp = m.__dict__.get("coupled")
+    if cp is not None:
+        return cp.unbalanced_ratio()
     mean = m.S[K.S_MEANF]
     if mean <= 0.0:
         return math.inf if m.S[K.S_UNBAL] > 0 else 0.0
@@ -668,6 +705,9 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     m.bpresc[:] = 0.0
     m._threads = _threads.Governor.for_run(threads)
     over = None
+    cp = m.__dict__.get("coupled")
+    if cp is not None:
+        cp.set_damping(alpha, 0.0, 0.0)
     try:
         with _SigInt() as sig:
             while done < max_steps and not sig.hit:
@@ -681,6 +721,10 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
                 if not np.all(np.isfinite(m.bpos)):
                     over = "non-finite positions (lower dt)"
                     break
+                if cp is not None:
+                    over = cp.after_chunk()
+                    if over is not None:
+                        break
                 over = None if max_overlap is None else _penetration(m, max_overlap)
                 if over is not None:
                     break
@@ -692,6 +736,9 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
         m.bpresc[:] = presc
     m.bvel[:] = 0.0
     m.bomg[:] = 0.0
+    if cp is not None:
+        cp.set_damping(0.0, 0.0, 0.0)
+        cp.at_rest()
     detect(m)
     m.snapshot()
     if reset:
@@ -754,6 +801,9 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
     m.P[K.P_AMASS] = 4.0 * math.pi * xi * freq if xi > 0 else 0.0
     m.P[K.P_DREL] = 1.0 if damping_frame == "base" else 0.0
     m.P[K.P_ALOCAL] = local_damping
+    cp = m.__dict__.get("coupled")
+    if cp is not None:
+        cp.set_damping(local_damping, m.P[K.P_AMASS], m.P[K.P_DREL])
     if probes:
         m.probes.update(probes)
     if every is None:
@@ -817,6 +867,12 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                     status = "unstable"
                     message = "non-finite positions: lower dt"
                     break
+                if cp is not None:
+                    bad = cp.after_chunk()
+                    if bad is not None:
+                        status = "unstable"
+                        message = f"at t={m.time:.6g} s {bad}"
+                        break
                 over = None if max_overlap is None else _penetration(m, max_overlap)
                 if over is not None:
                     status = "interpenetration"

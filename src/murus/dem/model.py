@@ -583,6 +583,9 @@ class Model:
         self.build()
         self.bref = np.column_stack([self.bpos, self.bang])
         self.E[:] = 0.0
+        cp = self.__dict__.get("coupled")
+        if cp is not None:  # the zones and the interface of a coupled model too
+            cp.reset_reference()
         e = self.energy()
         self.E0 = e["kinetic"] + e["gravity"] + e["elastic"]
 
@@ -614,6 +617,9 @@ class Model:
         saved: set them again after :meth:`load`), written atomically and durably
         (:func:`murus.outputs.atomic_write`: a crash never leaves a half checkpoint)."""
         self.build()
+        cp = self.__dict__.get("coupled")
+        if cp is not None:
+            cp.save(path)  # not available yet: raises
         arrays = {name.lstrip("_"): getattr(self, name) for name in self._ARRAYS}
         for i, o in enumerate(self._outer):
             arrays[f"outer_{i}"] = o
