@@ -271,6 +271,7 @@ class CoupledModel:
         for name, a in zip(dkd.Contacts._fields, out[:6], strict=True):
             setattr(m, name, a)
         f._set(out[6:])
+        z.time = m.time
         self._since_check = getattr(self, "_since_check", 0) + n
 
     def after_chunk(self) -> str | None:
@@ -278,7 +279,6 @@ class CoupledModel:
         inverted zone (a message), and every 100 steps in large strain the zones' critical
         step against the time step (the step shrinks when the zones distorted)."""
         z = self.zones
-        z.time = self.dem.time
         if not np.all(np.isfinite(z.gvel)):
             return "non-finite gridpoint velocities (lower the time step)"
         if np.any(z.zstate & ZK.ST_INVERTED):
@@ -303,7 +303,9 @@ class CoupledModel:
         P[ZK.P_PLASTIC] = 1.0
 
     def at_rest(self) -> None:
-        """Zero the gridpoints' velocities and accelerations (the end of a settling)."""
+        """Zero the gridpoints' velocities and accelerations (the end of a settling, which
+        does not advance the time)."""
+        self.zones.time = self.dem.time
         self.zones.gvel[:] = 0.0
         self.zones.gacc[:] = 0.0
 
