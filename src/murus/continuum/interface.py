@@ -71,8 +71,15 @@ the same contacts (the coupled loop applies the forces to the dynamic bodies onl
 Energy: slip dissipation and the energy released by breaking or opening contacts are
 accumulated in ``E[IE_DSLIP]`` and ``E[IE_DBREAK]`` exactly as the blocks'
 (``E_DSLIP``, ``E_DBREAK`` of :mod:`murus.dem.kernels`); the elastic energy stored in the
-interface springs is :func:`stored_energy`. Rolling resistance is not applied at the interface
-(a gridpoint has no rotation to take the reaction moment).
+interface springs is :func:`stored_energy`. A contact whose tributary length or plane changes
+keeps its shear stress (its force scales with its stiffness, projected on the new tangent,
+:func:`_carry`), and the elastic energy that the change of stiffness releases or adds, like
+that of a contact formed already pressed, goes to ``E[IE_DBREAK]`` (negative when gained), so
+that the balance of the coupled model (:meth:`murus.continuum.coupled.CoupledModel.energy`)
+accounts for every joule the interface's discretisation moves. ``E[IE_WZONE]`` and
+``E[IE_TZONE]`` hold the work of the interface forces on the zones (written by the coupled
+loop). Rolling resistance is not applied at the interface (a gridpoint has no rotation to
+take the reaction moment).
 
 Units: SI; forces [N] for the out-of-plane thickness ``P_THICK`` (the blocks' thickness). A
 continuum model per metre of thickness (:class:`murus.continuum.ContinuumModel`) takes the
@@ -706,6 +713,8 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
             sid[k, 0] = -1
             sbr[k, 0] = 0
             continue
+        if o < 0 and fn > 0.0 and kna > 0.0:  # formed already pressed: energy gained
+            d_break -= 0.5 * fn * fn / kna
         fx, fy, mb, ma = _store(k, 0, sid, sf, sbr, e0, br, (fn, fs, mr), (kna, ksa, kra), pt,
                                 pm)
         fb[b, 0] += fx
@@ -902,6 +911,11 @@ def corner_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
                 ksa1 = 0.0
                 kra1 = 0.0
             pbond[k] = pb
+            # a contact formed already pressed: the energy of its spring is gained
+            if keep0 and m0 < 0 and fn0 > 0.0 and kna0 > 0.0:
+                d_break -= 0.5 * fn0 * fn0 / kna0
+            if keep1 and m1 < 0 and fn1 > 0.0 and kna1 > 0.0:
+                d_break -= 0.5 * fn1 * fn1 / kna1
             if keep0:
                 fx, fy, mb, ma = _store(k, 0, sid, sf, sbr, v0, br0, (fn0, fs0, mr0),
                                         (kna0, ksa0, kra0), pt0, pm0)
