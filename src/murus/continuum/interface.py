@@ -1003,8 +1003,11 @@ def step(P, E, C, geo, side, bodies, shapes, jprops, nodes, corners, state, work
         t = rebuild(P, E, C, geo, gxy, bodies, shapes, nodes, corners, state, 0)
         nodes = Contacts(t[0], t[1], t[2], t[3], t[4], t[5])
         corners = Contacts(t[6], t[7], t[8], t[9], t[10], t[11])
+    b0 = E[IE_DBREAK]
     nn = node_contacts(P, E, geo, side, bodies, shapes, jprops, nodes, work)
     nc = corner_contacts(P, E, geo, side, bodies, shapes, jprops, corners, work)
+    if C[IC_STEP] == 0:  # the contacts of the first step are the initial state, not a gain
+        E[IE_DBREAK] = b0
     _clear_flags(nodes, shapes, work.eflag)
     C[IC_NODES] = nn
     C[IC_CORNERS] = nc
