@@ -5,7 +5,7 @@ carries ``kn L t delta`` over its tributary length L; the shear force is capped 
 ``c A + Fn tan(phi)`` and the slip dissipation is the trapezoid-rule work beyond the elastic
 energy; a bond breaks at its tensile strength and then carries its residual tension; a face on a
 row of gridpoints carries ``kn t delta`` times the covered length, its corners nothing (the
-double-count rule); a corner between two gridpoints of a coarse mesh is split ``(1 - s, s)``.
+coverage rule); a corner between two gridpoints of a coarse mesh is split ``(1 - s, s)``.
 Conservation: the forces on the gridpoints and the blocks are equal and opposite, in force and
 in moment. A static check couples a block and an elastic layer in a short explicit loop written
 here (the public continuum kernel :func:`murus.continuum.kernels.run_chunk`, one step at a time,
@@ -31,6 +31,9 @@ KN = 1.0e9
 KS = 5.0e8
 T = 0.8  # thickness [m]
 H = 0.5  # gridpoint spacing [m]
+BW = 0.25  # width of the narrow blocks [m], half the tributary length of a gridpoint
+R_ROUND = 0.01  # the rounding of _model [m]
+BF = BW - 2 * R_ROUND  # the flat bottom face of a narrow block [m]
 
 
 def _surface(n, h=H, x0=0.0):
@@ -53,16 +56,18 @@ def _moment_of(fg, xy, c):
 
 
 def test_gridpoint_pressed_into_a_face():
-    """A gridpoint of tributary length h (half of each of its two edges) under a narrow block
-    pressed by delta: ``kn h t delta`` up on the block, down on the gridpoint, nothing at the
-    other gridpoints and no corner contact (the face is carried by the gridpoint)."""
+    """A gridpoint of tributary length h (half of each of its two edges) under a block
+    narrower than h, of flat bottom face b (its width less the two roundings), pressed by
+    delta: ``kn b t delta`` (the part of the tributary length that faces the face) up on the
+    block, down on the gridpoint, nothing at the other
+    gridpoints and no corner contact (the face is carried by the gridpoint)."""
     delta = 1e-4
     grid, edges = _surface(3, x0=-H)
     m = _model()
-    m.add_rectangle(0.25, 0.4, center=(0.0, 0.2 - delta))
+    m.add_rectangle(BW, 0.4, center=(0.0, 0.2 - delta))
     ifc = I.Interface(grid, edges, m)
     fg, fb = ifc.forces(0.0)
-    f = KN * H * T * delta
+    f = KN * BF * T * delta
     assert fb[0, 1] == pytest.approx(f, rel=1e-9)
     assert fg[1, 1] == pytest.approx(-f, rel=1e-9)
     assert np.abs(fg[[0, 2]]).max() == 0.0
@@ -73,7 +78,9 @@ def test_gridpoint_pressed_into_a_face():
 def test_gridpoint_inside_the_core():
     """A gridpoint of a vertical interface (zones on the left) inside the core polygon of a
     block pressed into it by 0.03 m (more than the rounding): the gap is minus the distance to
-    the nearest core edge minus the rounding, -0.03 m, the normal that edge's inward normal."""
+    the nearest core edge minus the rounding, -0.03 m, the normal that edge's inward normal;
+    the block's face (0.4 m less the two roundings) is shorter than the gridpoint's tributary
+    length h = 0.5 m, so the contact takes the length of the face."""
     xy = np.array([[0.0, -H], [0.0, 0.0], [0.0, H]])
     grid = SimpleNamespace(gxy=xy, gvel=np.zeros((3, 2)))
     edges = np.array([[0, 1], [1, 2]])  # upward: zones at x < 0
@@ -82,7 +89,7 @@ def test_gridpoint_inside_the_core():
     m.add_rectangle(0.4, 0.4, center=(0.2 - pen, 0.0))
     ifc = I.Interface(grid, edges, m)
     fg, fb = ifc.forces(0.0)
-    f = KN * H * T * pen
+    f = KN * (0.4 - 2 * R_ROUND) * T * pen
     assert fb[0, 0] == pytest.approx(f, rel=1e-9)
     assert fg[1, 0] == pytest.approx(-f, rel=1e-9)
     assert abs(fb[0, 1]) < 1e-9 * f and abs(fb[0, 2]) < 1e-9 * f
@@ -129,9 +136,9 @@ def test_coulomb_cap_and_slip_dissipation():
     joint = Joint(kn=KN, ks=KS, friction_deg=phi, cohesion=coh, cohesion_res=coh)
     grid, edges = _surface(3, x0=-H)
     m = _model(joint)
-    m.add_rectangle(0.25, 0.4, center=(0.0, 0.2 - delta))
+    m.add_rectangle(BW, 0.4, center=(0.0, 0.2 - delta))
     ifc = I.Interface(grid, edges, m)
-    A = H * T
+    A = BF * T  # the block's flat face, within the gridpoint's tributary length
     fn = KN * A * delta
     fmax = coh * A + fn * math.tan(math.radians(phi))
     nel = 10
@@ -163,9 +170,9 @@ def test_tensile_bond_breaks_then_carries_its_residual():
     joint = Joint(kn=KN, ks=KS, friction_deg=30.0, tension=ten, tension_res=tres)
     grid, edges = _surface(3, x0=-H)
     m = _model(joint)
-    m.add_rectangle(0.25, 0.4, center=(0.0, 0.2))  # touching: gap 0, bonded
+    m.add_rectangle(BW, 0.4, center=(0.0, 0.2))  # touching: gap 0, bonded
     ifc = I.Interface(grid, edges, m)
-    A = H * T
+    A = BF * T  # the block's flat face, within the gridpoint's tributary length
     y0 = float(m.bpos[0, 1])
 
     def fn_at(gap):
@@ -185,10 +192,11 @@ def test_tensile_bond_breaks_then_carries_its_residual():
 
 
 def test_flat_face_on_a_row_of_gridpoints():
-    """A face of length 4h resting on a row of gridpoints (spacing h) pressed by delta carries
-    ``kn t delta 4h`` (four gridpoints of tributary h each); its corners, above zone edges, add
-    nothing: the face is carried by the gridpoints (without the rule each corner would add half
-    the face)."""
+    """A block of width 4h (a flat face of 4h less the two roundings) resting on a row of
+    gridpoints (spacing h) pressed by delta carries ``kn t delta (4h - 2r)``: the two inner
+    gridpoints their tributary h each, the two outer ones the h - r of theirs under the face;
+    its corners, above zone edges, add nothing: the face is carried by the gridpoints (without
+    the rule each corner would add half the face)."""
     delta = 1e-4
     h = 0.25
     grid, edges = _surface(9, h=h)
@@ -196,9 +204,32 @@ def test_flat_face_on_a_row_of_gridpoints():
     m.add_rectangle(4 * h, 0.3, center=(3.5 * h, 0.15 - delta))
     ifc = I.Interface(grid, edges, m)
     fg, fb = ifc.forces(0.0)
-    assert fb[0, 1] == pytest.approx(KN * T * delta * 4 * h, rel=1e-9)
-    assert fg[2:6, 1] == pytest.approx(np.full(4, -KN * T * delta * h), rel=1e-9)
+    assert fb[0, 1] == pytest.approx(KN * T * delta * (4 * h - 2 * R_ROUND), rel=1e-9)
+    want = KN * T * delta * np.array([h - R_ROUND, h, h, h - R_ROUND])
+    assert fg[2:6, 1] == pytest.approx(-want, rel=1e-9)
     assert ifc.C[I.IC_NODES] == 4 and ifc.C[I.IC_CORNERS] == 0
+
+
+def test_a_face_sliding_over_gridpoints_is_carried_once_everywhere():
+    """The coverage rule: a block's flat face (length 1.1 m less the two roundings) pressed by
+    delta on a row of gridpoints (spacing 0.25 m) and moved across a whole spacing in steps of
+    1 cm: wherever its ends are (over a gridpoint's tributary or between gridpoints, where the
+    corners take what the gridpoints leave), the face carries ``kn t delta`` times its length;
+    the moment about the centroid is only that of lumping each end's segment at a gridpoint or
+    a corner, at most ``kn t delta h`` times ``h / 2`` at either end."""
+    delta = 1e-4
+    h = 0.25
+    grid, edges = _surface(12, h=h)
+    m = _model()
+    w = 1.1
+    m.add_rectangle(w, 0.3, center=(1.0, 0.15 - delta))
+    ifc = I.Interface(grid, edges, m)
+    want = KN * T * delta * (w - 2 * R_ROUND)
+    for k in range(26):
+        m.bpos[0, 0] = 1.0 + 0.01 * k
+        fg, fb = ifc.forces(0.0)
+        assert fb[0, 1] == pytest.approx(want, rel=1e-9), k
+        assert abs(fb[0, 2]) <= KN * T * delta * h * h, k
 
 
 @pytest.mark.parametrize("s", [0.3, 0.75])
@@ -232,10 +263,10 @@ def test_corner_between_two_gridpoints_of_a_coarse_mesh(s):
 
 
 def test_disc_on_a_gridpoint_and_between_two():
-    """A disc of radius R pressed by delta: on a gridpoint, ``kn h t delta`` from the gridpoint
-    alone (the disc is carried by it: no edge contact); between the two gridpoints of a coarse
-    edge, an edge contact of tributary 2 R (the blocks' disc-polygon tributary) split
-    ``(1 - s, s)``."""
+    """A disc of radius R pressed by delta: on a gridpoint, ``kn 2R t delta`` from the gridpoint
+    alone (the part of its tributary length h that faces the disc; the disc is carried by it:
+    no edge contact); between the two gridpoints of a coarse edge, an edge contact of the same
+    tributary 2 R (the blocks' disc-polygon tributary) split ``(1 - s, s)``."""
     R = 0.1
     delta = 1e-4
     grid, edges = _surface(3, x0=-H)
@@ -243,8 +274,8 @@ def test_disc_on_a_gridpoint_and_between_two():
     m.add_disc((0.0, R - delta), R)
     ifc = I.Interface(grid, edges, m)
     fg, fb = ifc.forces(0.0)
-    assert fb[0, 1] == pytest.approx(KN * H * T * delta, rel=1e-9)
-    assert fg[1, 1] == pytest.approx(-KN * H * T * delta, rel=1e-9)
+    assert fb[0, 1] == pytest.approx(KN * 2 * R * T * delta, rel=1e-9)
+    assert fg[1, 1] == pytest.approx(-KN * 2 * R * T * delta, rel=1e-9)
     assert ifc.C[I.IC_NODES] == 1 and ifc.C[I.IC_CORNERS] == 0
     sc = 0.3
     grid, edges = _surface(2, h=1.0)
@@ -280,11 +311,16 @@ def test_critical_time_step():
 def test_wall_against_a_backfill_corner():
     """Two wall blocks pressed 0.02 m (more than the rounding) into the vertical side of a
     backfill whose top surface is part of the interface too, the bed joint 0.05 m below that
-    surface: the upper block's lower corner, behind the top edge, is no contact with it (the
-    depth limit), so the interface pushes the wall horizontally only; the gridpoint at the top
-    of the side carries half its side edge only (tributary lengths projected on the contact's
-    tangent)."""
+    surface. The upper block's lower corner, behind the top edge, is no contact with it (the
+    depth limit), so the interface pushes the wall horizontally only. Every point of the side
+    is carried once (the coverage rule): the gridpoint at the top of the side by the upper
+    block over the 0.05 m between the joint and the top (its top edge, normal to the wall's
+    face, projects to nothing), the lower block's upper corner over the rest of that half
+    edge, the bottom gridpoint's length (in the notch of the lower block's rounded corner) by
+    that corner; the side carries ``kn t pen`` over its length less the three roundings of the
+    blocks' corners against it (the faces are the blocks' core edges)."""
     h = 0.25
+    r = 0.01  # the rounding of _model
     side = [(0.0, -h * k) for k in range(4, -1, -1)]  # x = 0, y = -1 .. 0
     top = [(h * k, 0.0) for k in range(1, 5)]  # y = 0, x = 0.25 .. 1
     xy = np.array(side + top)
@@ -297,12 +333,15 @@ def test_wall_against_a_backfill_corner():
     m.add_polygon([[-0.5, -0.05], [pen, -0.05], [pen, 0.5], [-0.5, 0.5]])
     ifc = I.Interface(grid, np.array(edges), m)
     fg, fb = ifc.forces(0.0)
-    assert ifc.C[I.IC_NODES] >= 4 and ifc.C[I.IC_CORNERS] == 0
-    assert fb[:, 0].min() < 0.0
+    assert ifc.C[I.IC_NODES] == 4 and ifc.C[I.IC_CORNERS] == 2
+    on = ifc.corners.sid >= 0
+    assert np.all(ifc.corners.sf[..., I.F_NX][on] == pytest.approx(-1.0, abs=1e-12))
     assert np.abs(fb[:, 1]).max() < 1e-12 * np.abs(fb[:, 0]).max()
-    # the corner gridpoint of the backfill: half its side edge (its top edge, normal to the
-    # wall's face, projects to nothing)
-    assert fg[4, 0] == pytest.approx(KN * T * pen * h / 2, rel=1e-9)
+    assert fb[:, 0].sum() == pytest.approx(-KN * T * pen * (4 * h - 3 * r), rel=1e-9)
+    # the top gridpoint's contact with the upper block: from its face's lower end to the top
+    top_node = (ifc.nodes.sid >= 0)[:, 0] & (ifc.geo.ig[ifc.nodes.pairs[:, 0]] == 4)
+    assert ifc.nodes.sf[top_node, 0, I.F_FN] == pytest.approx(KN * T * pen * (0.05 - r),
+                                                              rel=1e-9)
 
 
 def test_contact_opens_and_closes_again():
@@ -312,9 +351,9 @@ def test_contact_opens_and_closes_again():
     delta = 1e-4
     grid, edges = _surface(3, x0=-H)
     m = _model()
-    m.add_rectangle(0.25, 0.4, center=(0.0, 0.2 - delta))
+    m.add_rectangle(BW, 0.4, center=(0.0, 0.2 - delta))
     ifc = I.Interface(grid, edges, m)
-    A = H * T
+    A = BF * T  # the block's flat face, within the gridpoint's tributary length
     y0 = float(m.bpos[0, 1])
     m.bvel[0] = (0.01, 0.0)
     for _ in range(3):

@@ -15,7 +15,11 @@ law is the same code as block-block joints; Savalle et al. (2022), eqs. 3-4; Ita
    of a gridpoint contact is half of each interface edge that ends at the gridpoint (at the
    current coordinates), projected on the contact's tangent: on a flat or gently curved
    boundary, half of each adjacent edge; at a corner of the zone boundary (the top of a
-   backfill against a wall), only the side that runs along the block's face. The contact area
+   backfill against a wall), only the side that runs along the block's face; and of that, only
+   the part that faces the block (the extent along the tangent of the block's core polygon,
+   whose edges are the flat faces; of a disc, its diameter): a gridpoint under the end of a
+   face, or at the joint between two blocks, shares its length with them instead of giving
+   each its whole length. The contact area
    is that length times the thickness ``t``. The contact point is the gridpoint
    itself, so that the force on the block (at that point) and the reaction on the gridpoint
    have the same line of action: total force and total moment are exactly zero.
@@ -30,20 +34,26 @@ law is the same code as block-block joints; Savalle et al. (2022), eqs. 3-4; Ita
    the weights ``(1 - s, s)`` (so again no net force nor moment), and the velocity of side a at
    the contact point is ``(1 - s) v_g0 + s v_g1``.
 
-   *Tributary length of a corner (the double-count rule).* A corner takes, from each of its two
-   adjacent block edges that face the zone edge (outward normals at more than 90°), half the edge's
-   length projected on the zone edge (the measure of the distinct-element clipping, where a
-   vertex on a face carries half the clipped incident edge), but only from the block edges that
-   had **no gridpoint contact in step 1 of this step** (a gridpoint touching the edge, gap
-   <= 0, or bonded to it and carrying a force). Reason: a block face resting on
-   gridpoints is already carried by them, each with its own tributary length, so that counting
-   its corners too would put the face's stiffness in twice (a flat face on a row of gridpoints
-   carries ``kn t delta`` times the covered length, not more); while a corner that pokes into a
-   zone edge between two gridpoints of a coarse mesh touches no gridpoint, and is then held by
-   the edge with its full share. A gridpoint whose nearest core point is a vertex marks both
-   edges at that vertex. A disc gets ``2 R`` (the disc-polygon tributary of the blocks) unless a
-   gridpoint touches it. Of the vertices of a shape within reach of an edge, the two of least
-   gap are kept (a convex shape touches a straight edge with two vertices at most).
+   *Tributary length of a corner (the coverage rule).* Every point of a block face against
+   the zones is carried once: by the gridpoints touching it (step 1: gap <= 0, or bonded and
+   carrying a force), each over its tributary length along the face, or by the face's end
+   vertices over what those leave uncovered next to them. A corner takes, from each of its
+   two adjacent block edges that face the zone edge (outward normals at more than 90°), the
+   part of the edge next to it that the tributary lengths of the gridpoints touching the edge
+   this step do not cover, or half the edge when no gridpoint touches it (the measure of the
+   distinct-element clipping, where a vertex on a face carries half the clipped incident
+   edge), projected on the zone edge. So a flat face on a row of gridpoints carries ``kn t
+   delta`` times its length, not more; a corner that pokes into a zone edge between two
+   gridpoints of a coarse mesh is held by the edge with its full share; and as a gridpoint
+   slides towards a block's corner, the corner's share shrinks with what the gridpoint covers,
+   continuously. (An earlier rule gave a corner nothing from a face that any gridpoint
+   touched, and the whole half face otherwise: a gridpoint coming under the face switched the
+   corner's stiffness on and off, and a block sliding or shaken over the zones gained
+   hundreds of joules, 0.3 to 0.6 of the input work, that fed spurious plastic flow.) A
+   gridpoint whose nearest core point is a vertex covers both edges at that vertex. A disc
+   gets ``2 R`` (the disc-polygon tributary of the blocks) unless a gridpoint touches it. Of
+   the vertices of a shape within reach of an edge, the two of least gap are kept (a convex
+   shape touches a straight edge with two vertices at most).
 
 The reach (largest positive gap at which a contact is kept, ``IP_REACH``) is by default twice
 the joint's ``T / kn``: a bond pulled beyond its tensile strength then breaks through the joint
@@ -209,9 +219,11 @@ fg : ndarray (ng, 2)
 fb : ndarray (nb, 3)
     Interface forces (Fx, Fy) [N] and moments about the centroids [N m] on the bodies, added
     to by :func:`step`.
-eflag : ndarray (nv,) int8
-    1 for the core edges (indexed by their first global vertex) and the discs (their centre)
-    carried by a gridpoint in this step (zero between steps).
+eflag : ndarray (nv, 2) float
+    For each core edge (indexed by its first global vertex): the length along it [m], from its
+    first (column 0) and from its last vertex (column 1), not covered by the tributary
+    lengths of the gridpoints touching it in this step; for a disc (its centre), 0 when a
+    gridpoint touches it; -1 where no gridpoint touches (the value between steps).
 """
 
 
@@ -573,20 +585,62 @@ def _carry(k, o, sf, nx, ny, ksa, kn_ratio):
 def _corner_trib(wv, a0, na, k, tx, ty, nzx, nzy, eflag):
     """Tributary length [m] of core vertex ``a0 + k`` against a zone edge of unit direction
     (tx, ty) and outward normal (nzx, nzy): for each of its two adjacent core edges that faces
-    the zone edge and had no gridpoint contact this step (``eflag``), half its length projected
-    on the zone edge (module doc, the double-count rule)."""
+    the zone edge, the part of the edge next to the vertex that no gridpoint's tributary length
+    covers this step (``eflag``; half the edge when no gridpoint touches it), projected on the
+    zone edge (module doc, the coverage rule)."""
     trib = 0.0
     for side in range(2):
         i = (k + na - 1) % na if side == 0 else k  # edge i runs from vertex i to i + 1
-        if eflag[a0 + i] != 0:
-            continue
         j1 = a0 + (i + 1) % na
         ex = wv[j1, 0] - wv[a0 + i, 0]
         ey = wv[j1, 1] - wv[a0 + i, 1]
         # outward normal of a counter-clockwise core edge: (ey, -ex) / L; facing: opposed to nz
         if ey * nzx - ex * nzy < 0.0:
-            trib += 0.5 * abs(ex * tx + ey * ty)
+            L = math.sqrt(ex * ex + ey * ey)
+            # the vertex is the last of edge i on side 0, the first of edge k on side 1
+            cov = eflag[a0 + i, 1 - side]
+            part = 0.5 * L if cov < 0.0 else min(cov, L)
+            if L > 0.0:
+                trib += part * abs(ex * tx + ey * ty) / L
     return trib
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _cover(eflag, wv, a0, na, e, px, py, qlo, qhi):
+    """Record on core edge ``e`` (global index of its first vertex; shape vertices
+    ``a0 .. a0 + na - 1``) that a gridpoint at (px, py), whose tributary extends from ``qlo``
+    to ``qhi`` [m] along the edge's direction about it (qlo <= 0 <= qhi), covers part of it:
+    the uncovered lengths from either end shrink to what is left (:func:`_corner_trib`)."""
+    j1 = a0 + ((e - a0) + 1) % na
+    ex = wv[j1, 0] - wv[e, 0]
+    ey = wv[j1, 1] - wv[e, 1]
+    L = math.sqrt(ex * ex + ey * ey)
+    if L <= 0.0:
+        return
+    sa = ((px - wv[e, 0]) * ex + (py - wv[e, 1]) * ey) / L
+    ua = min(max(sa + qlo, 0.0), L)
+    ub = min(max(L - (sa + qhi), 0.0), L)
+    if eflag[e, 0] < 0.0 or ua < eflag[e, 0]:
+        eflag[e, 0] = ua
+    if eflag[e, 1] < 0.0 or ub < eflag[e, 1]:
+        eflag[e, 1] = ub
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _half_edges(i, g, gxy, ie, gep, gei, dx, dy):
+    """Extent ``(lo, hi)`` [m] along the unit direction (dx, dy) of the halves of gridpoint
+    ``g``'s interface edges (local index ``i``), about the gridpoint (lo <= 0 <= hi)."""
+    lo = 0.0
+    hi = 0.0
+    for j in range(gep[i], gep[i + 1]):
+        e = gei[j]
+        o = ie[e, 1] if ie[e, 0] == g else ie[e, 0]
+        q = 0.5 * ((gxy[o, 0] - gxy[g, 0]) * dx + (gxy[o, 1] - gxy[g, 1]) * dy)
+        if q < lo:
+            lo = q
+        if q > hi:
+            hi = q
+    return lo, hi
 
 
 # ---- the step --------------------------------------------------------------------------------
@@ -594,8 +648,8 @@ def _corner_trib(wv, a0, na, k, tx, ty, nzx, nzy, eflag):
 
 @njit(cache=True, error_model="numpy")
 def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
-    """Step 1: the gridpoint contacts (module doc), with the blocks' joint law; the touched
-    core edges are flagged in ``work.eflag`` for :func:`corner_contacts`.
+    """Step 1: the gridpoint contacts (module doc), with the blocks' joint law; the lengths of
+    the core edges they cover are written to ``work.eflag`` for :func:`corner_contacts`.
 
     Parameters
     ----------
@@ -682,13 +736,31 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
             continue
         # tributary length: the halves of the gridpoint's interface edges, projected on the
         # contact's tangent (the full half-edges on a flat boundary; at a corner of the zone
-        # boundary, only the side along the block's face)
+        # boundary, only the side along the block's face), and of them the part that faces
+        # the block (its extent along the tangent, rounding included): a gridpoint near the
+        # end of a block's face, or at the joint of two blocks, shares its length with them
+        tx = -ny
+        ty = nx
+        smin = np.inf
+        smax = -np.inf
+        if skind[s] == 0:
+            for j in range(svs[s], svs[s] + svn[s]):
+                q = (wv[j, 0] - px) * tx + (wv[j, 1] - py) * ty
+                smin = min(smin, q)
+                smax = max(smax, q)
+        else:
+            q = (wv[svs[s], 0] - px) * tx + (wv[svs[s], 1] - py) * ty
+            smin = q - srad[s]
+            smax = q + srad[s]
         trib = 0.0
         for j in range(gep[i], gep[i + 1]):
             e = gei[j]
-            ex = gxy[ie[e, 1], 0] - gxy[ie[e, 0], 0]
-            ey = gxy[ie[e, 1], 1] - gxy[ie[e, 0], 1]
-            trib += 0.5 * abs(ny * ex - nx * ey)
+            o2 = ie[e, 1] if ie[e, 0] == g else ie[e, 0]
+            q = 0.5 * ((gxy[o2, 0] - px) * tx + (gxy[o2, 1] - py) * ty)
+            lo = max(min(q, 0.0), smin)
+            hi = min(max(q, 0.0), smax)
+            if hi > lo:
+                trib += hi - lo
         if trib <= 0.0:
             if o >= 0:
                 d_break += _released(k, 0, sf)
@@ -723,9 +795,18 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
         fg[g, 0] -= fx
         fg[g, 1] -= fy
         if gap <= 0.0 or fn != 0.0:  # touching, or a bond holding: the face is carried
-            eflag[e0] = 1
-            if e1 >= 0:
-                eflag[e1] = 1
+            if skind[s] == 0:
+                for ee in (e0, e1):
+                    if ee >= 0:
+                        j1 = svs[s] + ((ee - svs[s]) + 1) % svn[s]
+                        ux = wv[j1, 0] - wv[ee, 0]
+                        uy = wv[j1, 1] - wv[ee, 1]
+                        Lu = math.sqrt(ux * ux + uy * uy)
+                        if Lu > 0.0:
+                            lo, hi = _half_edges(i, g, gxy, ie, gep, gei, ux / Lu, uy / Lu)
+                            _cover(eflag, wv, svs[s], svn[s], ee, px, py, lo, hi)
+            else:
+                eflag[e0, 0] = 0.0
         nact += 1
     E[IE_DSLIP] += d_slip
     E[IE_DBREAK] += d_break
@@ -736,7 +817,7 @@ def node_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
 def corner_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
     """Step 2: the block corners (polygon core vertices, disc centres) against the interface
     edges (module doc), two slots per pair keyed by the vertex, the reactions to the edge's
-    gridpoints with the weights ``(1 - s, s)``, the tributary lengths by the double-count rule
+    gridpoints with the weights ``(1 - s, s)``, the tributary lengths by the coverage rule
     (read from ``work.eflag``, written by :func:`node_contacts` in the same step).
 
     Parameters
@@ -831,7 +912,7 @@ def corner_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
             if skind[s] == 0:
                 w = _corner_trib(wv, a0, na, j, tx, ty, nzx, nzy, eflag)
             else:
-                w = 0.0 if eflag[a0] != 0 else 2.0 * r
+                w = 0.0 if eflag[a0, 0] >= 0.0 else 2.0 * r
             if w <= 0.0:
                 continue
             if v0 < 0 or gap < gp0:
@@ -949,13 +1030,15 @@ def corner_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
 
 @njit(cache=True, error_model="numpy")
 def _clear_flags(nodes, shapes, eflag):
-    """Zero the edge flags of the shapes of the node pairs (the only ones set this step)."""
+    """Reset the edge coverage of the shapes of the node pairs (the only ones set this step)
+    to -1 (no gridpoint)."""
     svs = shapes.svs
     svn = shapes.svn
     for k in range(nodes.pairs.shape[0]):
         s = nodes.pairs[k, 1]
         for v in range(svs[s], svs[s] + svn[s]):
-            eflag[v] = 0
+            eflag[v, 0] = -1.0
+            eflag[v, 1] = -1.0
 
 
 @njit(cache=True, error_model="numpy")
@@ -1187,7 +1270,7 @@ class Interface:
         nb = dem.bpos.shape[0]
         self.state = IfaceState(np.zeros((ig.size, 2)), np.zeros((nb, 3)))
         self.work = IfaceWork(np.zeros((ng, 2)), np.zeros((nb, 3)),
-                              np.zeros(dem.wv.shape[0], np.int8))
+                              np.full((dem.wv.shape[0], 2), -1.0))
         self._dkd = dkd
         self._DK = DK
         self.nodes = _empty_contacts()
