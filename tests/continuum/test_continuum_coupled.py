@@ -129,15 +129,7 @@ def test_probes_of_gridpoints_and_zones_and_a_stop_condition():
     assert zm.time == pytest.approx(dm.time)
 
 
-def test_energy_balance_of_a_block_pushed_and_shaken_on_a_mohr_coulomb_layer():
-    """Conservation of energy with plasticity and contacts: a 0.8 m x 0.5 m block on a
-    Mohr-Coulomb layer (8 x 4 zones, c = 2 kPa, phi = 30 deg), pushed by 0.3 times its weight
-    while the base shakes the layer at 4 Hz (0.3 m/s, its sides and bottom driven) with 5 %
-    mass-proportional damping: the zones yield, the block slides 0.15 m over the layer's
-    gridpoints, contacts open and form. The balance (kinetic, gravity, strain, plastic work,
-    the interface's springs, slip and contact changes, damping, base and push) closes within
-    1 % of the work put in (base + push). Before the interface's coverage rule the corners'
-    stiffness switched on and off and this case gained about 600 J (error 4 %)."""
+def _block_on_a_shaken_mohr_coulomb_layer():
     from murus.continuum import MohrCoulomb
 
     xy, zones = rect_mesh(8, 4, W, H)
@@ -155,6 +147,19 @@ def test_energy_balance_of_a_block_pushed_and_shaken_on_a_mohr_coulomb_layer():
     assert cm.settle(tol=1e-6).converged
     dm.set_base_motion(velocity=lambda t: 0.3 * np.sin(2 * np.pi * 4.0 * t))
     dm.bext[0, 0] = 0.3 * dm.bmass[0] * G_ACC
+    return cm, dm, zm
+
+
+def test_energy_balance_of_a_block_pushed_and_shaken_on_a_mohr_coulomb_layer():
+    """Conservation of energy with plasticity and contacts: a 0.8 m x 0.5 m block on a
+    Mohr-Coulomb layer (8 x 4 zones, c = 2 kPa, phi = 30 deg), pushed by 0.3 times its weight
+    while the base shakes the layer at 4 Hz (0.3 m/s, its sides and bottom driven) with 5 %
+    mass-proportional damping: the zones yield, the block slides 0.15 m over the layer's
+    gridpoints, contacts open and form. The balance (kinetic, gravity, strain, plastic work,
+    the interface's springs, slip and contact changes, damping, base and push) closes within
+    1 % of the work put in (base + push). Before the interface's coverage rule the corners'
+    stiffness switched on and off and this case gained about 600 J (error 4 %)."""
+    cm, dm, zm = _block_on_a_shaken_mohr_coulomb_layer()
     res = cm.run(1.0, xi=0.05, freq=4.0, every=500, probes={"ux": body_probe(0, "ux")})
     assert res.status == "completed"
     e = cm.energy()
@@ -162,3 +167,33 @@ def test_energy_balance_of_a_block_pushed_and_shaken_on_a_mohr_coulomb_layer():
     assert e["zones_plastic"] > 0.05 * put_in and e["interface_slip"] > 0.5 * put_in
     assert res["ux"][-1] > 0.1
     assert abs(e["error"]) < 0.01 * put_in
+
+
+def test_a_checkpoint_resumes_bit_for_bit(tmp_path):
+    """Save in the middle of a run with plasticity, slip and contacts, restore on the model
+    built again, and the rest of the run is the uninterrupted one, bit for bit (blocks,
+    gridpoints, stresses, interface forces, energy)."""
+    cm, dm, zm = _block_on_a_shaken_mohr_coulomb_layer()
+    cm.run(0.2, xi=0.05, freq=4.0, every=100)
+    ck = tmp_path / "ck.npz"
+    cm.save(ck)
+    cm.run(0.2, xi=0.05, freq=4.0, every=100)
+    cm2, dm2, zm2 = _block_on_a_shaken_mohr_coulomb_layer()
+    cm2.restore(ck)
+    assert dm2.time == pytest.approx(0.2, abs=dm.dt)
+    cm2.run(0.2, xi=0.05, freq=4.0, every=100)
+    assert np.array_equal(dm2.bpos, dm.bpos) and np.array_equal(dm2.bvel, dm.bvel)
+    assert np.array_equal(zm2.gxy, zm.gxy) and np.array_equal(zm2.zsig, zm.zsig)
+    assert np.array_equal(cm2.iface.nodes.sf, cm.iface.nodes.sf)
+    assert cm2.energy()["error"] == cm.energy()["error"]
+    with pytest.raises(CoupledError):
+        dm.save(tmp_path / "dem_only.npz")  # the blocks alone would lose the zones
+
+
+def test_a_checkpoint_of_another_model_is_refused(tmp_path):
+    cm, dm, zm, iface = _block_on_layer()
+    ck = tmp_path / "ck.npz"
+    cm.save(ck)
+    cm2, dm2, zm2 = _block_on_a_shaken_mohr_coulomb_layer()
+    with pytest.raises(CoupledError, match="another model"):
+        cm2.restore(ck)

@@ -26,6 +26,7 @@ cycle); Savalle et al. (2022), §2 (the wall of blocks and the backfill continuu
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -207,6 +208,7 @@ class CoupledModel:
         self.zones = zones
         self.iface = interface
         self.stored0 = 0.0
+        self._since_check = 0
         dem.coupled = self
         self.set_dt()
         self.reset_reference()
@@ -272,7 +274,7 @@ class CoupledModel:
             setattr(m, name, a)
         f._set(out[6:])
         z.time = m.time
-        self._since_check = getattr(self, "_since_check", 0) + n
+        self._since_check += n
 
     def after_chunk(self) -> str | None:
         """The zones' checks after a chunk of steps: a non-finite gridpoint velocity or an
@@ -425,15 +427,93 @@ class CoupledModel:
         """
         return self.dem.run(duration, **kw)
 
+    # ------------------------------------------------------------------ checkpoint
+    #: the zones' arrays a checkpoint holds, besides the kernel state (:data:`kd.STATE_ARRAYS`)
+    _ZONE_ARRAYS = ("gx0", "gff", "P", "E", "C", "S", "part", "mprops")
+
     def save(self, path) -> None:
-        """Checkpoints of a coupled model are not available yet.
+        """The whole state of blocks, zones and interface to an ``.npz`` file, written
+        atomically (:func:`murus.dem.model.write_npz`), to resume with :meth:`restore` on the
+        same model built again (from the same case file or script): the run then continues
+        bit for bit as if uninterrupted. A callable base motion is not saved (the rebuilt
+        model has it).
+
+        Parameters
+        ----------
+        path : str or path-like or file
+            Destination (``.npz`` appended when missing).
+        """
+        from murus.continuum.freefield import FreeField
+        from murus.dem.model import write_npz
+
+        m, z, f = self.dem, self.zones, self.iface
+        arrays, meta = m.checkpoint_arrays()
+        arrays = {"dem__" + k: v for k, v in arrays.items()}
+        for name in ckd.STATE_ARRAYS + self._ZONE_ARRAYS:
+            arrays["zones__" + name] = getattr(z, name)
+        for name, a in zip(FreeField._fields, z.ff, strict=True):
+            arrays["ff__" + name] = a
+        for name in ("P", "E", "C"):
+            arrays["iface__" + name] = getattr(f, name)
+        for pre, cc in (("nodes", f.nodes), ("corners", f.corners)):
+            for name, a in zip(dkd.Contacts._fields, cc, strict=True):
+                arrays[f"{pre}__{name}"] = a
+        for name, a in zip(IF.IfaceState._fields, f.state, strict=True):
+            arrays["istate__" + name] = a
+        meta["coupled"] = {"zones_time": z.time, "K0": z.K0, "stored0": self.stored0,
+                           "since_check": int(self._since_check),
+                           "ng": int(z.ng), "nz": int(z.nz), "nbody": int(m.nbody),
+                           "nedge": int(f.geo.ie.shape[0])}
+        arrays["meta"] = np.array(json.dumps(meta))
+        write_npz(path, arrays)
+
+    def restore(self, path) -> None:
+        """Resume from a checkpoint of :meth:`save` written by the same model (built again the
+        same way).
+
+        Parameters
+        ----------
+        path : str or path-like
+            The ``.npz`` file.
 
         Raises
         ------
         CoupledError
+            The checkpoint is of another model (numbers of bodies, gridpoints, zones or
+            interface edges differ).
         """
-        raise CoupledError("checkpoints of blocks coupled with zones are not available yet",
-                           key=("save",))
+        from murus.continuum.freefield import FreeField
+
+        m, z, f = self.dem, self.zones, self.iface
+        with np.load(path, allow_pickle=False) as npz:
+            meta = json.loads(str(npz["meta"]))
+            c = meta.get("coupled")
+            want = {"ng": int(z.ng), "nz": int(z.nz), "nbody": int(m.nbody),
+                    "nedge": int(f.geo.ie.shape[0])}
+            if c is None or any(c[k] != v for k, v in want.items()):
+                got = None if c is None else {k: c[k] for k in want}
+                raise CoupledError(f"{path}: a checkpoint of another model ({got}, this model "
+                                   f"{want})", key=("restore",))
+            arrays = {k: npz[k] for k in npz.files}
+        keep = (m._motion_kind, getattr(m, "_motion_callable", None))
+        m.restore_arrays({k[5:]: v for k, v in arrays.items() if k.startswith("dem__")}, meta)
+        if keep[0] == "callable":
+            m._motion_kind, m._motion_callable = keep
+        for name in ckd.STATE_ARRAYS + self._ZONE_ARRAYS:
+            setattr(z, name, np.array(arrays["zones__" + name], copy=True))
+        z.ff = FreeField(*[np.array(arrays["ff__" + n], copy=True) for n in FreeField._fields])
+        for name in ("P", "E", "C"):
+            setattr(f, name, np.array(arrays["iface__" + name], copy=True))
+        f._set([np.array(arrays[f"{pre}__{n}"], copy=True) for pre in ("nodes", "corners")
+                for n in dkd.Contacts._fields])
+        f.state = IF.IfaceState(*[np.array(arrays["istate__" + n], copy=True)
+                                  for n in IF.IfaceState._fields])
+        f.bodies = dkd.pack(dkd.Bodies, m)
+        f.shapes = dkd.pack(dkd.Shapes, m)
+        z.time = float(c["zones_time"])
+        z.K0 = float(c["K0"])
+        self.stored0 = float(c["stored0"])
+        self._since_check = int(c["since_check"])
 
 
 def stored_energy_of(iface) -> float:

@@ -615,11 +615,21 @@ class Model:
     def save(self, path) -> None:
         """Whole state to an ``.npz`` file (a callable base motion and custom probes are not
         saved: set them again after :meth:`load`), written atomically and durably
-        (:func:`murus.outputs.atomic_write`: a crash never leaves a half checkpoint)."""
+        (:func:`murus.outputs.atomic_write`: a crash never leaves a half checkpoint). Blocks
+        coupled with zones save through :meth:`murus.continuum.CoupledModel.save`."""
         self.build()
-        cp = self.__dict__.get("coupled")
-        if cp is not None:
-            cp.save(path)  # not available yet: raises
+        if self.__dict__.get("coupled") is not None:
+            from murus.continuum.coupled import CoupledError
+
+            raise CoupledError("these blocks are coupled with zones: save the coupled model "
+                               "(CoupledModel.save)", key=("save",))
+        arrays, meta = self.checkpoint_arrays()
+        arrays["meta"] = np.array(json.dumps(meta))
+        write_npz(path, arrays)
+
+    def checkpoint_arrays(self) -> tuple[dict, dict]:
+        """The arrays and the metadata (JSON-able) of a checkpoint (:meth:`save`)."""
+        self.build()
         arrays = {name.lstrip("_"): getattr(self, name) for name in self._ARRAYS}
         for i, o in enumerate(self._outer):
             arrays[f"outer_{i}"] = o
@@ -638,32 +648,33 @@ class Model:
             "bodies": [{"kin": b["kin"], "group": b["group"], "density": b["density"]}
                        for b in self._bodies],
         }
-        arrays["meta"] = np.array(json.dumps(meta))
-        if hasattr(path, "write"):  # an open file
-            np.savez(path, **arrays)
-            return
-        from murus.outputs import atomic_write
-
-        dest = str(path) if str(path).endswith(".npz") else f"{path}.npz"  # as np.savez names it
-        atomic_write(dest, lambda tmp: np.savez(tmp, **arrays))
+        return arrays, meta
 
     @classmethod
     def load(cls, path) -> Model:
         """A model saved by :meth:`save`, ready to resume."""
-        from murus.dem.engine import probe_from_spec
         with np.load(path, allow_pickle=False) as z:
             meta = json.loads(str(z["meta"]))
             m = cls(thickness=meta["thickness"], gravity=meta["gravity"], safety=meta["safety"],
                     rounding=meta["rounding"], margin=meta["margin"])
-            nb = z["bpos"].shape[0]
-            for name in cls._ARRAYS:
-                key = name.lstrip("_")
-                if key not in z.files and name in cls._ZERO_IF_MISSING:
-                    setattr(m, name, np.zeros((nb, 3)))
-                else:
-                    setattr(m, name, z[key].copy())
-            m._outer = [z[f"outer_{i}"].copy() for i in range(meta["nouter"])]
-            m.history = {k: list(z[f"hist__{k}"]) for k in meta["history"]}
+            m.restore_arrays(z, meta)
+        return m
+
+    def restore_arrays(self, z, meta: dict) -> None:
+        """Set the state from the arrays ``z`` (a mapping) and metadata of a checkpoint
+        (:meth:`checkpoint_arrays`)."""
+        from murus.dem.engine import probe_from_spec
+
+        m = self
+        nb = z["bpos"].shape[0]
+        for name in self._ARRAYS:
+            key = name.lstrip("_")
+            if key not in z and name in self._ZERO_IF_MISSING:
+                setattr(m, name, np.zeros((nb, 3)))
+            else:
+                setattr(m, name, np.array(z[key], copy=True))
+        m._outer = [np.array(z[f"outer_{i}"], copy=True) for i in range(meta["nouter"])]
+        m.history = {k: list(z[f"hist__{k}"]) for k in meta["history"]}
         m.dt = meta["dt"]
         m._motion_kind = meta["motion_kind"]
         m._motion_dt = meta["motion_dt"]
@@ -683,7 +694,18 @@ class Model:
                 m.probes[k] = probe_from_spec(spec)
         if m._motion_kind == "callable":
             m._motion_kind = "none"  # to be set again with set_base_motion(velocity=...)
-        return m
+
+
+def write_npz(path, arrays: dict) -> None:
+    """``np.savez`` of ``arrays`` to an open file, or atomically and durably to a path (``.npz``
+    appended as np.savez does; :func:`murus.outputs.atomic_write`)."""
+    if hasattr(path, "write"):  # an open file
+        np.savez(path, **arrays)
+        return
+    from murus.outputs import atomic_write
+
+    dest = str(path) if str(path).endswith(".npz") else f"{path}.npz"
+    atomic_write(dest, lambda tmp: np.savez(tmp, **arrays))
 
 
 def _check_parts_apart(parts, where: str) -> None:
