@@ -73,25 +73,34 @@ def test_a_settled_block_stays_at_rest_in_a_run():
     assert np.allclose(res["N"], weight, rtol=0.005)
 
 
-def _block_pushed_over_a_layer():
-    """A 1.2 m x 0.2 m block on a 4 m wide elastic layer of 16 x 4 zones, pushed by a
-    horizontal force of 0.6 times its weight (interface friction 25 deg): it slides over
-    several gridpoints of the layer's surface."""
-    xy, zones = rect_mesh(16, 4, 4.0, H)
-    zm = ContinuumModel(xy, zones, Elastic(density=RHO, E=2e7, nu=0.3), gravity=G_ACC)
+def _block_on(nx, width, material, block, *, driven=False, friction=25.0):
+    """A ``block = (w, h)`` [m] centred at x = 1 m on a layer of ``nx`` x 4 zones, ``width`` x
+    H, of ``material``: sides on rollers and base fixed, or (``driven``) sides and base moved
+    by the base motion; settled under gravity."""
+    xy, zones = rect_mesh(nx, 4, width, H)
+    zm = ContinuumModel(xy, zones, material, gravity=G_ACC)
     left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
-    zm.fix(left, x=True, y=False)
-    zm.fix(right, x=True, y=False)
-    zm.fix(bottom)
-    joint = Joint(kn=KN, ks=KN, friction_deg=25.0)
+    hold = zm.set_base if driven else zm.fix
+    hold(left, x=True, y=False)
+    hold(right, x=True, y=False)
+    hold(bottom)
+    joint = Joint(kn=KN, ks=KN, friction_deg=friction)
     dm = Model(thickness=1.0, gravity=G_ACC, joint=joint, rounding=1e-3)
-    dm.add_rectangle(1.2, 0.2, center=(1.0, H + 0.1), density=RHO)
+    dm.add_rectangle(block[0], block[1], center=(1.0, H + 0.5 * block[1]), density=RHO)
     edges = [e for e in zm.boundary_edges() if np.isin(e, top).all()]
     iface = Interface(zm, np.array(edges), dm, joint)
     cm = CoupledModel(dm, zm, iface)
     assert cm.settle(tol=1e-6).converged
-    dm.bext[0, 0] = 0.6 * dm.bmass[0] * G_ACC
     return cm, dm, zm, iface, top
+
+
+def _block_pushed_over_a_layer():
+    """A 1.2 m x 0.2 m block on a 4 m wide elastic layer of 16 x 4 zones, pushed by a
+    horizontal force of 0.6 times its weight (interface friction 25 deg): it slides over
+    several gridpoints of the layer's surface."""
+    out = _block_on(16, 4.0, Elastic(density=RHO, E=2e7, nu=0.3), (1.2, 0.2))
+    out[1].bext[0, 0] = 0.6 * out[1].bmass[0] * G_ACC
+    return out
 
 
 def test_energy_balance_of_a_block_sliding_over_gridpoints():
@@ -132,19 +141,9 @@ def test_probes_of_gridpoints_and_zones_and_a_stop_condition():
 def _block_on_a_shaken_mohr_coulomb_layer():
     from murus.continuum import MohrCoulomb
 
-    xy, zones = rect_mesh(8, 4, W, H)
-    zm = ContinuumModel(xy, zones, MohrCoulomb(density=RHO, E=2e7, nu=0.3, friction_deg=30.0,
-                                               cohesion=2e3, dilation_deg=0.0), gravity=G_ACC)
-    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
-    zm.set_base(left, x=True, y=False)
-    zm.set_base(right, x=True, y=False)
-    zm.set_base(bottom)
-    joint = Joint(kn=KN, ks=KN, friction_deg=25.0)
-    dm = Model(thickness=1.0, gravity=G_ACC, joint=joint, rounding=1e-3)
-    dm.add_rectangle(0.8, 0.5, center=(1.0, H + 0.25), density=RHO)
-    edges = [e for e in zm.boundary_edges() if np.isin(e, top).all()]
-    cm = CoupledModel(dm, zm, Interface(zm, np.array(edges), dm, joint))
-    assert cm.settle(tol=1e-6).converged
+    mat = MohrCoulomb(density=RHO, E=2e7, nu=0.3, friction_deg=30.0, cohesion=2e3,
+                      dilation_deg=0.0)
+    cm, dm, zm, _, _ = _block_on(8, W, mat, (0.8, 0.5), driven=True)
     dm.set_base_motion(velocity=lambda t: 0.3 * np.sin(2 * np.pi * 4.0 * t))
     dm.bext[0, 0] = 0.3 * dm.bmass[0] * G_ACC
     return cm, dm, zm
