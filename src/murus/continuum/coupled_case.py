@@ -259,6 +259,13 @@ def load_case(path) -> tuple[CoupledCase, Path, str]:
         raise fail_at(path, text, ("interfaces",), "blocks and zones need [[interfaces]] "
                       "(side = 'REGION.SIDE' of the zones against the blocks, material)")
     named = {t.get("material") for t in raw_if if isinstance(t, dict)}
+    for i, t in enumerate(raw_if):
+        name = t.get("material") if isinstance(t, dict) else None
+        if isinstance(name, str) and name not in jmats:
+            what = "a zone material" if name in mats else "unknown"
+            raise fail_at(path, text, ("interfaces", i, "material"), f"{name!r}: {what}; an "
+                          "interface takes a joint material (kn, ks, friction_deg, ...): "
+                          f"{', '.join(jmats)}")
     used = {(data.get("dem") or {}).get("joint")} if isinstance(data.get("dem"), dict) else set()
     for tab in ("blocks", "walls", "joints"):
         for t in data.get(tab, []) if isinstance(data.get(tab), list) else []:

@@ -1,0 +1,190 @@
+"""Case files of blocks and zones together (issue 17, item 6): ``murus run`` on a ``[dem]``
+case with ``[[zones]]`` and ``[[interfaces]]``, its outputs, and one-line errors (file, line,
+key; exit 2; nothing written) for bad input.
+
+Physics through the case layer, against a closed form: a backfill of elastic-plastic sand
+(Mohr-Coulomb, friction 35 deg, nu = 0.3: K0 = nu / (1 - nu) = 0.43 above K_A = 0.27, so it
+stays elastic) between a smooth wall of two stacked blocks and a smooth roller on the far side,
+on a smooth base: in uniaxial strain the horizontal stress is K0 times the vertical one, so the
+settled interface carries the at-rest thrust ``1/2 K0 gamma H^2``. The wall is not rigid: its
+joints and the interface springs let it move by ``~F / (k L)`` (0.2-0.4 um here), which relieves
+the backfill by about ``M u / L``; measured 0.5 % (1.3 % with springs ten times softer), hence
+the tolerance of 1 %.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from murus.cli import app
+from murus.continuum.coupled_case import build, is_coupled_case, load_case, run_case
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "continuum"
+RHO, E, NU, H, G_ACC = 1600.0, 5e6, 0.3, 1.0, 9.81
+
+BASE = f"""[dem]
+duration = 0.02
+gravity = {G_ACC}
+settle_tolerance = 1e-6
+settle_max_steps = 400000
+
+[continuum]
+initial_stress = "gravity"
+
+[materials.stone]
+density = 2500.0
+kn = 1e11
+ks = 1e11
+friction_deg = 40.0
+
+[materials.contact]
+kn = 1e11
+ks = 1e11
+friction_deg = 0.0
+
+[materials.sand]
+model = "mohr-coulomb"
+density = {RHO}
+E = {E}
+nu = {NU}
+friction_deg = 35.0
+
+[[blocks]]
+kind = "rectangle"
+width = 1.0
+height = 0.2
+center = [0.0, -0.1]
+kinematic = "base"
+
+[[walls]]
+courses = 2
+blocks_per_course = 1
+block_width = 0.5
+block_height = 0.5
+stagger = 0.0
+origin = [-0.5, 0.0]
+
+[[zones]]
+name = "fill"
+material = "sand"
+vertices = [[0.0, 0.0], [2.0, 0.0], [2.0, {H}], [0.0, {H}]]
+nx = 8
+ny = 8
+
+[[boundaries]]
+kind = "roller"
+direction = "x"
+side = "fill.right"
+
+[[boundaries]]
+kind = "roller"
+direction = "y"
+side = "fill.bottom"
+
+[[interfaces]]
+side = "fill.left"
+material = "contact"
+
+[[monitors]]
+name = "u_crest"
+body = 2
+quantity = "ux"
+
+[[monitors]]
+name = "uy_soil"
+gridpoint = [1.0, {H}]
+quantity = "uy"
+
+[output]
+sample_dt = 0.01
+"""
+
+
+def _err(r) -> str:
+    return (r.stderr if r.stderr_bytes is not None else r.output).strip()
+
+
+@pytest.mark.parametrize("initial", ["gravity", "k0"])
+def test_settled_backfill_carries_the_at_rest_thrust(tmp_path, initial):
+    case = tmp_path / "fill.toml"
+    case.write_text(BASE.replace('initial_stress = "gravity"', f'initial_stress = "{initial}"'))
+    assert is_coupled_case(case)
+    cfg, path, text = load_case(case)
+    run = run_case(build(cfg, path, text))
+    assert run.ok, run.summary()
+    k0 = NU / (1.0 - NU)
+    thrust = 0.5 * k0 * RHO * G_ACC * H * H
+    iface = run.built.cm.iface
+    assert iface.normal_force() == pytest.approx(thrust, rel=0.01)
+    assert abs(iface.shear_force()) <= 1e-9 * thrust  # a smooth interface (friction 0)
+
+
+def test_cli_writes_the_histories_of_blocks_and_zones_and_both_vtk_series(tmp_path):
+    case = tmp_path / "fill.toml"
+    case.write_text(BASE.replace("sample_dt = 0.01", "sample_dt = 0.01\nvtk_every = 1"))
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["run", str(case), "--out", str(out), "--no-progress"])
+    assert r.exit_code == 0, _err(r)
+    rows = list(csv.reader((out / "histories.csv").open()))
+    assert rows[0][:3] == ["t_s", "u_crest", "uy_soil"]
+    assert "energy.zones_strain" in rows[0] and "energy.interface_elastic" in rows[0]
+    assert float(rows[-1][0]) == pytest.approx(0.02, abs=1e-3)
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "completed" and s["ok"] and s["zones"] == 64 and s["bodies"] == 3
+    assert (out / "model.png").stat().st_size > 0
+    assert (out / "vtk" / "series.pvd").exists() and (out / "vtk" / "zones.pvd").exists()
+    assert len(list((out / "vtk").glob("zones_*.vtu"))) == 3  # start, 0.01 s, 0.02 s
+    assert len(list((out / "vtk").glob("frame_*.vtp"))) == 3
+
+
+BAD = {
+    "interface names an unknown side": (('side = "fill.left"', 'side = "fill.west"'),
+                                        "interfaces[0].side", "fill.west"),
+    "zones overlap the blocks": (("[[0.0, 0.0], [2.0, 0.0]", "[[-0.1, 0.0], [2.0, 0.0]"),
+                                 "zones[0]", "overlaps block"),
+    "gravity given twice differently": (('initial_stress = "gravity"',
+                                         'initial_stress = "gravity"\ngravity = 9.8'),
+                                        "continuum.gravity", "differs"),
+    "small-strain zones": (('initial_stress = "gravity"',
+                            'initial_stress = "gravity"\nlarge_strain = false'),
+                           "continuum.large_strain", "large-strain"),
+    "duration in [continuum]": (('initial_stress = "gravity"',
+                                 'initial_stress = "gravity"\nduration = 1.0'),
+                                "continuum.duration", "[dem]"),
+    "unknown interface material": (('material = "contact"', 'material = "glue"'),
+                                   "interfaces[0].material", "joint material"),
+    "zone monitor with a block quantity": (('quantity = "uy"', 'quantity = "rot"'),
+                                           "monitors[1].quantity", ""),
+}
+
+
+@pytest.mark.parametrize("kind", list(BAD))
+def test_bad_input_is_one_line_exit_2_and_no_output(tmp_path, kind):
+    (old, new), key, words = BAD[kind]
+    assert old in BASE
+    case = tmp_path / "bad.toml"
+    case.write_text(BASE.replace(old, new, 1))
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["run", str(case), "--out", str(out)])
+    err = _err(r)
+    assert r.exit_code == 2, err
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith("error: bad.toml line "), err
+    assert f"[{key}" in err, err
+    assert words in err, err
+    assert not out.exists()
+    assert not list(tmp_path.glob(".out*"))
+
+
+def test_wall_backfill_example_builds():
+    """The example is a valid coupled case (its run takes about a minute: not in the suite)."""
+    cfg, path, text = load_case(EXAMPLES / "wall_backfill.toml")
+    b = build(cfg, path, text)
+    assert b.cm.zones.nz == 200 and b.cm.dem.nbody == 11
+    assert b.monitors == ["d_crest", "rot_crest", "u_soil", "sxx_heel"]
+    assert b.zones.ff_sides  # the far side is a free field
