@@ -188,3 +188,51 @@ def test_wall_backfill_example_builds():
     assert b.cm.zones.nz == 200 and b.cm.dem.nbody == 11
     assert b.monitors == ["d_crest", "rot_crest", "u_soil", "sxx_heel"]
     assert b.zones.ff_sides  # the far side is a free field
+
+
+def test_stop_on_a_gridpoint_monitor(tmp_path):
+    """[stop] may name a gridpoint's monitor: the run stops at the first sample where it
+    holds (a stop is a result: status "stopped", ok)."""
+    case = tmp_path / "fill.toml"
+    case.write_text(BASE + '\n[stop]\nmonitor = "uy_soil"\nop = "<"\nvalue = 1.0\n')
+    cfg, path, text = load_case(case)
+    run = run_case(build(cfg, path, text))
+    assert run.result.status == "stopped" and run.ok
+    assert run.result.t[-1] == pytest.approx(0.01, abs=1e-3)
+    assert "uy_soil < 1" in run.built.stop_desc
+
+
+def test_ctrl_c_keeps_the_finished_work_and_exits_130(tmp_path, monkeypatch):
+    """A Ctrl-C during the dynamic run (sent at the second sample) stops it between chunks:
+    the outputs up to then are written (summary.json status "interrupted") and the command
+    exits 130."""
+    import os
+    import signal
+
+    import murus.continuum.coupled_case as CC
+
+    real = CC.build
+
+    def build_with_ctrl_c(*a, **kw):
+        b = real(*a, **kw)
+        count = [0]
+
+        def ctrl_c(m):
+            count[0] += 1
+            if count[0] == 2:
+                os.kill(os.getpid(), signal.SIGINT)
+            return False
+
+        b.run_kwargs["stop"] = ctrl_c
+        return b
+
+    monkeypatch.setattr(CC, "build", build_with_ctrl_c)
+    case = tmp_path / "fill.toml"
+    case.write_text(BASE.replace("duration = 0.02", "duration = 0.2"))
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["run", str(case), "--out", str(out), "--no-progress"])
+    assert r.exit_code == 130, _err(r)
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "interrupted" and not s["ok"]
+    assert s["t_end"] < 0.2
+    assert (out / "histories.csv").exists()
