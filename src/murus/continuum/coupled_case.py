@@ -666,7 +666,11 @@ def plot_model(run: CaseRun):
         ref = np.zeros(2)
         label = "displacement [m]"
     uz = np.hypot(*(z.gdisp - ref).T)[z.zg].mean(axis=1)
-    fig, axes = plt.subplots(1, 2, figsize=(13, 4.5))
+    pts = np.vstack([z.gxy] + [np.asarray(v) for v in fr["polygons"]])
+    span = np.ptp(pts, axis=0)
+    wide = span[0] > 2.5 * span[1]  # a long backfill: the two panels one above the other
+    fig, axes = plt.subplots(2 if wide else 1, 1 if wide else 2,
+                             figsize=(11, 7) if wide else (13, 4.5))
     plot_zones(z.gxy, z.zg, uz, ax=axes[0], label=label)
     zc = axes[0].collections[-1]
     zc.colorbar.remove()
