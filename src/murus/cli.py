@@ -112,7 +112,8 @@ def run(
 ) -> None:
     """Run a case file: a rocking case writes summary.json, timeseries.csv and response.png;
     a distinct-element case ([dem] table) writes summary.json, histories.csv, blocks.png and
-    an optional VTK series."""
+    an optional VTK series; a continuum case ([continuum]) zones.png instead of blocks.png; a
+    case of blocks and zones ([dem] and [[zones]]) model.png and both VTK series."""
     from murus.continuum.case import is_continuum_case
     from murus.continuum.coupled_case import is_coupled_case
     from murus.dem.case import is_dem_case

@@ -61,7 +61,10 @@ the damping ``[dem.damping]`` acts on blocks and zones alike); ``[continuum]`` t
 duration, settling nor damping (they are the run's, given once in ``[dem]``). Several
 ``[[interfaces]]`` entries are merged into one interface, so they name the same material.
 The zones are in large-strain mode (the interface follows the gridpoints as they move).
-Free-field sides are attached after the settling, as in a continuum case.
+The settling of blocks and zones (:func:`murus.dem.engine.settle`) is plastic from its first
+step (a continuum case settles elastically first): a cohesionless backfill is best started
+from geostatic stresses (``initial_stress = "k0"``). Free-field sides are attached after the
+settling, as in a continuum case.
 
 Errors are one line naming the file, the line and the key (:class:`murus.config.CaseError`),
 before anything is run or written: besides those of the two case kinds, an interface that names
@@ -76,8 +79,8 @@ state) and, with ``[output] vtk_every``, ``vtk/series.pvd`` (blocks) beside ``vt
 
 References
 ----------
-Itasca UDEC, User's Guide (a model of blocks and zones: one static stage, then the dynamic
-stage); Savalle et al. (2022), §2 and Tables 1 and 6 (a dry-stone wall of blocks and a
+Itasca UDEC, Theory and Background (a model of blocks and zones: one static stage, then the
+dynamic stage); Savalle et al. (2022), §2 and Tables 1 and 6 (a dry-stone wall of blocks and a
 Mohr-Coulomb backfill continuum with its interface).
 """
 
