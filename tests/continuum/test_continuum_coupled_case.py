@@ -158,6 +158,10 @@ BAD = {
                                 "continuum.duration", "[dem]"),
     "unknown interface material": (('material = "contact"', 'material = "glue"'),
                                    "interfaces[0].material", "joint material"),
+    "motion without a base": (('kinematic = "base"',
+                               'kinematic = "fixed"\n\n[motion]\ntype = "sine-pulse"\n'
+                               'amplitude = 1.0\nfrequency = 5.0'),
+                              "motion", "there is none"),
     "zone monitor with a block quantity": (('quantity = "uy"', 'quantity = "rot"'),
                                            "monitors[1].quantity", ""),
 }
@@ -236,3 +240,28 @@ def test_ctrl_c_keeps_the_finished_work_and_exits_130(tmp_path, monkeypatch):
     assert s["status"] == "interrupted" and not s["ok"]
     assert s["t_end"] < 0.2
     assert (out / "histories.csv").exists()
+
+
+def test_a_motion_of_the_zones_base_alone_drives_them(tmp_path):
+    """No block is the base: [motion] moves the zones' "base" gridpoints (through the blocks'
+    model, which carries it). After one cycle of the sine pulse a sin(2 pi f t) the base has
+    moved by a / (2 pi f^2) and stays there (a closed form)."""
+    a, f = 2.0, 20.0
+    text = (BASE.replace('kinematic = "base"', 'kinematic = "fixed"')
+            .replace('kind = "roller"\ndirection = "y"\nside = "fill.bottom"',
+                     'kind = "base"\nside = "fill.bottom"')
+            .replace('[[monitors]]\nname = "u_crest"',
+                     '[[monitors]]\nname = "u_base"\ngridpoint = [1.0, 0.0]\n'
+                     'quantity = "ux"\n\n[[monitors]]\nname = "u_crest"'))
+    text += f'\n[motion]\ntype = "sine-pulse"\namplitude = {a}\nfrequency = {f}\n'
+    text = text.replace("duration = 0.02", "duration = 0.06")
+    assert 'kind = "base"' in text and "u_base" in text
+    case = tmp_path / "shaken.toml"
+    case.write_text(text)
+    cfg, path, text = load_case(case)
+    run = run_case(build(cfg, path, text))
+    assert run.ok, run.summary()
+    u = run.result.values["u_base"]
+    t = run.result.t
+    want = a / (2.0 * 3.141592653589793 * f * f)
+    assert u[t > 1.0 / f + 1e-3] == pytest.approx(want, rel=0.01)

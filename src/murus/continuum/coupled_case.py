@@ -56,7 +56,9 @@ case, and one table is new, ``[[interfaces]]``::
     gridpoint = [3.0, 2.0]      # [stop] may name any of them
     quantity = "ux"
 
-The DEM keys have their DEM meaning (the settling: ``[dem] settle``, ``settle_tolerance``;
+``[motion]`` moves the ``kinematic = "base"`` blocks and the zones' ``"base"`` gridpoints
+together (one base); with no base block, the zones' base alone. The DEM keys have their DEM
+meaning (the settling: ``[dem] settle``, ``settle_tolerance``;
 the damping ``[dem.damping]`` acts on blocks and zones alike); ``[continuum]`` takes neither
 duration, settling nor damping (they are the run's, given once in ``[dem]``). Several
 ``[[interfaces]]`` entries are merged into one interface, so they name the same material.
@@ -434,6 +436,34 @@ def _interface(case, zb, bm, path, text):
         raise locate(exc, path, text, ("interfaces", 0), indices=True) from None
 
 
+def _zones_only_motion(case: CoupledCase, path: Path, text: str):
+    """The DEM part for its builder and, when ``[motion]`` moves only the zones' base
+    gridpoints (no block is ``kinematic = "base"``), the motion, built here: the blocks'
+    builder would refuse a motion without a base block."""
+    from murus.dem import case as DC
+    from murus.motion.case import build_motion
+
+    mo = case.dem.motion
+    kind = mo.kind
+    if kind in ("none", "tilt") or any(b.kinematic == "base" for b in case.dem.blocks):
+        return case.dem, None
+    d = case.dem.dem
+    if d.duration is None and kind != "record":
+        raise fail_at(path, text, ("dem", "duration"), "required key is missing (simulated "
+                      "time, s)")
+    if kind != "record":
+        span = d.duration if kind == "harmonic-ramp" else mo.cycles / mo.frequency
+        if not span / (mo.dt or 0.001) <= DC.MAX_MOTION_SAMPLES:
+            raise fail_at(path, text, ("motion", "dt") if mo.dt else ("motion",),
+                          f"the {kind} would have more than {DC.MAX_MOTION_SAMPLES:.0e} "
+                          f"samples of {mo.dt or 0.001:g} s: raise [motion] dt")
+    motion = build_motion(mo, path, text, sampled_dt=mo.dt or 0.001, duration=d.duration)
+    dur = d.duration if d.duration is not None else motion.duration
+    dcase = case.dem.model_copy(update={"motion": DC.MotionCfg(),
+                                        "dem": d.model_copy(update={"duration": dur})})
+    return dcase, motion
+
+
 def build(case: CoupledCase, path: Path, text: str) -> Built:
     """The coupled model of a validated case: the blocks by :func:`murus.dem.case.build`, the
     zones by :func:`murus.continuum.case.build`, then the interfaces, the coupling, the
@@ -462,8 +492,9 @@ def build(case: CoupledCase, path: Path, text: str) -> Built:
     from murus.dem import case as DC
     from murus.dem import engine as E
 
+    dcase, zmotion = _zones_only_motion(case, path, text)
     try:
-        db = DC.build(case.dem, path, text)
+        db = DC.build(dcase, path, text)
     except CaseError as exc:
         raise _relocated(exc, path, text, case.dem_index) from None
     try:
@@ -471,6 +502,12 @@ def build(case: CoupledCase, path: Path, text: str) -> Built:
     except CaseError as exc:
         raise _relocated(exc, path, text, case.zone_index) from None
     bm, zm = db.model, zb.model
+    if zmotion is not None:
+        if zb.base_gp is None:
+            raise fail_at(path, text, ("motion",), f"type '{case.dem.motion.kind}' moves the "
+                          "kinematic = 'base' blocks and the 'base' gridpoints of the zones, "
+                          "and there is none")
+        bm.set_base_motion(zmotion)  # the blocks' model drives the zones' base gridpoints
     _check_zone_overlaps(bm, zb.mesh, case.dem.dem.overlap_tolerance, case, path, text)
     iface, _ = _interface(case, zb, bm, path, text)
     try:
