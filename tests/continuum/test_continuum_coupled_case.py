@@ -8,7 +8,7 @@ stays elastic) between a smooth wall of two stacked blocks and a smooth roller o
 on a smooth base: in uniaxial strain the horizontal stress is K0 times the vertical one, so the
 settled interface carries the at-rest thrust ``1/2 K0 gamma H^2``. The wall is not rigid: its
 joints and the interface springs let it move by ``~F / (k L)`` (0.2-0.4 um here), which relieves
-the backfill by about ``M u / L``; measured 0.5 % (1.3 % with springs ten times softer), hence
+the backfill by about ``M u / L``; measured 0.5 % (0.7-1.3 % with springs ten times softer), hence
 the tolerance of 1 %.
 """
 
