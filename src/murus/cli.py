@@ -112,11 +112,16 @@ def run(
 ) -> None:
     """Run a case file: a rocking case writes summary.json, timeseries.csv and response.png;
     a distinct-element case ([dem] table) writes summary.json, histories.csv, blocks.png and
-    an optional VTK series."""
+    an optional VTK series; a continuum case ([continuum]) zones.png instead of blocks.png; a
+    case of blocks and zones ([dem] and [[zones]]) model.png and both VTK series."""
     from murus.continuum.case import is_continuum_case
+    from murus.continuum.coupled_case import is_coupled_case
     from murus.dem.case import is_dem_case
     from murus.outputs import OutputError, check_dir
 
+    if is_coupled_case(case):  # [dem] and [[zones]]: blocks and zones in one time loop
+        _run_coupled(case, out, not no_figure, progress)
+        return
     if is_continuum_case(case):
         _run_continuum(case, out, not no_figure, progress)
         return
@@ -230,6 +235,46 @@ def _run_continuum(case: Path, out: Path, figure: bool, progress: bool) -> None:
         typer.echo(f"error: {case.name}: {res.status}: "
                    f"{res.result.message if res.result is not None else res.settled.message}",
                    err=True)
+        raise typer.Exit(code=1)
+
+
+def _run_coupled(case: Path, out: Path, figure: bool, progress: bool) -> None:
+    """The blocks-and-zones branch of ``murus run`` (:mod:`murus.continuum.coupled_case`)."""
+    from murus.config import CaseError
+    from murus.continuum import coupled_case as CC
+    from murus.outputs import OutputError, check_dir
+
+    try:
+        check_dir(out)
+        cfg, path, text = CC.load_case(case)
+        figure = figure and cfg.dem.output.figure
+        check_dir(out, CC.output_names(figure))
+        built = CC.build(cfg, path, text)
+    except OutputError as exc:
+        _out_error(exc)
+    except CaseError as exc:
+        fail(cliutil.error_line(exc))
+    from murus.progress import LazyProgress
+
+    error = None
+    with LazyProgress(f"{case.name}", unit="steps", quiet=not progress) as bar:
+        bar.update(0, info="settling" if built.blocks.settle is not None else "")
+        try:
+            res = CC.run_case(built, progress=lambda d, t: bar.update(d, t, info="run"))
+        except ValueError as exc:
+            error = f"{case.name}: {str(exc).splitlines()[0]}"
+    if error is not None:
+        fail(error)
+    try:
+        CC.write_outputs(res, out, figure=figure)
+    except OutputError as exc:
+        _out_error(exc)
+    typer.echo(f"{CC.summary_line(case.name, res)} -> {out}")
+    if res.result.status == "interrupted":
+        cliutil.failed(f"{case.name}: {res.result.message}; the results up to then are in {out} "
+                       "(summary.json status 'interrupted')", code=130)
+    if not res.ok:
+        typer.echo(f"error: {case.name}: {res.result.status}: {res.result.message}", err=True)
         raise typer.Exit(code=1)
 
 
