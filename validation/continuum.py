@@ -1,11 +1,12 @@
 """Validation of the continuum zones (issue 17, item 7): every case of
 :mod:`murus.continuum.verify` in its full form (closed forms: the shaken layer, the quiet base,
-the free field, Salençon's hole, Prandtl's footing, Rankine's thrust, the oedometer, the energy
-balance), a figure of the hole's stresses against Salençon (1969) and of the footing's load
-against Prandtl-Reissner.
+the free field, Salençon's hole, Prandtl's footing, Rankine's thrust, Coulomb's and
+Mononobe-Okabe's on a rough wall of blocks, the oedometer under a pressure and under a block,
+the energy balances), a figure of the hole's stresses against Salençon (1969) and of the
+footing's load against Prandtl-Reissner.
 
 Run through ``make validate`` or ``python validation/continuum.py [--out FILE]``; writes PNGs
-under ``docs/figures/continuum/`` and returns the Markdown section (about 1 minute).
+under ``docs/figures/continuum/`` and returns the Markdown section (1 to 3 minutes).
 """
 
 from __future__ import annotations
@@ -75,8 +76,10 @@ def section() -> str:
 
     lines = ["## Continuum zones against closed forms (issue 17)", "",
              "`murus verify continuum` (the full cases of `murus.continuum.verify`; the test "
-             "suite runs the quick forms with the same tolerances). Rows marked n/a need the "
-             "zone-block interfaces in one time loop, not built yet.", "",
+             "suite runs the quick forms with the same tolerances). The rough wall, the block on "
+             "the layer and the second energy balance couple distinct-element blocks with the "
+             "zones through the zone-block interface in one time loop "
+             "(`murus.continuum.coupled.CoupledModel`).", "",
              "| case | expected | murus | error | tolerance | result |",
              "|---|---|---|---|---|---|"]
     n_fail = 0
@@ -108,7 +111,23 @@ def section() -> str:
               "response, a limit of this check. Rankine's thrust grows slowly above "
               "the closed form as the mesh is refined (+0.8, +1.3, +2.0, +3.6 % from 16 x 8 "
               "to 48 x 24 zones with psi = 0): a shear band whose mobilised friction is below "
-              "phi under non-associated flow.",
+              "phi under non-associated flow.", "",
+              "The rough wall is a prescribed block that rotates away from the backfill about "
+              "its heel in steps of 0.05 % H of its top, each followed by a settling; the "
+              "active thrust is the smallest settled horizontal force of the interface on the "
+              "block (at 0.05-0.1 % H; it then rises slowly, by 1 to 2 % at 0.4 % H). The "
+              "base is rough: on a smooth base the backfill's horizontal equilibrium ties the "
+              "wall's thrust to the far end's, which stays at Rankine's whatever the wall "
+              "friction (+21 % on Coulomb's in a trial with 16 x 8 zones), and a wall that "
+              "translates on a rough base tears the bottom zones off at the heel (-17 %). "
+              "The Mononobe-Okabe wall is "
+              "rough too (the same model with gravity tilted by atan 0.2 towards the wall), so "
+              "that the two rows differ by the pseudo-static load only; a smooth wall gives "
+              "1.027 of the smooth Mononobe-Okabe thrust, and without tilt 0.998 of Rankine's. "
+              "The coupled energy balance is measured against the work put in by the base "
+              "(the largest term of the blocks' balance is their potential energy from the "
+              "datum, which would dilute the error); the row names the plastic work and the "
+              "interface slip, both large shares of it.",
               "", f"{n_fail} failed rows.", ""]
     return "\n".join(lines)
 
