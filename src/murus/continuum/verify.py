@@ -793,7 +793,7 @@ def wall_friction_rows(quick=False):
     References
     ----------
     Coulomb (1776); Mononobe, N. and Matsuo, H. (1929); Okabe, S. (1926); Kramer (1996),
-    §11.6 (:func:`~murus.continuum.closed_forms.active_thrust`).
+    ch. 11 (:func:`~murus.continuum.closed_forms.active_thrust`).
     """
     phi, delta, tilt = 30.0, 20.0, math.degrees(math.atan(0.2))
     gamma = 18e3
