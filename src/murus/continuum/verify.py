@@ -414,7 +414,6 @@ def block_on_layer(nx: int = 4, ny: int = 4):
     return CoupledModel(dm, zm, iface), dm, zm, iface
 
 
-
 def block_settlement(quick: bool = False):
     """The block of :func:`block_on_layer` settled under gravity: its settlement against the
     oedometric closed form ``rho g H² / (2 M) + p H / M + p / kn`` (the layer's self-weight,
