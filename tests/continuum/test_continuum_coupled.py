@@ -4,18 +4,16 @@ the layer between smooth rigid walls is oedometric, so the block settles by
 ``rho g H^2 / (2 M) + p H / M + p / kn`` (self-weight, the block's pressure p = weight / width
 of the layer, the interface spring), ``M = E (1 - nu) / ((1 + nu)(1 - 2 nu))``. The block
 overhangs the layer by 0.1 m on each side, so that its flat face (not its rounded corners)
-covers every top gridpoint."""
+covers every top gridpoint. The model and the settlement row are those of ``murus verify
+continuum`` (:func:`murus.continuum.verify.block_on_layer`)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from continuum_inputs import rect_mesh, sides
 
-from murus.continuum import ContinuumModel, Elastic
-from murus.continuum.coupled import CoupledError, CoupledModel
-from murus.continuum.interface import Interface
-from murus.dem import Joint, Model
+from murus.continuum import verify as V
+from murus.continuum.coupled import CoupledError
 from murus.dem.engine import body_probe
 
 G_ACC, RHO, E, NU = 9.81, 2000.0, 1e7, 0.25
@@ -23,31 +21,19 @@ W, H, HB, KN, OVER = 2.0, 1.0, 0.5, 1e9, 0.1
 
 
 def _block_on_layer():
-    xy, zones = rect_mesh(4, 4, W, H)
-    zm = ContinuumModel(xy, zones, Elastic(density=RHO, E=E, nu=NU), gravity=G_ACC)
-    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
-    zm.fix(left, x=True, y=False)
-    zm.fix(right, x=True, y=False)
-    zm.fix(bottom)
-    joint = Joint(kn=KN, ks=KN, friction_deg=30.0)
-    dm = Model(thickness=1.0, gravity=G_ACC, joint=joint, rounding=1e-3)
-    dm.add_rectangle(W + 2 * OVER, HB, center=(0.5 * W, H + 0.5 * HB), density=RHO)
-    edges = [e for e in zm.boundary_edges() if np.isin(e, top).all()]
-    iface = Interface(zm, np.array(edges), dm, joint)
-    return CoupledModel(dm, zm, iface), dm, zm, iface
+    return V.block_on_layer(4, 4)
 
 
 def test_block_on_an_elastic_layer_settles_to_the_closed_form():
-    cm, dm, zm, iface = _block_on_layer()
-    y0 = float(dm.bpos[0, 1])
-    res = cm.settle(tol=1e-7, max_steps=400_000)
-    assert res.converged, res.message
+    row, cm = V.block_settlement(quick=True)
+    assert row["passed"], row
     weight = RHO * (W + 2 * OVER) * HB * G_ACC
-    assert iface.normal_force() == pytest.approx(weight, rel=0.005)
+    assert cm.iface.normal_force() == pytest.approx(weight, rel=0.005)
     M = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
     p = weight / W
     want = RHO * G_ACC * H * H / (2 * M) + p * H / M + p / KN
-    assert y0 - float(dm.bpos[0, 1]) == pytest.approx(want, rel=0.02)
+    assert row["expected"] == pytest.approx(want, rel=1e-12)
+    assert row["obtained"] == pytest.approx(want, rel=0.02)
 
 
 def test_one_time_step_for_all():

@@ -57,20 +57,44 @@ def test_prandtl_strip_footing():
 
 
 def test_rankine_thrust_on_a_smooth_wall_moving_away():
-    """1/2 K_A gamma H² (5 %); Coulomb and Mononobe-Okabe listed as not yet available."""
-    _check(V.case_rankine(quick=True), 1)
+    """1/2 K_A gamma H² (5 %); a rough wall (a block through the interface) to Coulomb's
+    P_A cos(delta) and, with tilted gravity, to Mononobe-Okabe's (10 %)."""
+    _check(V.case_rankine(quick=True), 3)
+
+
+def test_wall_thrust_control_a_smooth_interface_gives_rankine_not_coulomb():
+    """Control of the rough-wall row: with a smooth interface the same model gives Rankine's
+    thrust (5 %), which is 19 % above Coulomb's with delta = 20 deg, beyond the row's 10 %."""
+    got, hist, cm = V.wall_thrust(0.0, 0.0, quick=True)
+    want = V.cf.rankine_thrust(18e3, 4.0, math.radians(30.0))
+    assert got == pytest.approx(want, rel=0.05)
+    coulomb = V.cf.active_thrust(18e3, 4.0, math.radians(30.0), math.radians(20.0))
+    assert got / (coulomb * math.cos(math.radians(20.0))) - 1.0 > 0.10
+    assert hist[0] > got  # the thrust at rest is above the active one
 
 
 def test_oedometric_settlement():
-    """s t / M (2 %); the rigid block listed as not yet available."""
-    _check(V.case_oedometer(quick=True), 1)
+    """s t / M (2 %); a rigid block on the layer through the interface (2 %)."""
+    _check(V.case_oedometer(quick=True), 2)
 
 
 def test_energy_balance_of_a_shaken_plastic_soil():
     """The balance of ContinuumModel.energy closes within 1 % of its largest term, with the
-    plastic work a large share of the energy."""
+    plastic work a large share of the energy; blocks, zones and interface together within
+    1 % of the input work."""
     rows = V.case_energy(quick=True)
-    _check(rows, 1)
+    _check(rows, 2)
+
+
+def test_coupled_energy_balance_exercises_plasticity_and_slip():
+    """The coupled balance closes (1 %) on a run where both dissipations matter: the plastic
+    work and the interface slip are each more than 1 % of the input work, so that a missing
+    term would show above the tolerance."""
+    ratio, info, cm = V.coupled_energy(quick=True)
+    assert ratio <= 0.01
+    assert info["plastic_zones"] > 0
+    assert info["plastic"] > 0.01 * info["input_work"]
+    assert info["slip"] > 0.01 * info["input_work"]
 
 
 def test_free_field_sides_follow_the_column():
@@ -89,8 +113,11 @@ def test_verify_continuum_cli_prints_the_table_and_exits_1_on_a_failure(monkeypa
     r = CliRunner().invoke(app, ["verify", "continuum", "--quick", "-c", "oedometer"],
                            env={"COLUMNS": "200"})
     assert r.exit_code == 0, r.output
-    assert "s t / M [m]" in r.output and "pass" in r.output and "n/a" in r.output
+    assert "s t / M [m]" in r.output and "pass" in r.output
     assert "murus" in r.output and "tolerance" in r.output
+    monkeypatch.setitem(V.CASES, "later", lambda quick: [V._not_available("later", 0.05, "x")])
+    r = CliRunner().invoke(app, ["verify", "continuum", "-c", "later"], env={"COLUMNS": "200"})
+    assert r.exit_code == 0 and "n/a" in r.output
     monkeypatch.setitem(V.CASES, "broken", lambda quick: [V._row("broken", 1.0, 1.1, 0.05)])
     r = CliRunner().invoke(app, ["verify", "continuum", "-c", "broken"], env={"COLUMNS": "200"})
     assert r.exit_code == 1

@@ -5,8 +5,8 @@ balance (issue 17 item 7), shared by ``tests/continuum/test_continuum_verificati
 Each case function ``case(quick)`` returns a list of rows ``dict(case, expected, obtained,
 error, tolerance, passed)``; ``error`` is relative unless the row's case name says otherwise.
 ``quick=True`` runs a coarser mesh or a shorter run with the same tolerance. Rows of problems
-that need parts not built yet (zone-block interfaces, free-field boundaries) carry
-``available=False``, ``passed=None`` and NaN numbers: they are listed, neither passed nor failed.
+that need parts not built yet would carry ``available=False``, ``passed=None`` and NaN numbers
+(:func:`_not_available`): listed, neither passed nor failed (none today).
 
 Closed forms (:mod:`murus.continuum.closed_forms`):
 
@@ -21,8 +21,16 @@ Closed forms (:mod:`murus.continuum.closed_forms`):
 - Prandtl (1920) strip footing on a weightless cohesive soil, ``(2 + pi) c``, and with friction
   the Prandtl-Reissner factor ``N_c`` (Reissner 1924);
 - smooth rigid wall moving away from a dry sand backfill: Rankine's ``1/2 K_A gamma H²``;
-- oedometric settlement ``s t / M`` of an elastic layer under a uniform pressure;
-- energy balance of a dynamic run with plasticity (:meth:`ContinuumModel.energy`).
+- rough rigid wall (a distinct-element block, through the zone-block interface): Coulomb's
+  thrust and, with tilted gravity, Mononobe-Okabe's
+  (:func:`~murus.continuum.closed_forms.active_thrust`);
+- oedometric settlement ``s t / M`` of an elastic layer under a uniform pressure, and of the
+  layer under a rigid block resting on it through the interface;
+- energy balance of a dynamic run with plasticity (:meth:`ContinuumModel.energy`), and of
+  blocks, zones and interface together with plasticity and slip
+  (:meth:`murus.continuum.coupled.CoupledModel.energy`).
+
+The coupled rows use :class:`murus.continuum.coupled.CoupledModel`.
 """
 
 from __future__ import annotations
@@ -38,7 +46,8 @@ from murus.continuum.model import ContinuumModel
 
 __all__ = ["CASES", "run_verification", "footing_limit_pressure", "case_shear_column",
            "case_quiet_base", "case_free_field", "case_hole", "case_prandtl", "case_rankine",
-           "case_oedometer", "case_energy"]
+           "case_oedometer", "case_energy", "wall_thrust", "wall_friction_rows",
+           "block_on_layer", "block_settlement", "coupled_energy"]
 
 RHO = 2000.0
 G_ACC = 9.81
@@ -320,8 +329,9 @@ def case_oedometer(quick=False):
     """An elastic layer (t = 2 m, E = 20 MPa, nu = 0.35, 4 m wide, rollers on the sides, fixed
     base, weightless) under a uniform pressure s = 100 kPa on its top, settled with local
     damping: the settlement of the top within 2 % of ``s t / M``
-    (:func:`~murus.continuum.closed_forms.oedometric_settlement`). The rigid block pressed on
-    the layer needs the zone-block interfaces (listed as not yet available).
+    (:func:`~murus.continuum.closed_forms.oedometric_settlement`); and a rigid block (a
+    distinct-element body) resting on an elastic layer through the zone-block interface, its
+    settlement within 2 % of the oedometric closed form (:func:`block_settlement`).
 
     Parameters
     ----------
@@ -352,8 +362,92 @@ def case_oedometer(quick=False):
     want = cf.oedometric_settlement(s, t, E, nu)
     return [_row(f"oedometric settlement of an elastic layer under a uniform pressure, {nx} x {ny} "
                  "zones: s t / M [m]", want, got, 0.02),
-            _not_available("oedometric settlement under a rigid block", 0.02,
-                           "zone-block interfaces")]
+            block_settlement(quick)[0]]
+
+
+#: The block on a layer of :func:`block_on_layer`: layer width W, thickness H, block height HB,
+#: overhang [m]; E [Pa], nu; interface kn [Pa/m].
+BLOCK_LAYER = {"W": 2.0, "H": 1.0, "HB": 0.5, "over": 0.1, "E": 1e7, "nu": 0.25, "kn": 1e9}
+
+
+def block_on_layer(nx: int = 4, ny: int = 4):
+    """A rigid block resting on an elastic layer through the zone-block interface (the coupled
+    model of :func:`case_oedometer`'s block row and of tests/continuum/test_continuum_coupled.py).
+
+    The layer: 2 m wide, 1 m thick, rho = 2000 kg/m³, E = 10 MPa, nu = 0.25, rollers on its
+    sides (smooth rigid walls), fixed base, under its own weight (g = 9.81 m/s²); the block:
+    2.2 m x 0.5 m, rho = 2000 kg/m³, centred on the layer, its underside on the top surface (it
+    overhangs by 0.1 m on each side, so that its flat face, not its rounded corners, covers every
+    top gridpoint); interface kn = ks = 1e9 Pa/m, friction 30 deg.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Zones across and through the layer.
+
+    Returns
+    -------
+    tuple
+        ``(coupled, dem, zones, interface)``: the :class:`~murus.continuum.coupled.CoupledModel`,
+        the blocks' :class:`murus.dem.Model`, the :class:`ContinuumModel` and the
+        :class:`~murus.continuum.interface.Interface`, not settled.
+
+    References
+    ----------
+    Itasca UDEC, Theory and Background (blocks and zones in one calculation cycle).
+    """
+    from murus.continuum.coupled import CoupledModel
+    from murus.continuum.interface import Interface
+    from murus.dem import Joint, Model
+
+    W, H, HB, over = BLOCK_LAYER["W"], BLOCK_LAYER["H"], BLOCK_LAYER["HB"], BLOCK_LAYER["over"]
+    msh = cmesh.rectangle(0.0, 0.0, W, H, nx=nx, ny=ny, name="layer")
+    zm = ContinuumModel(msh.xy, msh.zones, Elastic(density=RHO, E=BLOCK_LAYER["E"],
+                                                   nu=BLOCK_LAYER["nu"]), gravity=G_ACC)
+    zm.fix(msh.side("layer.left"), x=True, y=False)
+    zm.fix(msh.side("layer.right"), x=True, y=False)
+    zm.fix(msh.side("layer.bottom"))
+    joint = Joint(kn=BLOCK_LAYER["kn"], ks=BLOCK_LAYER["kn"], friction_deg=30.0)
+    dm = Model(thickness=1.0, gravity=G_ACC, joint=joint, rounding=1e-3)
+    dm.add_rectangle(W + 2 * over, HB, center=(0.5 * W, H + 0.5 * HB), density=RHO)
+    iface = Interface.from_side(zm, msh, "layer.top", dm, joint)
+    return CoupledModel(dm, zm, iface), dm, zm, iface
+
+
+def block_settlement(quick: bool = False):
+    """The block of :func:`block_on_layer` settled under gravity: its settlement against the
+    oedometric closed form ``rho g H² / (2 M) + p H / M + p / kn`` (the layer's self-weight,
+    the block's pressure ``p`` = its weight over the layer's width, the interface spring).
+
+    Parameters
+    ----------
+    quick : bool
+        4 x 4 zones (else 8 x 8).
+
+    Returns
+    -------
+    tuple
+        ``(row, coupled)``: the row (2 %) and the settled
+        :class:`~murus.continuum.coupled.CoupledModel`.
+
+    References
+    ----------
+    :func:`~murus.continuum.closed_forms.oedometric_settlement`.
+    """
+    n = 4 if quick else 8
+    cm, dm, zm, iface = block_on_layer(n, n)
+    b = BLOCK_LAYER
+    y0 = float(dm.bpos[0, 1])
+    res = cm.settle(tol=1e-7, max_steps=400_000)
+    got = y0 - float(dm.bpos[0, 1]) if res.converged else math.nan
+    weight = RHO * (b["W"] + 2 * b["over"]) * b["HB"] * G_ACC
+    p = weight / b["W"]
+    want = (cf.oedometric_settlement(0.5 * RHO * G_ACC * b["H"], b["H"], b["E"], b["nu"])
+            + cf.oedometric_settlement(p, b["H"], b["E"], b["nu"]) + p / b["kn"])
+    row = _row(f"rigid block (a distinct-element body) on an elastic layer through the "
+               f"interface, {zm.nz} zones: settlement rho g H^2/2M + p H/M + p/kn [m]",
+               want, got, 0.02)
+    return row, cm
 
 
 def case_energy(quick=False):
@@ -364,6 +458,9 @@ def case_energy(quick=False):
     kinetic, strain and gravity energies, the plastic work, the work of the damping, of the
     dashpots and of the base; their balance closes within 1 % of the largest term over the run
     (the row names the plastic work's share of that scale, so that plasticity is exercised).
+    Then blocks, zones and interface together: a block on a Mohr-Coulomb layer shaken by its
+    base, where zones yield and the block slides (:func:`coupled_energy`), within 1 % of the
+    input work.
 
     With a dilation it closes too (quick mesh: 0.17 % with psi = 10 deg, 0.79 % with psi = 30
     deg), since the two triangles of an overlay take their mean isotropic stress after the
@@ -416,8 +513,86 @@ def case_energy(quick=False):
     return [_bound_row(f"energy balance of a shaken Mohr-Coulomb soil, {nx} x {ny} zones "
                        f"(plastic work {share:.0%} of the largest term): max |error| / largest "
                        "term (abs)", err, 0.01),
-            _not_available("energy balance with zone-block contacts", 0.01,
-                           "zone-block interfaces")]
+            _coupled_energy_row(quick)]
+
+
+def _coupled_energy_row(quick):
+    r, info, _ = coupled_energy(quick)
+    return _bound_row(f"energy balance of a block on a Mohr-Coulomb layer shaken by its base, "
+                      f"{info['nz']} zones ({info['plastic_zones']} yielded, plastic work "
+                      f"{info['plastic']:.0f} J; interface slip {info['slip']:.0f} J; input "
+                      f"work {info['input_work']:.0f} J): max |error| / max |input work| (abs)",
+                      r, 0.01)
+
+
+def coupled_energy(quick: bool = False):
+    """Energy balance of blocks, zones and interface in a dynamic run with plasticity and
+    contact slip (:meth:`murus.continuum.coupled.CoupledModel.energy`).
+
+    A Mohr-Coulomb layer (2 m x 1 m; rho = 2000 kg/m³, E = 20 MPa, nu = 0.3, phi = 30 deg,
+    c = 2 kPa, psi = 0; large strain) whose sides (in x) and bottom move with the base carries
+    a block (0.8 m x 0.5 m, rho = 2000 kg/m³) through the interface (kn = ks = 1e9 Pa/m,
+    friction 25 deg); settled under gravity, then the base shakes horizontally (velocity
+    0.3 sin(2 pi 4 t) m/s, 1 s, 2 s full) with 5 % mass-proportional damping at 4 Hz: zones
+    yield under the block and the block slides on the layer.
+
+    The error of the balance is measured against the work put in from outside (the work of the
+    base on the blocks and on the zones, of the applied forces on both, and of the tilt; here
+    the zones' base work alone is non-zero): ``max |error(t)| / max |W_in(t)|``. Not the
+    largest term of the balance: the blocks' gravity term is their potential energy from the
+    datum (m g y, the reference subtracted in the error), which would dilute the error by the
+    height of the block above y = 0; every change of the energy comes from the input work.
+
+    Parameters
+    ----------
+    quick : bool
+        8 x 4 zones and 1 s (else 16 x 8 zones and 2 s).
+
+    Returns
+    -------
+    tuple
+        ``(ratio, info, coupled)``: the error ratio [-] (NaN when the run did not complete),
+        a dict of the run's ``input_work``, ``plastic`` work, interface ``slip`` [J],
+        ``plastic_zones`` (zones that yielded) and ``nz``, and the
+        :class:`~murus.continuum.coupled.CoupledModel`.
+
+    References
+    ----------
+    Itasca UDEC, Theory and Background (energy of blocks and zones); the balance of
+    :func:`murus.dem.engine.energy`.
+    """
+    from murus.continuum.coupled import CoupledModel
+    from murus.continuum.interface import Interface
+    from murus.dem import Joint, Model
+
+    W, H, HB = 2.0, 1.0, 0.5
+    nx, ny, T = (8, 4, 1.0) if quick else (16, 8, 2.0)
+    mat = MohrCoulomb(density=RHO, E=2e7, nu=0.3, friction_deg=30.0, cohesion=2e3,
+                      dilation_deg=0.0)
+    msh = cmesh.rectangle(0.0, 0.0, W, H, nx=nx, ny=ny, name="layer")
+    zm = ContinuumModel(msh.xy, msh.zones, mat, gravity=G_ACC)
+    zm.set_base(msh.side("layer.left"), x=True, y=False)
+    zm.set_base(msh.side("layer.right"), x=True, y=False)
+    zm.set_base(msh.side("layer.bottom"))
+    joint = Joint(kn=1e9, ks=1e9, friction_deg=25.0)
+    dm = Model(thickness=1.0, gravity=G_ACC, joint=joint, rounding=1e-3)
+    dm.add_rectangle(0.8, HB, center=(0.5 * W, H + 0.5 * HB), density=RHO)
+    iface = Interface.from_side(zm, msh, "layer.top", dm, joint)
+    cm = CoupledModel(dm, zm, iface)
+    ok = cm.settle(tol=1e-6, max_steps=200_000).converged
+    f = 4.0
+    dm.set_base_motion(velocity=lambda t: 0.3 * np.sin(2 * np.pi * f * t))
+    res = cm.run(T, xi=0.05, freq=f, every=50)
+    e = res.values
+    win = sum(e["energy." + k] for k in ("base_work", "zones_base_work", "external_work",
+                                         "zones_external_work", "tilt_work"))
+    ratio = float(np.abs(e["energy.error"]).max() / np.abs(win).max())
+    if not (ok and res.status == "completed"):
+        ratio = math.nan
+    info = {"input_work": float(win[-1]), "plastic": float(e["energy.zones_plastic"][-1]),
+            "slip": float(e["energy.interface_slip"][-1]),
+            "plastic_zones": int((zm.plastic_state() > 0).sum()), "nz": zm.nz}
+    return ratio, info, cm
 
 
 # ---------------------------------------------------------------------- 5. Rankine wall
@@ -428,9 +603,9 @@ def case_rankine(quick=False):
     settled; then the wall gridpoints move outward (-x) slowly, free in y (smooth), with local
     damping, to 1 % of H, and the model settles with the wall held. The thrust, the sum of the
     zones' forces on the wall gridpoints, within 5 % of Rankine's ``1/2 K_A gamma H²``
-    (:func:`~murus.continuum.closed_forms.rankine_thrust`). The rough wall (Coulomb) and the
-    pseudo-static Mononobe-Okabe thrust need the zone-block interfaces (listed as not yet
-    available).
+    (:func:`~murus.continuum.closed_forms.rankine_thrust`). Then the rough wall, a
+    distinct-element block against the backfill through the zone-block interface: Coulomb's
+    thrust and, with tilted gravity, Mononobe-Okabe's, within 10 % (:func:`wall_friction_rows`).
 
     Parameters
     ----------
@@ -473,10 +648,172 @@ def case_rankine(quick=False):
     want = cf.rankine_thrust(mat.density * G_ACC, H, math.radians(phi))
     return [_row(f"smooth wall moving away from a sand backfill (phi = {phi:g} deg), {nx} x {ny} "
                  f"zones (at rest {f0 / want:.2f} x): Rankine thrust [N/m]", want, thrust, 0.05),
-            _not_available("rough wall (delta = 2/3 phi): Coulomb thrust", 0.10,
-                           "zone-block interfaces"),
-            _not_available("pseudo-static kh: Mononobe-Okabe thrust", 0.10,
-                           "zone-block interfaces")]
+            *wall_friction_rows(quick)]
+
+
+# ---------------------------------------------------------------------- 5b. rigid block wall
+def _pad(dm):
+    """A dynamic block resting on a fixed one, 20 m away from everything (no contact with the
+    zones nor the wall): the blocks' stable step needs one dynamic body
+    (:func:`murus.dem.engine.blocks_stable_dt` raises on a model of kinematic bodies only, and
+    :class:`murus.continuum.coupled.CoupledModel` asks it). It is heavy (a long own step) and
+    rests with friction 45 deg (above any tilt used here); it takes no part in the results."""
+    from murus.dem import Joint
+
+    dm.add_rectangle(1.0, 0.5, center=(-20.0, -0.25), kinematic="fixed", group="pad")
+    dm.add_rectangle(1.0, 1.0, center=(-20.0, 0.5), density=1e6, group="pad")
+    dm.set_joint(Joint(kn=1e9, ks=1e9, friction_deg=45.0), "pad", "pad")
+
+
+def wall_thrust(delta_deg: float = 20.0, tilt_deg: float = 0.0, quick: bool = False, *,
+                increments: int = 8, step: float = 0.0005, kn: float = 2e8):
+    """Horizontal thrust of a dry sand backfill on a rigid wall (a distinct-element block) that
+    rotates away from it about its heel, through the zone-block interface
+    (:class:`~murus.continuum.coupled.CoupledModel`).
+
+    The backfill (H = 4 m high, 8 m long; Mohr-Coulomb phi = 30 deg, c = 0, psi = 0, unit
+    weight 18 kN/m³, E = 50 MPa, nu = 0.3; large strain) rests on a rough fixed base, rollers
+    at the far end; the gridpoint at the heel is free in x (it belongs to the wall's face, not
+    to the base: fixed there, it would carry the thrust of the bottom zones itself). The wall is
+    a ``"prescribed"`` block 0.5 m thick whose face is the backfill's side x = 0, from 0.5 m
+    below the base to 0.5 m above the surface; the interface has kn = ks = ``kn`` [Pa/m], the
+    wall friction ``delta``, no cohesion nor tension. Gravity (the blocks' model's, which the
+    zones follow) may be tilted by ``tilt_deg`` towards the wall: a pseudo-static
+    ``kh = tan(tilt)`` on ``g cos(tilt)``. K0 stresses (``nu / (1 - nu)``), settled with the
+    wall held; then ``increments`` rotations of the wall about its heel, each moving the top of
+    its face by ``step H`` away from the backfill at 2e-7 H per time step with local damping
+    0.7, followed by a settling with the wall held. The thrust is the horizontal force of the
+    interface on the wall at each settled state; the active thrust is the smallest.
+
+    Why a rough base and a rotation: on a smooth base the backfill's horizontal equilibrium
+    makes the wall's thrust equal the far end's, which cannot drop below Rankine's whatever the
+    wall friction (a rough wall then gave Rankine's thrust, +21 % on Coulomb's, in a trial with
+    16 x 8 zones); a wall that translates on a rough base tears the bottom zones off the fixed
+    base at the heel (-17 % on Coulomb's and on Rankine's in the same trials).
+    The rotation about the heel is the classical active test (Terzaghi's); the soil settles
+    along the wall and mobilises the wall friction over its height.
+
+    Parameters
+    ----------
+    delta_deg : float
+        Wall friction angle of the interface [deg] (0: smooth).
+    tilt_deg : float
+        Tilt of gravity towards the wall [deg] (0: static).
+    quick : bool
+        16 x 8 zones (else 32 x 16).
+    increments : int
+        Rotation increments.
+    step : float
+        Movement of the top of the wall per increment over H [-].
+    kn : float
+        Normal and shear stiffness of the interface [Pa/m].
+
+    Returns
+    -------
+    tuple
+        ``(thrust, history, model)``: the smallest settled thrust [N/m], the thrusts of the
+        settled states (the first at rest) [N/m], and the :class:`CoupledModel`; the thrust is
+        NaN when a settling did not converge.
+
+    References
+    ----------
+    Terzaghi, K. (1943). Theoretical Soil Mechanics, ch. 5 (active earth pressure, the wall
+    yielding by rotation about its base); Itasca UDEC, Theory and Background (blocks and zones).
+    """
+    from murus.continuum.coupled import CoupledModel
+    from murus.continuum.interface import Interface
+    from murus.dem import Joint, Model
+
+    H, Lx, phi = 4.0, 8.0, 30.0
+    nx, ny = (16, 8) if quick else (32, 16)
+    rho = 18e3 / G_ACC
+    mat = MohrCoulomb(density=rho, E=5e7, nu=0.3, friction_deg=phi, cohesion=0.0)
+    msh = cmesh.rectangle(0.0, 0.0, Lx, H, nx=nx, ny=ny, name="fill")
+    zm = ContinuumModel(msh.xy, msh.zones, mat, gravity=G_ACC)
+    base = msh.side("fill.bottom")
+    zm.fix(base)
+    zm.free([int(base[np.argmin(msh.xy[base, 0])])], x=True, y=False)
+    zm.fix(msh.side("fill.right"), x=True, y=False)
+    zm.initial_stress_k0()
+    dm = Model(thickness=1.0, gravity=G_ACC, joint=Joint(kn=kn, ks=kn, friction_deg=delta_deg))
+    wall = dm.add_rectangle(0.5, H + 1.0, center=(-0.25, 0.5 * H), kinematic="prescribed")
+    _pad(dm)
+    iface = Interface.from_side(zm, msh, "fill.left", dm,
+                                Joint(kn=kn, ks=kn, friction_deg=delta_deg))
+    cm = CoupledModel(dm, zm, iface)
+    if tilt_deg:
+        dm.set_tilt(0.0, start_deg=-tilt_deg)
+
+    def thrust():
+        return -float(iface.work.fb[wall, 0]) / dm.thickness
+
+    ok = cm.settle(tol=1e-6, max_steps=200_000).converged
+    hist = [thrust()]
+    v = 2e-7 * H / cm.dt  # speed of the top of the face [m/s]
+    for _ in range(increments):
+        if not ok:
+            break
+        om = v / H  # counter-clockwise: the top moves to -x
+        c = dm.bpos[wall, :2]  # centroid relative to the heel (0, 0)
+        dm.set_velocity(wall, -om * c[1], om * c[0], om)
+        cm.run(step * H / v, local_damping=0.7, every=10_000)
+        dm.set_velocity(wall, 0.0, 0.0, 0.0)
+        ok = cm.settle(tol=1e-6, max_steps=200_000, reset=False).converged
+        hist.append(thrust())
+    hist = np.array(hist)
+    return (float(hist[1:].min()) if ok else math.nan), hist, cm
+
+
+def wall_friction_rows(quick=False):
+    """A rough rigid wall (a distinct-element block, delta = 2/3 phi = 20 deg, no cohesion)
+    rotating away from a dry sand backfill (phi = 30 deg, c = 0, psi = 0), through the
+    zone-block interface (:func:`wall_thrust`): the smallest horizontal thrust within 10 % of
+    Coulomb's active thrust times ``cos delta``; with gravity tilted by 11.31 deg towards the
+    wall (``kh = tan(tilt) = 0.2`` on ``g cos(tilt)``) within 10 % of Mononobe-Okabe's
+    (:func:`~murus.continuum.closed_forms.active_thrust` with ``kh = sin(tilt)``,
+    ``kv = 1 - cos(tilt)``, i.e. ``theta = tilt``, EN 1998-5 (E.6)).
+
+    The Mononobe-Okabe wall is rough too, the same model as Coulomb's with only the tilt added:
+    the two rows then differ by the pseudo-static load alone, and Mononobe-Okabe is used with
+    the wall friction in practice (EN 1998-5 Annex E, delta up to 2/3 phi). A smooth wall gives
+    1.039 (16 x 8 zones) and 1.027 (32 x 16) of the smooth Mononobe-Okabe thrust, the rough
+    1.050 and 1.027; the smooth wall without tilt 1.002 and 0.998 of Rankine's (the coupled
+    model against the zones-only row above).
+
+    Parameters
+    ----------
+    quick : bool
+        Coarser mesh (same tolerance).
+
+    Returns
+    -------
+    list of dict
+        Rows ``dict(case, expected, obtained, error, tolerance, passed)`` (module doc).
+
+    References
+    ----------
+    Coulomb (1776); Mononobe, N. and Matsuo, H. (1929); Okabe, S. (1926); Kramer (1996),
+    ch. 11 (:func:`~murus.continuum.closed_forms.active_thrust`).
+    """
+    phi, delta, tilt = 30.0, 20.0, math.degrees(math.atan(0.2))
+    gamma = 18e3
+    rows = []
+    for t in (0.0, tilt):
+        got, hist, cm = wall_thrust(delta, t, quick)
+        th = math.radians(t)
+        d = math.radians(delta)
+        want = cf.active_thrust(gamma, 4.0, math.radians(phi), d, kh=math.sin(th),
+                                kv=1.0 - math.cos(th)) * math.cos(d)
+        nz = cm.zones.nz
+        if t == 0.0:
+            name = (f"rough wall (block, delta = {delta:g} deg) rotating away from a sand "
+                    f"backfill, {nz} zones (at rest {hist[0] / want:.2f} x): Coulomb thrust "
+                    "P_A cos(delta) [N/m]")
+        else:
+            name = (f"rough wall, gravity tilted {t:.2f} deg (kh = {math.tan(th):.2g}), {nz} "
+                    f"zones: Mononobe-Okabe thrust P_AE cos(delta) [N/m]")
+        rows.append(_row(name, want, got, 0.10))
+    return rows
 
 
 # ---------------------------------------------------------------------- 4. Prandtl
