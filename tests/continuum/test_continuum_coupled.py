@@ -11,9 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from continuum_inputs import rect_mesh, sides
 
+from murus.continuum import ContinuumModel, Elastic
 from murus.continuum import verify as V
-from murus.continuum.coupled import CoupledError
+from murus.continuum.coupled import CoupledError, CoupledModel
+from murus.continuum.interface import Interface
+from murus.dem import Joint, Model
 from murus.dem.engine import body_probe
 
 G_ACC, RHO, E, NU = 9.81, 2000.0, 1e7, 0.25

@@ -224,7 +224,8 @@ class CoupledModel:
         """
         from murus.dem.engine import blocks_stable_dt
 
-        d = blocks_stable_dt(self.dem)
+        # blocks that are all kinematic (a prescribed wall against zones) set no step
+        d = blocks_stable_dt(self.dem) if np.any(self.dem.bkin == 0) else math.inf
         z = self.zones.stable_dt()
         i = self.iface.critical_dt() * self.dem.safety
         return float(min(d, z, i))
@@ -517,7 +518,18 @@ class CoupledModel:
 
 
 def stored_energy_of(iface) -> float:
-    """Elastic energy of the interface's springs now [J] (:func:`interface.stored_energy`)."""
+    """Elastic energy of the interface's springs now [J]
+    (:func:`murus.continuum.interface.stored_energy`).
+
+    Parameters
+    ----------
+    iface : murus.continuum.interface.Interface
+        The interface.
+
+    Returns
+    -------
+    float
+    """
     return float(IF.stored_energy(iface.nodes, iface.corners))
 
 

@@ -652,19 +652,6 @@ def case_rankine(quick=False):
 
 
 # ---------------------------------------------------------------------- 5b. rigid block wall
-def _pad(dm):
-    """A dynamic block resting on a fixed one, 20 m away from everything (no contact with the
-    zones nor the wall): the blocks' stable step needs one dynamic body
-    (:func:`murus.dem.engine.blocks_stable_dt` raises on a model of kinematic bodies only, and
-    :class:`murus.continuum.coupled.CoupledModel` asks it). It is heavy (a long own step) and
-    rests with friction 45 deg (above any tilt used here); it takes no part in the results."""
-    from murus.dem import Joint
-
-    dm.add_rectangle(1.0, 0.5, center=(-20.0, -0.25), kinematic="fixed", group="pad")
-    dm.add_rectangle(1.0, 1.0, center=(-20.0, 0.5), density=1e6, group="pad")
-    dm.set_joint(Joint(kn=1e9, ks=1e9, friction_deg=45.0), "pad", "pad")
-
-
 def wall_thrust(delta_deg: float = 20.0, tilt_deg: float = 0.0, quick: bool = False, *,
                 increments: int = 8, step: float = 0.0005, kn: float = 2e8):
     """Horizontal thrust of a dry sand backfill on a rigid wall (a distinct-element block) that
@@ -737,7 +724,6 @@ def wall_thrust(delta_deg: float = 20.0, tilt_deg: float = 0.0, quick: bool = Fa
     zm.initial_stress_k0()
     dm = Model(thickness=1.0, gravity=G_ACC, joint=Joint(kn=kn, ks=kn, friction_deg=delta_deg))
     wall = dm.add_rectangle(0.5, H + 1.0, center=(-0.25, 0.5 * H), kinematic="prescribed")
-    _pad(dm)
     iface = Interface.from_side(zm, msh, "fill.left", dm,
                                 Joint(kn=kn, ks=kn, friction_deg=delta_deg))
     cm = CoupledModel(dm, zm, iface)
