@@ -186,3 +186,31 @@ def test_a_checkpoint_of_another_model_is_refused(tmp_path):
     cm2, dm2, zm2 = _block_on_a_shaken_mohr_coulomb_layer()
     with pytest.raises(CoupledError, match="another model"):
         cm2.restore(ck)
+
+
+def test_elastic_first_settling_keeps_a_loose_layer_elastic_under_a_block():
+    """Gravity initialisation in two stages, every zone elastic, then with plasticity: a
+    Mohr-Coulomb layer (c = 5 kPa, phi = 30 deg) under a light block settles with no zone at
+    yield, the interface carries the block's weight (within 0.5 %), and plasticity is on for
+    what follows."""
+    from murus.continuum import kernels as ZK
+    from murus.continuum import MohrCoulomb
+
+    mat = MohrCoulomb(density=RHO, E=2e7, nu=0.3, friction_deg=30.0, cohesion=5e3)
+    xy, zones = rect_mesh(8, 4, W, H)
+    zm = ContinuumModel(xy, zones, mat, gravity=G_ACC)
+    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
+    zm.fix(left, x=True, y=False)
+    zm.fix(right, x=True, y=False)
+    zm.fix(bottom)
+    joint = Joint(kn=KN, ks=KN, friction_deg=25.0)
+    dm = Model(thickness=1.0, gravity=G_ACC, joint=joint, rounding=1e-3)
+    dm.add_rectangle(0.8, 0.2, center=(1.0, H + 0.1), density=RHO)
+    edges = [e for e in zm.boundary_edges() if np.isin(e, top).all()]
+    cm = CoupledModel(dm, zm, Interface(zm, np.array(edges), dm, joint))
+    res = cm.settle(elastic_first=True, tol=1e-6)
+    assert res.converged
+    assert not np.any(zm.plastic_state() > 0)  # no zone at yield
+    assert zm.P[ZK.P_PLASTIC] == 1.0
+    weight = float(dm.bmass[0]) * G_ACC
+    assert cm.iface.normal_force() == pytest.approx(weight, rel=0.005)

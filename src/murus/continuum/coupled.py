@@ -209,6 +209,7 @@ class CoupledModel:
         self.iface = interface
         self.stored0 = 0.0
         self._since_check = 0
+        self._plastic = 1.0  # 0 during the elastic stage of settle(elastic_first=True)
         dem.coupled = self
         self.set_dt()
         self.reset_reference()
@@ -303,7 +304,7 @@ class CoupledModel:
         P[ZK.P_ALOCAL] = alocal
         P[ZK.P_AMASS] = amass
         P[ZK.P_DREL] = drel
-        P[ZK.P_PLASTIC] = 1.0
+        P[ZK.P_PLASTIC] = self._plastic
 
     def at_rest(self) -> None:
         """Zero the gridpoints' velocities and accelerations (the end of a settling, which
@@ -395,20 +396,37 @@ class CoupledModel:
         return energy(self.dem)
 
     # ------------------------------------------------------------------ running
-    def settle(self, **kw):
+    def settle(self, *, elastic_first: bool = False, **kw):
         """Static equilibrium of blocks and zones (:func:`murus.dem.engine.settle`).
 
         Parameters
         ----------
+        elastic_first : bool
+            Settle first with every zone material elastic, then with plasticity (the gravity
+            initialisation of FLAC, :func:`murus.continuum.engine.settle`): a cohesionless
+            backfill then starts from an elastic stress state rather than yielding under its
+            first, dynamic, loading.
         **kw
             Arguments of :func:`murus.dem.engine.settle` (``tol``, ``alpha``, ``max_steps``,
-            ...).
+            ``reset``, ...).
 
         Returns
         -------
         murus.dem.engine.SettleResult
+            Of the (last) plastic stage; its ``steps`` count both stages.
         """
-        return self.dem.settle(**kw)
+        if not elastic_first:
+            return self.dem.settle(**kw)
+        self._plastic = 0.0
+        try:
+            first = self.dem.settle(**dict(kw, reset=False))
+        finally:
+            self._plastic = 1.0
+        if not first.converged:
+            return first
+        res = self.dem.settle(**kw)
+        res.steps += first.steps
+        return res
 
     def run(self, duration: float | None = None, **kw):
         """A dynamic run of blocks and zones (:func:`murus.dem.engine.run`): the blocks'
