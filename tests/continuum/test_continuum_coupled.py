@@ -193,8 +193,8 @@ def test_elastic_first_settling_keeps_a_loose_layer_elastic_under_a_block():
     Mohr-Coulomb layer (c = 5 kPa, phi = 30 deg) under a light block settles with no zone at
     yield, the interface carries the block's weight (within 0.5 %), and plasticity is on for
     what follows."""
-    from murus.continuum import kernels as ZK
     from murus.continuum import MohrCoulomb
+    from murus.continuum import kernels as ZK
 
     mat = MohrCoulomb(density=RHO, E=2e7, nu=0.3, friction_deg=30.0, cohesion=5e3)
     xy, zones = rect_mesh(8, 4, W, H)
