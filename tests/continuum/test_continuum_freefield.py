@@ -149,3 +149,20 @@ def test_a_wide_layer_with_free_field_sides_moves_as_the_column():
     # the energy balance closes with the free field's work counted as external work
     e = res.values
     assert np.abs(e["energy.error"]).max() < 0.01 * np.abs(e["energy.base_work"]).max()
+
+
+def test_a_side_without_its_base_gridpoint_is_refused():
+    """A free-field side given without its lowest, fixed gridpoint would hang a column free
+    vertically, which falls under gravity: refused with a one-line error naming the side."""
+    from murus.continuum.freefield import FreeFieldError
+
+    xy, zones = rect_mesh(4, 4, 4.0, 2.0)
+    m = ContinuumModel(xy, zones, Elastic(density=2000.0, E=1e7, nu=0.3))
+    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
+    m.fix(bottom)
+    m.fix(right, x=True, y=False)
+    m.settle()
+    side = right[np.argsort(xy[right, 1])][1:]  # the base gridpoint left out
+    with pytest.raises(FreeFieldError, match="free vertically"):
+        m.add_free_field([side])
+    m.add_free_field([right])  # the whole side is accepted

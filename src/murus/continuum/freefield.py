@@ -273,7 +273,8 @@ def build_free_field(model, sides, *, tol: float | None = None) -> FreeField:
     ------
     FreeFieldError
         A side that is not vertical, two of its gridpoints at one height, a side edge that is
-        not a boundary edge of one zone (key ``("side",)`` with the side's index first).
+        not a boundary edge of one zone, a lowest gridpoint free vertically (the column would
+        fall) (key ``("side",)`` with the side's index first).
     """
     xy = model.gxy
     size = float(np.ptp(xy, axis=0).max())
@@ -286,12 +287,14 @@ def build_free_field(model, sides, *, tol: float | None = None) -> FreeField:
             a, b = int(zg[z, c]), int(zg[z, (c + 1) % 4])
             edge_zone[(a, b)] = z
     zstress = model.zone_stress()
-    cols = []
-    for s, side in enumerate(sides):
+    chains = []
+    for s, side in enumerate(sides):  # the geometry of every side first
         try:
-            g = _side_chain(xy, side, tol)
+            chains.append(_side_chain(xy, side, tol))
         except FreeFieldError as exc:
             raise FreeFieldError(f"side {s}: {exc}", key=(s,) + exc.key) from None
+    cols = []
+    for s, g in enumerate(chains):
         n = g.size
         mats = np.zeros(n, np.int64)
         sig = np.zeros((n, 4))
@@ -323,6 +326,11 @@ def build_free_field(model, sides, *, tol: float | None = None) -> FreeField:
         # the column: driven where the side is driven by the base; the bottom node keeps a
         # fixity of the side; every other node is free (the column carries itself)
         gf = model.gfix[g]
+        if gf[0, 1] == 0:
+            raise FreeFieldError(f"side {s}: its lowest gridpoint {int(g[0])} is free "
+                                 "vertically: the column would fall under gravity (give the "
+                                 "whole side, its base gridpoint included, fixed or moved by "
+                                 "the base)", key=(s, "side"))
         fix = np.where(gf == 2, 2, 0).astype(np.int64)
         fix[0] = gf[0]
         cols.append((g, xy[g, 1].copy(), mass, fix, lens, nrm, sig, mats))
