@@ -3,6 +3,8 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 TSTAMP := $(VENV)/.installed-test
+# pytest-xdist workers for `make test` (0: one process)
+TEST_WORKERS ?= 2
 
 .PHONY: demo test validate bench lint clean
 
@@ -23,7 +25,7 @@ demo: $(STAMP)
 
 test: $(TSTAMP)
 	$(BIN)/python -m ruff check src tests benchmarks validation
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadgroup
 
 validate: $(TSTAMP)
 	$(BIN)/python validation/run.py --out VALIDATION.md

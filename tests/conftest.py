@@ -4,6 +4,32 @@ import pytest
 
 DATA = Path(__file__).parent / "data"
 
+#: Test folders that ``make test`` (pytest-xdist, ``--dist loadgroup``) runs on one worker each:
+#: their first tests compile large numba kernels (the coupled model's step inlines the continuum,
+#: interface and DEM kernels: minutes, cold), which two workers would otherwise compile twice at
+#: the same time on the machine's two cores.
+XDIST_GROUPS = ("tests/continuum/",)
+
+
+@pytest.hookimpl(tryfirst=True, optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """The loadgroup schedule with the folders of ``XDIST_GROUPS`` as groups. Grouping by
+    ``xdist_group`` marks added at collection does not work with pytest 9.2 (pytest-xdist 3.8
+    groups by rewriting node ids, which pytest 9.2 no longer reads: pytest-xdist issue #1386),
+    so the scheduler groups by node id itself."""
+    if config.getoption("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    class FolderGroups(LoadGroupScheduling):
+        def _split_scope(self, nodeid):
+            for folder in XDIST_GROUPS:
+                if nodeid.startswith(folder):
+                    return folder
+            return super()._split_scope(nodeid)
+
+    return FolderGroups(config, log)
+
 
 @pytest.fixture
 def data_dir() -> Path:
