@@ -155,40 +155,52 @@ def run(
 
 def _run_dem(case: Path, out: Path, figure: bool, progress: bool) -> None:
     """The DEM branch of ``murus run``."""
+    from murus.dem import case as module
+
+    _run_blocks(case, out, figure, progress, module, coupled=False)
+
+
+def _run_blocks(case: Path, out: Path, figure: bool, progress: bool, module,
+                coupled: bool) -> None:
+    """``murus run`` of a case run by the DEM engine: blocks (:mod:`murus.dem.case`) or blocks
+    and zones (:mod:`murus.continuum.coupled_case`, ``coupled``); ``module`` gives
+    ``load_case``, ``build``, ``output_names``, ``run_case``, ``summary_line`` and
+    ``write_outputs``."""
     from murus.config import CaseError
-    from murus.dem.case import build, load_case, output_names, run_case, summary_line, write_outputs
     from murus.outputs import OutputError, check_dir
 
     try:
         check_dir(out)
-        cfg, path, text = load_case(case)
-        built = build(cfg, path, text)
-        check_dir(out, output_names(figure and built.figure))  # before the run
+        cfg, path, text = module.load_case(case)
+        built = module.build(cfg, path, text)
+        figure = figure and (cfg.dem.output.figure if coupled else built.figure)
+        check_dir(out, module.output_names(figure))  # before the run
     except OutputError as exc:
         _out_error(exc)
     except CaseError as exc:
         fail(cliutil.error_line(exc))
     from murus.progress import LazyProgress
 
+    settle = built.blocks.settle if coupled else built.settle
     error = None
     with LazyProgress(f"{case.name}", unit="steps", quiet=not progress) as bar:
-        bar.update(0, info="settling" if built.settle is not None else "")
+        bar.update(0, info="settling" if settle is not None else "")
         try:
-            res = run_case(built, progress=lambda d, t: bar.update(d, t, info="run"))
+            res = module.run_case(built, progress=lambda d, t: bar.update(d, t, info="run"))
         except ValueError as exc:
             error = f"{case.name}: {str(exc).splitlines()[0]}"
     if error is not None:
         fail(error)
-    if res.result.status == "unstable":
+    if res.result.status == "unstable" and not coupled:
         fail(f"{case.name}: {res.result.message}")
     try:
-        write_outputs(res, out, figure=figure and built.figure)
+        module.write_outputs(res, out, figure=figure)
     except OutputError as exc:
         _out_error(exc)
-    typer.echo(f"{summary_line(case.name, res)} -> {out}")
+    typer.echo(f"{module.summary_line(case.name, res)} -> {out}")
     if res.result.status == "interrupted":
         cliutil.failed(f"{case.name}: {res.result.message}; the results up to then are in {out} "
-                       "(summary.json status 'interrupted'); a DEM run restarts from the "
+                       "(summary.json status 'interrupted'); the run restarts from the "
                        "beginning: run the same command again", code=130)
     if not res.ok:
         # the job did not succeed: its outputs say so (summary.json "ok": false), exit 1
@@ -240,42 +252,9 @@ def _run_continuum(case: Path, out: Path, figure: bool, progress: bool) -> None:
 
 def _run_coupled(case: Path, out: Path, figure: bool, progress: bool) -> None:
     """The blocks-and-zones branch of ``murus run`` (:mod:`murus.continuum.coupled_case`)."""
-    from murus.config import CaseError
-    from murus.continuum import coupled_case as CC
-    from murus.outputs import OutputError, check_dir
+    from murus.continuum import coupled_case as module
 
-    try:
-        check_dir(out)
-        cfg, path, text = CC.load_case(case)
-        figure = figure and cfg.dem.output.figure
-        check_dir(out, CC.output_names(figure))
-        built = CC.build(cfg, path, text)
-    except OutputError as exc:
-        _out_error(exc)
-    except CaseError as exc:
-        fail(cliutil.error_line(exc))
-    from murus.progress import LazyProgress
-
-    error = None
-    with LazyProgress(f"{case.name}", unit="steps", quiet=not progress) as bar:
-        bar.update(0, info="settling" if built.blocks.settle is not None else "")
-        try:
-            res = CC.run_case(built, progress=lambda d, t: bar.update(d, t, info="run"))
-        except ValueError as exc:
-            error = f"{case.name}: {str(exc).splitlines()[0]}"
-    if error is not None:
-        fail(error)
-    try:
-        CC.write_outputs(res, out, figure=figure)
-    except OutputError as exc:
-        _out_error(exc)
-    typer.echo(f"{CC.summary_line(case.name, res)} -> {out}")
-    if res.result.status == "interrupted":
-        cliutil.failed(f"{case.name}: {res.result.message}; the results up to then are in {out} "
-                       "(summary.json status 'interrupted')", code=130)
-    if not res.ok:
-        typer.echo(f"error: {case.name}: {res.result.status}: {res.result.message}", err=True)
-        raise typer.Exit(code=1)
+    _run_blocks(case, out, figure, progress, module, coupled=True)
 
 
 def _examples_dir(given: Path | None) -> Path | None:

@@ -781,11 +781,10 @@ def write_outputs(run: CaseRun, out: Path, figure: bool = True) -> Path:
 
 def summary_line(name: str, run: CaseRun) -> str:
     """One line for the terminal."""
+    from murus.dem.case import summary_parts
+
     s = run.summary()
-    vals = ", ".join(f"{k} = {v:.4g}" for k, v in s["final"].items())
-    reason = s["status"] + (f" ({s['stop']})" if s["status"] == "stopped" else "")
-    if not s["ok"] and s["message"]:
-        reason += f" ({s['message']})"
+    reason, vals = summary_parts(s)
     return (f"{name}: {s['bodies']} bodies and {s['zones']} zones, {s['t_end']:.4g} s simulated "
             f"in {s['steps']} steps, {reason}, {s['plastic_zones']} zones yielding"
             + (f", {vals}" if vals else ""))

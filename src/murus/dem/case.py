@@ -926,9 +926,16 @@ def write_outputs(run: CaseRun, out: Path, figure: bool = True) -> Path:
 
 def summary_line(name: str, run: CaseRun) -> str:
     s = run.summary()
+    reason, vals = summary_parts(s)
+    return (f"{name}: {s['t_end']:.4g} s simulated in {s['steps']} steps, {reason}"
+            + (f", {vals}" if vals else ""))
+
+
+def summary_parts(s: dict) -> tuple[str, str]:
+    """The status with its reason, and the final monitor values, of a run's summary (its
+    ``status``, ``stop``, ``ok``, ``message`` and ``final``), for the terminal line."""
     vals = ", ".join(f"{k} = {v:.4g}" for k, v in s["final"].items())
     reason = s["status"] + (f" ({s['stop']})" if s["status"] == "stopped" else "")
     if not s["ok"] and s["message"]:
         reason += f" ({s['message']})"
-    return (f"{name}: {s['t_end']:.4g} s simulated in {s['steps']} steps, {reason}"
-            + (f", {vals}" if vals else ""))
+    return reason, vals
