@@ -328,13 +328,18 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         base) or ``"absolute"`` (fixed frame, as UDEC/3DEC: "a force which is proportional to
         absolute velocity and mass", 3DEC 5.0 manual, Optional Features §2.2).
     backfill : str
-        ``"thrust"`` (the equivalent thrust on a wall with a backstop) or ``"discrete"`` (a
+        ``"thrust"`` (the equivalent thrust on a wall with a backstop), ``"discrete"`` (a
         disc backfill behind the wall, no backstop, no thrust:
-        :class:`~murus.retaining.backfill.DiscreteBackfill`); ``wall_time`` then includes the
-        generation and settling of the backfill, ``options["backfill_options"]`` its summary.
+        :class:`~murus.retaining.backfill.DiscreteBackfill`) or ``"continuum"`` (Mohr-Coulomb
+        zones behind the wall, the model of Savalle et al. (2022), §2:
+        :class:`~murus.retaining.continuum_backfill.ContinuumBackfill`, not yet validated
+        against the paper's tables); ``wall_time`` then includes the generation and settling
+        of the backfill, ``options["backfill_options"]`` its summary.
     backfill_options : dict, optional
-        Keywords of :class:`~murus.retaining.backfill.DiscreteBackfill`, e.g. ``W``,
-        ``boundary``, ``radius``.
+        Keywords of :class:`~murus.retaining.backfill.DiscreteBackfill` (``W``,
+        ``boundary``, ``radius``, ...) or of
+        :class:`~murus.retaining.continuum_backfill.ContinuumBackfill` (``W``, ``size``,
+        ``boundary``, ...).
     progress : callable, optional
         ``progress(t, t_end, info)``, called before the settling (t = 0, info
         ``"settling"``) and after each chunk of the run (model time t [s], info ``"run"``),
@@ -397,8 +402,9 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                 float(np.interp(t, tt, accv, right=0.0)))
 
     bmode = str(backfill).strip().lower()
-    if bmode not in ("thrust", "discrete"):
-        raise CollapseError(f"backfill must be 'thrust' or 'discrete', got {backfill!r}")
+    if bmode not in ("thrust", "discrete", "continuum"):
+        raise CollapseError(f"backfill must be 'thrust', 'discrete' or 'continuum', got "
+                            f"{backfill!r}")
     bf = None
     if bmode == "thrust":
         dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety, **(build or {}))
@@ -411,6 +417,22 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         if not st.converged:
             raise CollapseError(f"{wall.name}: the DEM wall does not settle under gravity and "
                                 f"the static thrust ({st.message})")
+    elif bmode == "continuum":
+        from murus.retaining.continuum_backfill import ContinuumBackfill
+
+        t0 = _time.perf_counter()
+        bf = ContinuumBackfill(wall, **dict({"stiffness_scale": stiffness_scale},
+                                            **(backfill_options or {})))
+        dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety,
+                        **dict(build or {}, backstop=False))
+        m = dw.model
+        thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=0.0)
+        if progress is not None:
+            progress(0.0, t_end, "settling")
+        st = bf.settle(dw, external=thrust)
+        if not st.converged:
+            raise CollapseError(f"{wall.name}: the wall and its continuum backfill do not "
+                                f"settle ({st.message})")
     else:
         from murus.retaining.backfill import DiscreteBackfill
 
@@ -427,7 +449,7 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     m.set_base_motion(gm)
     every = max(1, int(round(update_dt / m.dt)))
     external, ext_every = thrust, every
-    if bf is not None:
+    if bf is not None and bmode == "discrete":
         external, ext_every = bf.external(thrust), min(every, bf.interval(m))
 
     def d_top(model):
@@ -467,7 +489,7 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     bodies = m.body_of_polygon()
     # the polygons of the section (the container plate of an absorbing boundary, moved out of
     # reach, is left out) and the discs of a discrete backfill
-    shown = np.ones(bodies.size, bool) if bf is None or bf.absorbing is None else \
+    shown = np.ones(bodies.size, bool) if bmode != "discrete" or bf.absorbing is None else \
         bodies != bf.container
     polys = [q for q, k in zip(m.world_polygons(), shown, strict=True) if k]
     bodies = bodies[shown]

@@ -1,0 +1,225 @@
+"""A Mohr-Coulomb continuum backfill behind the DEM retaining wall, the model of Savalle et al.
+(2022), §2 (issue 18, first part): the stones are blocks, the backfill zones
+(:mod:`murus.continuum`), the wall-backfill interface the zone-block interface, all advanced in
+one time loop by the blocks' engine (:class:`murus.continuum.coupled.CoupledModel`).
+
+Geometry: the backfill region of the discrete backfill (:func:`murus.retaining.backfill.
+region_polygon`: heel, floor end at ``x_heel + W``, surface end, top of the back face), meshed
+into quadrilateral zones of about ``size`` (default ``H / 12``, 0.2 m for the 2.5 m walls of
+Savalle et al. (2022)); the mesh follows the wall's inclined back and a sloped surface.
+
+Material (Savalle et al. (2022), Table 6, full scale; Table 1 for the mock-ups): unit weight
+``wall.backfill_unit_weight``, E and nu of the table, friction ``wall.backfill_friction_deg``,
+zero cohesion and dilation, no tension, except the zones of the top row, which take a cohesion
+of 2 kPa ("an artificial thin cohesive layer ... cohesion of only 2 kPa", §2) so that the
+unconfined surface zones do not flow. Interface (Table 6 / Table 1): ``kn = ks`` of the table
+times ``stiffness_scale`` (the wall's joints take the same factor in
+:func:`murus.retaining.dem_wall.build_wall`), friction ``wall.interface_friction_deg``, no
+cohesion.
+
+Boundaries: the bottom gridpoints move with the base (the paper's "velocity of the bottom
+computational nodes ... fixed to match the dynamic solicitation"); the far side is on rollers
+during the static stage, then (``boundary``) a free-field column (default, the paper's) or a
+rigid side moving horizontally with the base (``"fixed"``). (Quiet dashpots alone are not
+offered: the zones' quiet boundary acts on the absolute velocity and would resist the rigid
+motion of the backfill with the base; the free-field column carries its dashpots relative to
+the column.)
+
+Initial state: K0 stresses (``nu / (1 - nu)``), then the coupled settling, elastic first then
+plastic (:meth:`~murus.continuum.coupled.CoupledModel.settle`), then the far side's dynamic
+boundary.
+
+Not yet validated against Savalle et al. (2022), Tables 3 and 7 (issue 18). A first run of DSRW1
+at 5 Hz (0.2 m zones, stiffness scale 1e-3) collapsed at A_col = 6.91 m/s² against the paper's
+5.38; with 0.1 m zones a zone next to the wall turned inside out at d_top = 0.38 m, before the
+0.5 m threshold (the Lagrangian mesh that follows the wall).
+
+Units: SI (m, kg, s, N, Pa; ``*_deg`` in degrees).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from murus import G
+from murus.errors import MurusError
+from murus.retaining.geometry import RetainingWall
+
+__all__ = ["ContinuumBackfillError", "ContinuumBackfill", "BOUNDARIES", "CRUST_COHESION"]
+
+#: Far-side boundaries during the dynamic run.
+BOUNDARIES = ("free-field", "fixed")
+#: Cohesion of the thin top layer [Pa] (Savalle et al. (2022), §2).
+CRUST_COHESION = 2.0e3
+#: Default zone size as a fraction of the wall height.
+SIZE_FRACTION = 1.0 / 12.0
+
+
+class ContinuumBackfillError(MurusError, ValueError):
+    """Invalid input to the continuum backfill (one-line message)."""
+
+
+class ContinuumBackfill:
+    """The continuum backfill of ``wall`` behind the DEM wall (module docstring).
+
+    Use: ``bf = ContinuumBackfill(wall)``; ``dw = build_wall(wall, backstop=False, ...)``;
+    ``bf.settle(dw)``; then run ``dw.model`` (the blocks' engine advances the zones too).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall; it needs a backfill (``backfill_unit_weight > 0``) with a planar surface.
+    W : float, optional
+        Width of the backfill behind the heel [m]; default ``2 H``.
+    size : float, optional
+        Target zone size [m]; default ``H / 12``.
+    boundary : str
+        Far side during the run: ``"free-field"`` or ``"fixed"``.
+    stiffness_scale : float
+        Factor on the interface stiffness of Savalle et al. (2022), Table 6 (Table 1 for the
+        mock-ups) [-]; the wall's.
+    crust_cohesion : float
+        Cohesion of the top row of zones [Pa].
+    E, nu : float, optional
+        Elastic constants of the backfill [Pa, -]; default Table 6 (Table 1 for the mock-ups).
+    settle_tol : float
+        Unbalanced-force ratio of the settling [-].
+    settle_steps : int
+        Largest number of steps of each stage of the settling.
+
+    Raises
+    ------
+    ContinuumBackfillError
+        Unknown boundary, no or broken backfill, a size, scale or cohesion out of range.
+
+    References
+    ----------
+    Savalle et al. (2022), §2, Tables 1 and 6; Itasca UDEC, Theory and Background.
+    """
+
+    def __init__(self, wall: RetainingWall, W: float | None = None, *,
+                 size: float | None = None, boundary: str = "free-field",
+                 stiffness_scale: float = 1e-3, crust_cohesion: float = CRUST_COHESION,
+                 E: float | None = None, nu: float | None = None, settle_tol: float = 1e-4,
+                 settle_steps: int = 200_000) -> None:
+        from murus.retaining.backfill import SEED_ELASTIC, SEED_INTERFACE_K, _is_mock
+
+        b = str(boundary).strip().lower()
+        if b not in BOUNDARIES:
+            raise ContinuumBackfillError(f"boundary must be one of {', '.join(BOUNDARIES)}, "
+                                         f"got {boundary!r}")
+        if wall.backfill_unit_weight <= 0:
+            raise ContinuumBackfillError(f"{wall.name}: backfill_unit_weight is 0 (no "
+                                         "backfill)")
+        if wall.backfill_profile is not None:
+            raise ContinuumBackfillError(f"{wall.name}: a broken backfill_profile is not "
+                                         "supported (planar surface at beta only)")
+        for name, v in (("stiffness_scale", stiffness_scale), ("size", size), ("W", W)):
+            if v is not None and not (math.isfinite(v) and v > 0):
+                raise ContinuumBackfillError(f"{name} must be positive, got {v!r}")
+        if not (math.isfinite(crust_cohesion) and crust_cohesion >= 0):
+            raise ContinuumBackfillError(f"crust_cohesion must be >= 0 [Pa], got "
+                                         f"{crust_cohesion!r}")
+        kind = "mockup" if _is_mock(wall) else "full"
+        e0, n0 = SEED_ELASTIC[kind]
+        self.wall = wall
+        self.W = 2.0 * wall.height if W is None else float(W)
+        self.size = SIZE_FRACTION * wall.height if size is None else float(size)
+        self.boundary = b
+        self.stiffness_scale = float(stiffness_scale)
+        self.crust_cohesion = float(crust_cohesion)
+        self.E = e0 if E is None else float(E)
+        self.nu = n0 if nu is None else float(nu)
+        self.k_interface = SEED_INTERFACE_K[kind] * self.stiffness_scale
+        self.settle_tol = float(settle_tol)
+        self.settle_steps = int(settle_steps)
+        self.mesh = None
+        self.zones = None
+        self.interface = None
+        self.coupled = None
+        self.settle_result = None
+
+    def _build(self, dw) -> None:
+        from murus.continuum import ContinuumModel, MohrCoulomb
+        from murus.continuum.coupled import CoupledModel
+        from murus.continuum.interface import Interface
+        from murus.continuum.mesh import polygon_region
+        from murus.dem import Joint
+        from murus.retaining.backfill import region_polygon
+
+        wall, m = self.wall, dw.model
+        mesh = polygon_region(region_polygon(wall, self.W), corners=(0, 1, 2, 3),
+                              size=self.size, name="backfill")
+        rho = wall.backfill_unit_weight / G
+        common = {"density": rho, "E": self.E, "nu": self.nu,
+                  "friction_deg": wall.backfill_friction_deg, "dilation_deg": 0.0}
+        soil = MohrCoulomb(cohesion=0.0, **common)
+        crust = MohrCoulomb(cohesion=self.crust_cohesion, **common)
+        # the top row of zones: the zones with a gridpoint on the surface
+        top = np.zeros(mesh.xy.shape[0], bool)
+        top[mesh.side("backfill.top")] = True
+        zmat = np.where(top[mesh.zones].any(axis=1), 1, 0)
+        zm = ContinuumModel(mesh.xy, mesh.zones, [soil, crust], zmat, gravity=m.gravity)
+        # the far side on rollers for the static stage (its dynamic boundary comes after);
+        # the bottom, its corners included, moves with the base
+        zm.fix(mesh.side("backfill.right"), x=True, y=False)
+        zm.set_base(mesh.side("backfill.bottom"))
+        joint = Joint(kn=self.k_interface, ks=self.k_interface,
+                      friction_deg=wall.interface_friction_deg)
+        back = mesh.side("backfill.left")
+        iface = Interface(zm, mesh.edges_of(back), m, joint)
+        self.mesh, self.zones, self.interface = mesh, zm, iface
+        self.coupled = CoupledModel(m, zm, iface)
+
+    def settle(self, dw, external=None):
+        """Build the zones and the interface on the wall ``dw``
+        (:class:`~murus.retaining.dem_wall.DemWall`, built with ``backstop=False``), set the
+        K0 stresses, settle blocks and zones (elastic, then plastic), then put the far side's
+        dynamic boundary.
+
+        Parameters
+        ----------
+        dw : murus.retaining.dem_wall.DemWall
+            The wall.
+        external : callable, optional
+            The blocks' external-force hook during the settling (the collapse protocol's zero
+            thrust, for its probes).
+
+        Returns
+        -------
+        murus.dem.engine.SettleResult
+        """
+        self._build(dw)
+        zm = self.zones
+        zm.initial_stress_k0()
+        st = self.coupled.settle(elastic_first=True, tol=self.settle_tol,
+                                 max_steps=self.settle_steps, external=external)
+        self.settle_result = st
+        right = self.mesh.side("backfill.right")
+        side = right[zm.gfix[right, 1] == 0]  # the far side above the base corner
+        if self.boundary == "free-field":
+            zm.add_free_field([right])
+        else:  # "fixed": a rigid side moving with the base
+            zm.set_base(side, x=True, y=False)
+        return st
+
+    def thrust(self) -> tuple[float, float]:
+        """The interface's force on the wall now: normal (horizontal for a vertical back) and
+        shear sums [N per metre of wall].
+
+        Returns
+        -------
+        tuple of float
+        """
+        return self.interface.normal_force(), self.interface.shear_force()
+
+    def summary(self) -> dict:
+        """JSON-ready description and measured values."""
+        zm = self.zones
+        return {"model": "continuum", "W": self.W, "size": self.size,
+                "boundary": self.boundary, "n_zones": None if zm is None else int(zm.nz),
+                "E": self.E, "nu": self.nu, "crust_cohesion": self.crust_cohesion,
+                "k_interface": self.k_interface,
+                "settle": None if self.settle_result is None else self.settle_result.message}

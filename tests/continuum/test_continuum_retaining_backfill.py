@@ -1,0 +1,58 @@
+"""The Mohr-Coulomb continuum backfill behind the DEM wall (murus.retaining.continuum_backfill;
+issue 18, first part). Conservation of energy over the stones, the zones and the interface of
+DSRW1 shaken near its pseudo-static resistance (plastic flow and slip at the interface); the
+collapse protocol runs with it; bad options are one-line errors. (Here, not in tests/retaining:
+the coupled kernels compile once, on the xdist worker of tests/continuum, tests/conftest.py.)"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from murus.retaining.collapse import CollapseError, collapse_run
+from murus.retaining.continuum_backfill import ContinuumBackfill, ContinuumBackfillError
+from murus.retaining.dem_wall import build_wall
+from murus.retaining.geometry import preset
+
+
+def test_dsrw1_on_a_continuum_backfill_balances_its_energy():
+    """DSRW1 (Savalle et al. (2022), Table 5) on a coarse backfill (0.5 m zones, W = 5 m,
+    free-field far side), settled, then shaken 1 s at 5 Hz (1.57 m/s², the wall's
+    pseudo-static resistance): the zones yield and the interface slips, and the balance of
+    stones, zones and interface closes within 1 % of the work of the base."""
+    wall = preset("DSRW1")
+    bf = ContinuumBackfill(wall, size=0.5)
+    dw = build_wall(wall, stiffness_scale=1e-3, backstop=False)
+    st = bf.settle(dw)
+    assert st.converged, st.message
+    assert bf.zones.ff.fy.size > 0  # the free-field column is in place after the settling
+    normal, shear = bf.thrust()
+    assert normal > 0.0 and abs(shear) <= normal * np.tan(np.radians(wall.interface_friction_deg))
+    m = dw.model
+    m.set_base_motion(velocity=lambda t: 0.05 * np.sin(2 * np.pi * 5.0 * t))
+    res = m.run(1.0, xi=0.1, freq=5.0)
+    assert res.status == "completed"
+    e = bf.coupled.energy()
+    put_in = e["base_work"] + e["zones_base_work"]
+    assert e["zones_plastic"] > 0.1 * put_in and e["interface_slip"] > 0.0
+    assert abs(e["error"]) < 0.01 * put_in
+
+
+def test_the_collapse_protocol_runs_on_the_continuum_backfill():
+    wall = preset("DSRW1")
+    res = collapse_run(wall, 5.0, backfill="continuum", t_max=0.5,
+                       backfill_options={"size": 0.5, "boundary": "fixed"})
+    assert res.status == "completed" and not res.collapsed
+    assert res.options["backfill"] == "continuum"
+    assert res.options["backfill_options"]["n_zones"] == 60
+    assert res.t[-1] == pytest.approx(0.5, abs=0.011)
+
+
+def test_bad_options_are_one_line_errors():
+    wall = preset("DSRW1")
+    with pytest.raises(ContinuumBackfillError, match="boundary"):
+        ContinuumBackfill(wall, boundary="quiet")
+    with pytest.raises(ContinuumBackfillError, match="size"):
+        ContinuumBackfill(wall, size=0.0)
+    with pytest.raises(CollapseError, match="continuum"):
+        collapse_run(wall, 5.0, backfill="soil")
