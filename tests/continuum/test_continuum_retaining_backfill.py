@@ -56,3 +56,17 @@ def test_bad_options_are_one_line_errors():
         ContinuumBackfill(wall, size=0.0)
     with pytest.raises(CollapseError, match="continuum"):
         collapse_run(wall, 5.0, backfill="soil")
+
+
+@pytest.mark.parametrize("args, msg", [(["--radius", "0.1"], "--radius needs"),
+                                       (["--boundary", "quiet"], "free-field, fixed")])
+def test_cli_refuses_options_of_another_backfill(tmp_path, args, msg):
+    from typer.testing import CliRunner
+
+    from murus.cli import app
+
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["retaining", "collapse", "--preset", "DSRW1", "--backfill",
+                                 "continuum", *args, "--out", str(out)])
+    assert r.exit_code == 2 and msg in r.output
+    assert not out.exists()

@@ -234,30 +234,36 @@ def collapse(
     backfill: str = typer.Option("thrust", "--backfill", help="'thrust': the equivalent EN "
                                  "1998-5 thrust on the back face (fast); 'discrete': a disc "
                                  "backfill behind the wall (minutes; murus.retaining.backfill "
-                                 "says when to use which)."),
-    width: float | None = typer.Option(None, "--width", help="With --backfill discrete: "
-                                       "backfill width W [m] (default 2 H: 5 m for the "
-                                       "Savalle et al. (2022) walls)."),
+                                 "says when to use which); 'continuum': Mohr-Coulomb zones "
+                                 "behind the wall, the paper's model (minutes; not yet "
+                                 "validated against its tables)."),
+    width: float | None = typer.Option(None, "--width", help="With --backfill discrete or "
+                                       "continuum: backfill width W [m] (default 2 H: 5 m "
+                                       "for the Savalle et al. (2022) walls)."),
     boundary: str | None = typer.Option(None, "--boundary", help="With --backfill discrete: "
                                         "lateral boundary, 'absorbing' (viscous; default "
                                         "at full scale, the paper's free field) or 'container' "
                                         "(a rigid plate moving with the base; default for the "
-                                        "mock-ups, tested in a box)."),
+                                        "mock-ups, tested in a box). With --backfill "
+                                        "continuum: 'free-field' (default) or 'fixed'."),
+    zone_size: float | None = typer.Option(None, "--zone-size", help="With --backfill "
+                                           "continuum: target zone size [m] (default H / 12)."),
     radius: float | None = typer.Option(None, "--radius", help="With --backfill discrete: "
                                         "mean disc radius [m] (default 0.016 H)."),
     damping_frame: str = typer.Option("base", "--damping-frame", help="Velocities the "
                                       "mass-proportional damping acts on: 'base' (relative to "
                                       "the base) or 'absolute' (as UDEC)."),
 ) -> None:
-    """S2 collapse run of the DEM wall with the equivalent thrust or a discrete backfill (seed
-    001 §4.2): writes d_top.csv (history), summary.json (A_col, t_col, A_pseudo, r) and
-    collapse.png (the blocks at the end of the run, coloured by their displacement relative
-    to the base)."""
+    """S2 collapse run of the DEM wall with the equivalent thrust, a discrete or a continuum
+    backfill (Savalle et al. (2022), §4.2): writes d_top.csv (history), summary.json (A_col,
+    t_col, A_pseudo, r) and collapse.png (the blocks at the end of the run, coloured by their
+    displacement relative to the base)."""
     from pathlib import Path
 
     from murus.progress import LazyProgress
     from murus.retaining.backfill import BackfillError
     from murus.retaining.collapse import collapse_run, peak_ratio_check
+    from murus.retaining.continuum_backfill import ContinuumBackfillError
 
     error = None
     try:
@@ -265,14 +271,22 @@ def collapse(
         wall = _dem_wall(preset_name, base, stone_height)
         kw = dict(stiffness_scale=stiffness_scale, xi=xi, threshold=threshold, t_max=t_max,
                   damping_frame=damping_frame, backfill=backfill)
-        opts = {k: v for k, v in (("W", width), ("boundary", boundary), ("radius", radius))
-                if v is not None}
-        if opts and backfill.strip().lower() != "discrete":
-            raise ValueError("--width, --boundary and --radius need --backfill discrete")
-        if backfill.strip().lower() == "discrete":
+        opts = {k: v for k, v in (("W", width), ("boundary", boundary), ("radius", radius),
+                                  ("size", zone_size)) if v is not None}
+        bmode = backfill.strip().lower()
+        if opts and bmode not in ("discrete", "continuum"):
+            raise ValueError("--width, --boundary, --radius and --zone-size need --backfill "
+                             "discrete or continuum")
+        if bmode == "discrete":
+            if "size" in opts:
+                raise ValueError("--zone-size needs --backfill continuum")
             mock = wall.name.lower().startswith("mockup")
             kw["backfill_options"] = dict(
                 {"boundary": "container" if mock else "absorbing"}, **opts)
+        elif bmode == "continuum":
+            if "radius" in opts:
+                raise ValueError("--radius needs --backfill discrete")
+            kw["backfill_options"] = opts
         with LazyProgress(f"collapse {wall.name} {frequency:g} Hz", unit="s") as bar:
             res = collapse_run(wall, frequency, vertical, progress=bar.update, **kw)
         checks = {}
@@ -281,7 +295,7 @@ def collapse(
                 checks = peak_ratio_check(wall, frequency, res.A_col, vertical=vertical,
                                           A_rate=res.A_rate, A_pseudo=res.A_pseudo,
                                           progress=bar.update, **kw)
-    except (*_collapse_errors(), BackfillError) as exc:
+    except (*_collapse_errors(), BackfillError, ContinuumBackfillError) as exc:
         error = exc
     except KeyboardInterrupt:
         from murus.cliutil import failed
