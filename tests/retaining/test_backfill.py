@@ -176,7 +176,7 @@ def test_collapse_run_rejects_unknown_backfill():
     from murus.retaining.collapse import CollapseError, collapse_run
 
     with pytest.raises(CollapseError, match="backfill"):
-        collapse_run(small_wall(), 5.0, backfill="continuum", A_pseudo=1.0)
+        collapse_run(small_wall(), 5.0, backfill="soil", A_pseudo=1.0)
 
 
 def test_collapse_run_with_discrete_backfill(small_wall_packing):
