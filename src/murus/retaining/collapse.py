@@ -417,35 +417,27 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         if not st.converged:
             raise CollapseError(f"{wall.name}: the DEM wall does not settle under gravity and "
                                 f"the static thrust ({st.message})")
-    elif bmode == "continuum":
-        from murus.retaining.continuum_backfill import ContinuumBackfill
+    else:
+        if bmode == "continuum":
+            from murus.retaining.continuum_backfill import ContinuumBackfill as Backfill
+        else:
+            from murus.retaining.backfill import DiscreteBackfill as Backfill
 
         t0 = _time.perf_counter()
-        bf = ContinuumBackfill(wall, **dict({"stiffness_scale": stiffness_scale},
-                                            **(backfill_options or {})))
+        bf = Backfill(wall, **dict({"stiffness_scale": stiffness_scale},
+                                   **(backfill_options or {})))
+        discs = {"add_bodies": bf.add_to} if bmode == "discrete" else {}
         dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety,
-                        **dict(build or {}, backstop=False))
+                        **dict(build or {}, backstop=False, **discs))
         m = dw.model
         thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=0.0)
         if progress is not None:
             progress(0.0, t_end, "settling")
         st = bf.settle(dw, external=thrust)
-        if not st.converged:
+        # (the disc backfill goes on with its dynamic relaxation when its settling stops short)
+        if bmode == "continuum" and not st.converged:
             raise CollapseError(f"{wall.name}: the wall and its continuum backfill do not "
                                 f"settle ({st.message})")
-    else:
-        from murus.retaining.backfill import DiscreteBackfill
-
-        t0 = _time.perf_counter()
-        bf = DiscreteBackfill(wall, **dict({"stiffness_scale": stiffness_scale},
-                                           **(backfill_options or {})))
-        dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety,
-                        **dict(build or {}, backstop=False, add_bodies=bf.add_to))
-        m = dw.model
-        thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=0.0)
-        if progress is not None:
-            progress(0.0, t_end, "settling")
-        st = bf.settle(dw, external=thrust)
     m.set_base_motion(gm)
     every = max(1, int(round(update_dt / m.dt)))
     external, ext_every = thrust, every
