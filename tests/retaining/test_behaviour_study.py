@@ -413,8 +413,35 @@ def test_discrete_backfill_options_reach_collapse_run():
         kw = st.case_kwargs(case, {"summary": {"A_col": 1.0, "A_rate": 1.0}})
         assert kw["backfill"] == "discrete"
         assert kw["backfill_options"] == {"W": 0.5, "boundary": "absorbing"}
-    with pytest.raises(CaseError, match=r"\[numerics\].*needs backfill = 'discrete'"):
+    with pytest.raises(CaseError, match=r"\[numerics\].*needs backfill = 'discrete' or"):
         behaviour_study(dict(base, numerics={"backfill_options": {"W": 0.5}}))
     with pytest.raises(CaseError, match=r"numerics.backfill_options.boundary"):
         behaviour_study(dict(base, numerics={"backfill": "discrete",
                                              "backfill_options": {"boundary": "wall"}}))
+
+
+def test_continuum_backfill_options_reach_collapse_run():
+    """[numerics] backfill = "continuum" (issue 18) and its options (W, size, boundary
+    free-field or fixed) go to every run's keyword arguments; an option of the disc backfill,
+    or its boundary, is refused with the key."""
+    from murus.config import CaseError
+    from murus.retaining.study import behaviour_study
+
+    base = {"wall": {"preset": "mockup-1.3", "stone_height": 0.011},
+            "cases": {"frequencies": [5.0]}}
+    st = behaviour_study(dict(base, numerics={
+        "backfill": "continuum", "backfill_options": {"W": 0.5, "size": 0.01,
+                                                      "boundary": "fixed"}}))
+    for case in st.tasks():
+        kw = st.case_kwargs(case, {"summary": {"A_col": 1.0, "A_rate": 1.0}})
+        assert kw["backfill"] == "continuum"
+        assert kw["backfill_options"] == {"W": 0.5, "size": 0.01, "boundary": "fixed"}
+    with pytest.raises(CaseError, match=r"radius: not an option of the continuum"):
+        behaviour_study(dict(base, numerics={"backfill": "continuum",
+                                             "backfill_options": {"radius": 0.01}}))
+    with pytest.raises(CaseError, match=r"takes free-field or fixed"):
+        behaviour_study(dict(base, numerics={"backfill": "continuum",
+                                             "backfill_options": {"boundary": "absorbing"}}))
+    with pytest.raises(CaseError, match=r"size: not an option of the discrete"):
+        behaviour_study(dict(base, numerics={"backfill": "discrete",
+                                             "backfill_options": {"size": 0.01}}))

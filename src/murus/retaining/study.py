@@ -57,6 +57,8 @@ Case file (TOML, ``examples/retaining/``)::
     # thrust_scale, vertical_ratio, damping_frame; [numerics.build]: build_wall options
     # backfill = "discrete"      # a disc backfill instead of the equivalent thrust, with
     # [numerics.backfill_options] W = 5.0, boundary = "absorbing", radius, spread, seed, rolling
+    # backfill = "continuum"     # Mohr-Coulomb zones (not yet validated), with
+    # [numerics.backfill_options] W = 5.0, size = 0.2, boundary = "free-field" | "fixed"
 
     [executor]                   # the CLI's --executor/--workers/--scheduler win
     kind = "process"             # serial | process | dask
@@ -192,15 +194,24 @@ class BuildCfg(Strict):
 
 
 class BackfillCfg(Strict):
-    """Options of :class:`murus.retaining.backfill.DiscreteBackfill` (None: its default);
-    used with ``backfill = "discrete"``."""
+    """Options of :class:`murus.retaining.backfill.DiscreteBackfill` (``backfill =
+    "discrete"``: W, boundary container or absorbing, radius, spread, seed, rolling) or of
+    :class:`murus.retaining.continuum_backfill.ContinuumBackfill` (``backfill = "continuum"``:
+    W, boundary free-field or fixed, size) (None: their defaults)."""
 
     W: float | None = Field(default=None, gt=0, **_FLOAT)
-    boundary: Literal["container", "absorbing"] | None = None
+    boundary: Literal["container", "absorbing", "free-field", "fixed"] | None = None
     radius: float | None = Field(default=None, gt=0, **_FLOAT)
     spread: float | None = Field(default=None, ge=0, lt=1, **_FLOAT)
     seed: int | None = Field(default=None, ge=0)
     rolling: float | None = Field(default=None, ge=0, **_FLOAT)
+    size: float | None = Field(default=None, gt=0, **_FLOAT)
+
+
+#: The options and the far-side boundaries of each backfill model (:class:`BackfillCfg`).
+BACKFILL_OPTIONS = {"discrete": ({"W", "boundary", "radius", "spread", "seed", "rolling"},
+                                 ("container", "absorbing")),
+                    "continuum": ({"W", "boundary", "size"}, ("free-field", "fixed"))}
 
 
 class NumericsCfg(Strict):
@@ -220,14 +231,26 @@ class NumericsCfg(Strict):
     thrust_scale: float | None = Field(default=None, ge=0, **_FLOAT)
     vertical_ratio: float | None = Field(default=None, gt=0, **_FLOAT)
     damping_frame: Literal["base", "absolute"] | None = None
-    backfill: Literal["thrust", "discrete"] | None = None
+    backfill: Literal["thrust", "discrete", "continuum"] | None = None
     build: BuildCfg = BuildCfg()
     backfill_options: BackfillCfg = BackfillCfg()
 
     @model_validator(mode="after")
     def _backfill_options(self):
-        if self.backfill != "discrete" and self.backfill_options.model_dump(exclude_none=True):
-            raise ValueError("[numerics.backfill_options] needs backfill = 'discrete'")
+        given = self.backfill_options.model_dump(exclude_none=True)
+        if not given:
+            return self
+        if self.backfill not in BACKFILL_OPTIONS:
+            raise ValueError("[numerics.backfill_options] needs backfill = 'discrete' or "
+                             "'continuum'")
+        keys, bounds = BACKFILL_OPTIONS[self.backfill]
+        extra = sorted(set(given) - keys)
+        if extra:
+            raise ValueError(f"[numerics.backfill_options] {', '.join(extra)}: not an option "
+                             f"of the {self.backfill} backfill ({', '.join(sorted(keys))})")
+        if given.get("boundary", bounds[0]) not in bounds:
+            raise ValueError(f"[numerics.backfill_options] boundary = {given['boundary']!r}: "
+                             f"the {self.backfill} backfill takes {' or '.join(bounds)}")
         return self
 
     def kwargs(self) -> dict:
