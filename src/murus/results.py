@@ -24,6 +24,8 @@ SciPy, ``scipy.integrate.solve_ivp`` (the ``OdeResult`` bunch: ``t``, ``status``
 from __future__ import annotations
 
 import warnings
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
 
 
 class Result:
@@ -49,6 +51,55 @@ class Result:
     def headline(self) -> str:
         """The one line that the CLI prints after a run (without the case name)."""
         return self.message
+
+
+@dataclass
+class RunHistory(Result):
+    """The sampled history of an explicit run (the distinct-element and continuum engines):
+    ``result[name]`` is ``values[name]``; :attr:`ok` and :attr:`success` are true for the
+    statuses in :attr:`OK`.
+
+    Attributes
+    ----------
+    t : ndarray
+        Sample times [s].
+    values : dict
+        name -> ndarray sampled at ``t``.
+    status : str
+        What ended the run.
+    message : str
+        One-line account of how the run ended (empty when completed).
+    steps : int
+        Steps taken by this call [-].
+    wall : float
+        Wall-clock time of this call [s].
+    dt : float
+        Time step [s].
+    """
+
+    #: The statuses that are a result.
+    OK: ClassVar[tuple[str, ...]] = ("completed",)
+
+    t: Any
+    values: dict = field(default_factory=dict)
+    status: str = "completed"
+    message: str = ""
+    steps: int = 0
+    wall: float = 0.0
+    dt: float = 0.0
+
+    def __getitem__(self, name):
+        return self.values[name]
+
+    @property
+    def ok(self) -> bool:
+        """True when the run reached its end (or its stop condition, where that counts)."""
+        return self.status in self.OK
+
+    @property
+    def success(self) -> bool:
+        """:attr:`ok`."""
+        return self.ok
 
 
 def deprecated_alias(new: str, old: str, since: str = "issue 16"):

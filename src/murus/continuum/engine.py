@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 import time as _time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -31,7 +31,7 @@ from murus.continuum import _kdata as kd
 from murus.continuum import kernels as K
 from murus.dem._kdata import Drive
 from murus.errors import MurusError
-from murus.results import Result
+from murus.results import Result, RunHistory
 
 __all__ = ["SettleResult", "RunResult", "RunError", "settle", "run", "unbalanced_ratio",
            "monitor_value"]
@@ -80,8 +80,9 @@ class SettleResult(Result):
 
 
 @dataclass
-class RunResult(Result):
-    """History of a dynamic run (:func:`run`); ``result[name]`` is ``values[name]``.
+class RunResult(RunHistory):
+    """History of a dynamic run (:func:`run`; :class:`murus.results.RunHistory`);
+    ``result[name]`` is ``values[name]``.
 
     Attributes
     ----------
@@ -105,21 +106,9 @@ class RunResult(Result):
         Zones times steps of this call [-].
     """
 
-    t: np.ndarray
-    values: dict = field(default_factory=dict)
-    status: str = "completed"
-    message: str = ""
-    steps: int = 0
-    wall: float = 0.0
-    dt: float = 0.0
+    OK = OK_STATUSES
+
     zone_updates: int = 0
-
-    def __getitem__(self, name):
-        return self.values[name]
-
-    @property
-    def success(self) -> bool:
-        return self.status in OK_STATUSES
 
 
 def unbalanced_ratio(m) -> float:

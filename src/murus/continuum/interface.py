@@ -131,6 +131,7 @@ from murus.dem.kernels import (
     _joint_law,
     _released,
     _store,
+    merge_contacts,
     point_separation,
     shape_boxes,
 )
@@ -315,7 +316,7 @@ def candidates(geo, gxy, shapes, margin):
 @njit(cache=True, error_model="numpy")
 def transfer(old, new_pairs, ns, jsel, sgroup, bond_new):
     """The contacts of a new pair list, carrying the slots of the pairs present in the old
-    one too (merge on sorted keys, as :func:`murus.dem.kernels.transfer`).
+    one too (:func:`murus.dem.kernels.merge_contacts`, as the blocks' transfer).
 
     Parameters
     ----------
@@ -341,30 +342,11 @@ def transfer(old, new_pairs, ns, jsel, sgroup, bond_new):
     ----------
     Itasca UDEC, Theory and Background (contact detection with a margin).
     """
-    old_pairs = old.pairs
     n = new_pairs.shape[0]
-    nold = old_pairs.shape[0]
-    sid = np.full((n, 2), -1, np.int64)
-    sf = np.zeros((n, 2, NSF))
-    sbr = np.zeros((n, 2), np.int8)
-    pbond = np.zeros(n, np.int8)
     pj = np.empty(n, np.int64)
-    i = 0
     for k in range(n):
-        key = new_pairs[k, 0] * ns + new_pairs[k, 1]
         pj[k] = jsel[sgroup[new_pairs[k, 1]]]
-        while i < nold and old_pairs[i, 0] * ns + old_pairs[i, 1] < key:
-            i += 1
-        if i < nold and old_pairs[i, 0] * ns + old_pairs[i, 1] == key:
-            pbond[k] = old.pbond[i]
-            for o in range(2):
-                sid[k, o] = old.sid[i, o]
-                sbr[k, o] = old.sbr[i, o]
-                for f in range(NSF):
-                    sf[k, o, f] = old.sf[i, o, f]
-        else:
-            pbond[k] = bond_new
-    return Contacts(new_pairs, pj, pbond, sid, sf, sbr)
+    return merge_contacts(old, new_pairs, ns, pj, bond_new)
 
 
 @njit(cache=True, error_model="numpy")

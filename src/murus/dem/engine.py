@@ -60,7 +60,7 @@ import signal
 import threading
 import time as _time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -68,7 +68,7 @@ import numpy as np
 from murus import threads as _threads
 from murus.dem import _kdata as kd
 from murus.dem import kernels as K
-from murus.results import Result
+from murus.results import Result, RunHistory
 
 __all__ = ["OVERLAP_LIMIT", "RunResult", "SettleResult", "body_sizes", "overlap_fraction",
            "Probe", "body_probe", "relative_probe", "tilt_probe", "stop_when", "stable_dt",
@@ -291,8 +291,8 @@ class SettleResult(Result):
 
 
 @dataclass
-class RunResult(Result):
-    """History of a dynamic run of :func:`run`.
+class RunResult(RunHistory):
+    """History of a dynamic run of :func:`run` (:class:`murus.results.RunHistory`).
 
     ``result[name]`` is ``values[name]``; :attr:`ok` (or :attr:`success`,
     :class:`murus.results.Result`) is true for the statuses ``completed`` and ``stopped``.
@@ -320,27 +320,9 @@ class RunResult(Result):
         Time step [s].
     """
 
-    t: np.ndarray
-    values: dict = field(default_factory=dict)
-    status: str = "completed"
-    message: str = ""
-    steps: int = 0
-    wall: float = 0.0
+    OK = OK_STATUSES
+
     contact_updates: int = 0
-    dt: float = 0.0
-
-    def __getitem__(self, name):
-        return self.values[name]
-
-    @property
-    def ok(self) -> bool:
-        """True when the run reached its end or its stop condition."""
-        return self.status in OK_STATUSES
-
-    @property
-    def success(self) -> bool:
-        """True when the run reached its end or its stop condition (:attr:`ok`)."""
-        return self.ok
 
 
 # ---------------------------------------------------------------------- time step

@@ -303,25 +303,34 @@ def transfer(old, new_pairs, sgroup, jtab, bond_new):
     the pairs present in both it and ``old`` (merge on sorted keys); the joint of a pair from
     the groups ``sgroup`` of its shapes and the table ``jtab``; new pairs start bonded when
     ``bond_new`` is 1."""
+    n = new_pairs.shape[0]
+    pj = np.empty(n, np.int64)
+    for k in range(n):
+        pj[k] = jtab[sgroup[new_pairs[k, 0]], sgroup[new_pairs[k, 1]]]
+    return merge_contacts(old, new_pairs, sgroup.size, pj, bond_new)
+
+
+@njit(cache=True, error_model="numpy")
+def merge_contacts(old, new_pairs, ns, pj, bond_new):
+    """The :class:`Contacts` of the pair list ``new_pairs`` (rows (a, b) sorted by the key
+    ``a * ns + b``) with joint rows ``pj``, carrying the slots, broken flags and bond of the
+    pairs present in ``old`` too (merge on sorted keys); new pairs start bonded when
+    ``bond_new`` is 1. The blocks' :func:`transfer` and the zone-block interface's
+    (:func:`murus.continuum.interface.transfer`) share it."""
     old_pairs = old.pairs
     old_sid = old.sid
     old_sf = old.sf
     old_sbr = old.sbr
     old_pbond = old.pbond
-    ns = sgroup.size
     n = new_pairs.shape[0]
     nold = old_pairs.shape[0]
     sid = np.full((n, 2), -1, np.int64)
     sf = np.zeros((n, 2, NSF))
     sbr = np.zeros((n, 2), np.int8)
     pbond = np.zeros(n, np.int8)
-    pj = np.empty(n, np.int64)
     i = 0
     for k in range(n):
-        a = new_pairs[k, 0]
-        b = new_pairs[k, 1]
-        key = a * ns + b
-        pj[k] = jtab[sgroup[a], sgroup[b]]
+        key = new_pairs[k, 0] * ns + new_pairs[k, 1]
         while i < nold and old_pairs[i, 0] * ns + old_pairs[i, 1] < key:
             i += 1
         if i < nold and old_pairs[i, 0] * ns + old_pairs[i, 1] == key:
