@@ -11,22 +11,72 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
+#: Field of a record holding the key of the engine's source that computed it.
+ENGINE_FIELD = "_engine_source"
 
-def _readable(path: Path) -> bool:
+
+#: Modules that do not compute (command lines, figures, case files, verification tables),
+#: left out of :func:`source_key` unless named.
+NOT_ENGINE = ("cli.py", "plots.py", "vtk.py", "case.py", "coupled_case.py", "verify.py",
+              "study.py", "closed_forms.py")
+
+
+def source_key(*packages: str, root: Path | None = None,
+               exclude: tuple[str, ...] = NOT_ENGINE) -> str:
+    """A short hash of the source of ``packages`` (sub-packages of murus, e.g. ``"dem"``,
+    ``"continuum"``, or modules, ``"motion/synthetic.py"``): the syntax tree of every module
+    with its docstrings removed, so that a change of code recomputes the cached runs and a
+    change of documentation or comments does not. Modules of a package named in ``exclude``
+    are left out. ``root``: the folder holding the packages (default this checkout's
+    ``src/murus``)."""
+    import ast
+    import hashlib
+
+    src = Path(__file__).resolve().parents[1] / "src" / "murus" if root is None else Path(root)
+    h = hashlib.sha256()
+    for pkg in sorted(packages):
+        base = src / pkg
+        if base.is_dir():
+            files = [f for f in sorted(base.rglob("*.py")) if f.name not in exclude]
+        else:
+            files = [base if pkg.endswith(".py") else src / f"{pkg}.py"]
+        for f in files:
+            tree = ast.parse(f.read_text())
+            for node in ast.walk(tree):
+                body = getattr(node, "body", None)
+                if (isinstance(body, list) and body and isinstance(body[0], ast.Expr)
+                        and isinstance(body[0].value, ast.Constant)
+                        and isinstance(body[0].value.value, str)):
+                    body[0] = ast.Pass()
+            h.update(str(f.relative_to(src)).encode())
+            h.update(ast.dump(tree).encode())
+    return h.hexdigest()[:16]
+
+
+def _readable(path: Path, engine: str | None = None) -> bool:
     try:
-        json.loads(path.read_text())
+        rec = json.loads(path.read_text())
     except (OSError, ValueError):
         return False
-    return True
+    return engine is None or (isinstance(rec, dict) and rec.get(ENGINE_FIELD) == engine)
+
+
+def _stamp(path: Path, engine: str) -> None:
+    rec = json.loads(path.read_text())
+    rec[ENGINE_FIELD] = engine
+    tmp = path.with_suffix(".json.tmp")
+    tmp.write_text(json.dumps(rec))
+    tmp.replace(path)
 
 
 def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool = False,
-           jobs: int = 1) -> dict[str, dict]:
+           jobs: int = 1, engine: str | None = None) -> dict[str, dict]:
     """The records ``cache/KEY.json`` of ``keys``; ``compute(key)`` (a module-level function
     that writes that file) runs for the missing or unreadable ones (all of them with
-    ``recompute``). A run that raises is reported after the others finished
-    (``RuntimeError``); Ctrl-C raises ``KeyboardInterrupt`` within about a second."""
-    todo = [k for k in keys if recompute or not _readable(cache / f"{k}.json")]
+    ``recompute``), and with ``engine`` (a :func:`source_key`) for those computed by another
+    engine, each record then stamped with it. A run that raises is reported after the others
+    finished (``RuntimeError``); Ctrl-C raises ``KeyboardInterrupt`` within about a second."""
+    todo = [k for k in keys if recompute or not _readable(cache / f"{k}.json", engine)]
     if todo:
         os.environ.setdefault("NUMBA_NUM_THREADS", "1")
         from murus.progress import progress
@@ -35,6 +85,8 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
         kind = "process" if jobs > 1 and len(todo) > 1 else "serial"
         with progress(len(todo), f"  runs in {cache.name}", unit="runs") as p:
             def done(i, _res):
+                if engine is not None:
+                    _stamp(cache / f"{todo[i]}.json", engine)
                 print(f"  computed {todo[i]}", file=sys.stderr, flush=True)
                 p.advance()
 

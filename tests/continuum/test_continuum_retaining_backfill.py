@@ -48,6 +48,26 @@ def test_the_collapse_protocol_runs_on_the_continuum_backfill():
     assert res.t[-1] == pytest.approx(0.5, abs=0.011)
 
 
+def test_the_collapse_result_carries_the_zones_at_the_end():
+    """The deformed mesh and the plastic state of the shaking (not of the settling) come back
+    with the run, for the collapse figure; the crust's cohesion scales with the height."""
+    wall = preset("DSRW1")
+    res = collapse_run(wall, 5.0, backfill="continuum", t_max=0.2,
+                       backfill_options={"size": 0.5})
+    assert res.zone_cells.shape == (60, 4) and res.zone_xy.shape[1] == 2
+    assert res.zone_state.shape == (60,)
+    # the wedge behind the wall is at the active limit after the settling: the first cycles
+    # make it yield (bit 4, shear in the past), the zones far from the wall stay elastic
+    assert 0 < np.count_nonzero(res.zone_state & 4) < 60
+    # the settling's own yield is forgotten: no past-yield bit right after it
+    bf = ContinuumBackfill(wall, size=0.5)
+    bf.settle(build_wall(wall, stiffness_scale=1e-3, backstop=False))
+    assert not (bf.zones.zstate & 12).any()
+    assert res.options["backfill_options"]["crust_cohesion"] == pytest.approx(2.0e3)
+    mock = preset("mockup-2.7")
+    assert ContinuumBackfill(mock).crust_cohesion == pytest.approx(2.0e3 * mock.height / 2.5)
+
+
 def test_bad_options_are_one_line_errors():
     wall = preset("DSRW1")
     with pytest.raises(ContinuumBackfillError, match="boundary"):

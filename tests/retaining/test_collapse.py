@@ -210,3 +210,49 @@ def test_table4_derived_values():
         assert float(r["num_A_fail_m_s2"]) == pytest.approx(
             3.2 * (1 + float(r["error_pct"]) / 100), abs=0.006)
     assert float(rows[0]["num_A_fail_m_s2"]) == pytest.approx(2.6, abs=0.05)
+
+
+def test_ensemble_perturbs_the_time_step_and_takes_the_median(wall, a_pseudo, strong):
+    """Issue 18, item 6: the nominal run of an ensemble is the single run bit for bit (so the
+    shipped command lies within the stated range), the others have their time step scaled by
+    DT_FACTORS (the stable step is proportional to the safety factor), and the median and
+    range are those of the runs' A_col."""
+    from murus.retaining.collapse import DT_FACTORS, XI_SAVALLE, collapse_ensemble
+
+    ens = collapse_ensemble(wall, 5.0, runs=3, A_pseudo=a_pseudo, t_max=2.0, **KW)
+    assert ens.factors == DT_FACTORS[:3]
+    nom = ens.nominal
+    assert np.array_equal(nom.d_top, strong.d_top) and nom.A_col == strong.A_col
+    for f, r in zip(ens.factors, ens.results, strict=True):
+        assert r.dt == pytest.approx(f * nom.dt, rel=1e-12)
+        assert r.collapsed
+    a = sorted(r.A_col for r in ens.results)
+    assert ens.median == a[1] and ens.range == (a[0], a[2])
+    s = ens.summary()
+    assert s["A_col"] == nom.A_col and s["A_col_median"] == a[1]
+    assert [x["dt_factor"] for x in s["runs"]] == list(DT_FACTORS[:3])
+    # the damping of Savalle et al. (2022), §3.1: 5 % of critical, unless given
+    assert nom.options["xi"] == XI_SAVALLE == 0.05
+    with pytest.raises(CollapseError, match="runs"):
+        collapse_ensemble(wall, 5.0, runs=len(DT_FACTORS) + 1, **KW)
+    with pytest.raises(CollapseError, match="xi"):
+        collapse_run(wall, 5.0, xi=-0.1, **KW)
+
+
+def test_cli_runs_option(tmp_path):
+    from murus.cli import app
+
+    runner = CliRunner()
+    out = tmp_path / "run"
+    args = ["retaining", "collapse", "--preset", "mockup-1.3", "--stone-height", "0.011",
+            "--stiffness-scale", "1e-4", "--t-max", "0.2", "--frequency", "5", "--out",
+            str(out)]
+    res = runner.invoke(app, args + ["--runs", "2"])
+    assert res.exit_code == 0, res.output
+    s = json.loads((out / "summary.json").read_text())
+    assert [r["dt_factor"] for r in s["runs"]] == [1.0, 0.95]
+    assert s["A_col_median"] is None and "median A_col" in res.output  # no collapse: inf
+    for bad in ("0", "6"):
+        res = runner.invoke(app, args[:-1] + [str(tmp_path / "bad"), "--runs", bad])
+        assert res.exit_code == 2 and "--runs" in res.output
+        assert len(res.output.strip().splitlines()) == 1 and not (tmp_path / "bad").exists()

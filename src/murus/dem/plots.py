@@ -79,7 +79,7 @@ def plot_blocks(
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     if values is not None and cols:
-        ax.figure.colorbar(cols[0][0], ax=ax, label=label)
+        ax.figure.colorbar(cols[0][0], ax=ax, label=label, shrink=0.8)
     return ax
 
 

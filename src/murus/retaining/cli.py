@@ -208,8 +208,9 @@ _STIFF = typer.Option(1e-3, "--stiffness-scale", help="Multiplies the joint stif
                       "Savalle et al. (2022), Table 6 (2.8e12 Pa/m); the time step grows as its "
                       "inverse "
                       "square root.")
-_XI = typer.Option(0.10, "--xi", help="Mass-proportional damping ratio at the input "
-                   "frequency (Savalle et al. (2022), Table 6: 10 %).")
+_XI = typer.Option(0.05, "--xi", help="Mass-proportional damping, fraction of critical at "
+                   "the input frequency (Savalle et al. (2022), §3.1 and §4.1: 5 %, which its "
+                   "Tables 1 and 6 print as the 10 % given to UDEC).")
 _THR = typer.Option(None, "--threshold", help="Collapse when d_top exceeds this fraction of H "
                     "(default 0.2; 0.05 for mock-ups).")
 _TMAX = typer.Option(None, "--t-max", help="End of an S2 run without collapse [s] (default "
@@ -253,6 +254,12 @@ def collapse(
     damping_frame: str = typer.Option("base", "--damping-frame", help="Velocities the "
                                       "mass-proportional damping acts on: 'base' (relative to "
                                       "the base) or 'absolute' (as UDEC)."),
+    runs: int = typer.Option(1, "--runs", help="Number of runs with the time step perturbed "
+                             "(100, 95, 90, 85, 80 % of the nominal one; at most 5): "
+                             "summary.json adds the median A_col and its range; the files "
+                             "of the nominal run are written."),
+    workers: int = typer.Option(1, "--workers", help="With --runs: processes running them "
+                                "(one numba thread each)."),
 ) -> None:
     """S2 collapse run of the DEM wall with the equivalent thrust, a discrete or a continuum
     backfill (Savalle et al. (2022), §4.2): writes d_top.csv (history), summary.json (A_col,
@@ -262,7 +269,12 @@ def collapse(
 
     from murus.progress import LazyProgress
     from murus.retaining.backfill import BackfillError
-    from murus.retaining.collapse import collapse_run, peak_ratio_check
+    from murus.retaining.collapse import (
+        DT_FACTORS,
+        collapse_ensemble,
+        collapse_run,
+        peak_ratio_check,
+    )
     from murus.retaining.continuum_backfill import ContinuumBackfillError
 
     error = None
@@ -287,8 +299,25 @@ def collapse(
             if "radius" in opts:
                 raise ValueError("--radius needs --backfill discrete")
             kw["backfill_options"] = opts
-        with LazyProgress(f"collapse {wall.name} {frequency:g} Hz", unit="s") as bar:
-            res = collapse_run(wall, frequency, vertical, progress=bar.update, **kw)
+        if not 1 <= runs <= len(DT_FACTORS):
+            raise ValueError(f"--runs must be from 1 to {len(DT_FACTORS)}, got {runs}")
+        if workers < 1:
+            raise ValueError(f"--workers must be >= 1, got {workers}")
+        ens = None
+        if runs == 1:
+            with LazyProgress(f"collapse {wall.name} {frequency:g} Hz", unit="s") as bar:
+                res = collapse_run(wall, frequency, vertical, progress=bar.update, **kw)
+        else:
+            if workers > 1:
+                import os
+
+                os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+            with LazyProgress(f"collapse {wall.name} {frequency:g} Hz, {runs} runs",
+                              unit="runs" if workers > 1 else "s") as bar:
+                ens = collapse_ensemble(wall, frequency, vertical, runs=runs,
+                                        executor="process" if workers > 1 else None,
+                                        workers=workers, progress=bar.update, **kw)
+            res = ens.nominal
         checks = {}
         if check_peak and res.collapsed:
             with LazyProgress("S1 checks at 0.6 and 0.7 A_col", unit="s") as bar:
@@ -304,7 +333,7 @@ def collapse(
                "run the same command again)", code=130)
     if error is not None:
         _fail(error)
-    summary = res.summary()
+    summary = res.summary() if ens is None else ens.summary()
     if check_peak:
         summary["peak_checks"] = {f"{r:g}": {"a_peak": c.a_peak, "stable": c.stable,
                                              "d_top_max": float(max(c.d_top)),
@@ -325,7 +354,8 @@ def collapse(
         (tmp / "summary.json").write_text(dumps(summary))
         ax = plot_collapse(res.polygons, res.displacement, (res.disc_centres, res.disc_radii),
                            res.disc_displacement,
-                           f"{wall.name}, {frequency:g} Hz, vertical {res.vertical}: {state}")
+                           f"{wall.name}, {frequency:g} Hz, vertical {res.vertical}: {state}",
+                           zones=(res.zone_xy, res.zone_cells, res.zone_state))
         ax.figure.savefig(tmp / "collapse.png", dpi=120)
         plt.close(ax.figure)
     if res.collapsed:
@@ -335,6 +365,11 @@ def collapse(
     else:
         typer.echo(f"{wall.name} {frequency:g} Hz ({res.vertical}): no collapse up to "
                    f"t = {res.t_end:.2f} s; {res.wall_time:.1f} s")
+    if ens is not None:
+        lo, hi = ens.range
+        typer.echo(f"  {runs} runs (time step x {', '.join(f'{f:g}' for f in ens.factors)}): "
+                   f"median A_col = {ens.median:.3f} m/s2, range {lo:.3f} to {hi:.3f} m/s2 "
+                   "(inf: no collapse)")
     for r, c in checks.items():
         typer.echo(f"  S1 at {r:g} A_col: {'stable' if c.stable else 'collapsed'}")
     typer.echo(f"wrote {d / 'd_top.csv'}, {d / 'summary.json'}, {d / 'collapse.png'}")

@@ -29,8 +29,16 @@ Protocol (Savalle et al. (2022), §4.2-4.3):
 Sign of the horizontal input: ``a_x > 0`` is a base acceleration into the backfill, whose
 inertia on the wall acts out of the slope (``kh = a_x / g``); S(t) starts with that sign.
 
-Numerics (documented choices): mass-proportional damping ``xi = 10 %`` (Savalle et al. (2022), Table
-6: 5 % doubled because only the mass-proportional part is used) at the input frequency, on the
+Numerics (documented choices): mass-proportional damping of ``xi = 5 %`` of critical at the input
+frequency (:data:`XI_SAVALLE`), the effective damping of Savalle et al. (2022): "a damping value
+zeta of 5 % is considered ... Since only the mass-proportional part of the Rayleigh damping is
+used, a multiplicative factor of 2 is applied to the chosen value to ensure appropriate effective
+damping (5 %) at the critical frequency" (§3.1; §4.1 the same). Tables 1 and 6 print the 10 % given
+to UDEC, whose Rayleigh input (xi_min, f_min) sets ``alpha = xi_min omega_min``: its mass term
+alone damps ``alpha / (2 omega) = xi_min / 2`` at ``f_min``. murus's ``xi`` is the fraction of
+critical itself (``alpha = 2 xi omega``), so the paper's damping is ``xi = 0.05`` (before issue 18
+murus used 0.10, twice the paper's damping: DSRW1 at 5 Hz on the continuum backfill collapsed at
+6.91 instead of 5.92 m/s²). The damping acts on the
 velocity relative to the base (``damping_frame="base"``; ``"absolute"`` damps the velocity in
 the fixed frame, as UDEC does, so that it also resists the motion of the wall with the
 ground); joint stiffness of Table 6 times ``stiffness_scale`` (default
@@ -62,7 +70,12 @@ from murus.retaining.geometry import RetainingWall
 
 __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES",
            "pseudo_static_resistance", "ramp_rate", "collapse_run", "peak_ratio_check",
-           "failure_mode", "plot_collapse", "behaviour_factor", "SEED_TABLE7"]
+           "failure_mode", "plot_collapse", "behaviour_factor", "SEED_TABLE7", "XI_SAVALLE",
+           "DT_FACTORS", "CollapseEnsemble", "collapse_ensemble"]
+
+#: Mass-proportional damping of Savalle et al. (2022), fraction of critical at the input frequency
+#: (§3.1 and §4.1: 5 %, given to UDEC as 10 % because the mass term alone gives half of it).
+XI_SAVALLE = 0.05
 
 #: Vertical components: none, in phase, in opposition (Savalle et al. (2022), §4.3, ratio 0.5).
 VERTICAL_MODES = ("none", "in_phase", "opposition")
@@ -189,6 +202,10 @@ class CollapseResult:
         Their radii [m], shape (n,).
     disc_displacement : numpy.ndarray
         Their displacement magnitude relative to the base [m], shape (n,).
+    zone_xy, zone_cells, zone_state : numpy.ndarray
+        Zones of a continuum backfill at the end: gridpoint coordinates [m] (ng, 2), the
+        gridpoints of each zone (nz, 4) and its plastic state (nz,) (bits: 1 shear now,
+        2 tension now, 4 shear past, 8 tension past).
 
     References
     ----------
@@ -227,6 +244,10 @@ class CollapseResult:
     disc_centres: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)), repr=False)
     disc_radii: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     disc_displacement: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    zone_xy: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)), repr=False)
+    zone_cells: np.ndarray = field(default_factory=lambda: np.zeros((0, 4), np.int64),
+                                   repr=False)
+    zone_state: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64), repr=False)
 
     @property
     def stable(self) -> bool:
@@ -237,7 +258,7 @@ class CollapseResult:
         d = {k: v for k, v in asdict(self).items()
              if k not in ("t", "d_top", "acc", "acc_v", "kh", "kv", "polygons", "displacement",
                           "rotation", "setup_time", "disc_centres", "disc_radii",
-                          "disc_displacement")}
+                          "disc_displacement", "zone_xy", "zone_cells", "zone_state")}
         d["d_top_max"] = float(np.nanmax(self.d_top)) if self.d_top.size else math.nan
         d["A_peak"] = 0.6 * self.A_col if self.collapsed else math.nan
         d["r"] = d["A_peak"] / self.A_pseudo if self.collapsed else math.nan
@@ -261,7 +282,7 @@ def _threshold(wall: RetainingWall, fraction: float | None) -> float:
 def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", *,
                  signal: str = "S2", A_rate: float | None = None, a_peak: float | None = None,
                  t_pseudo: float = 2.5, t_max: float | None = None, tail: float = 1.0,
-                 threshold: float | None = None, xi: float = 0.10,
+                 threshold: float | None = None, xi: float | None = None,
                  stiffness_scale: float = 1e-3, safety: float = 0.2, update_dt: float = 1e-3,
                  sample_dt: float = 0.01, motion_dt: float = 1e-3, thrust_scale: float = 1.0,
                  vertical_ratio: float = 0.5, assumptions=None, build: dict | None = None,
@@ -296,9 +317,9 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     threshold : float, optional
         Collapse threshold on ``d_top`` as a fraction of the height H [-]; default 0.2
         (0.05 for the mock-ups, whose name starts with "mockup").
-    xi : float
-        Mass-proportional damping ratio at ``frequency`` [-] (Savalle et al. (2022), Table 6,
-        doubled).
+    xi : float, optional
+        Mass-proportional damping, fraction of critical at ``frequency`` [-]; default
+        :data:`XI_SAVALLE` (5 %, the effective damping of Savalle et al. (2022), §3.1, §4.1).
     stiffness_scale : float
         Factor on the joint stiffness of Table 6 [-]; passed to
         :func:`~murus.retaining.dem_wall.build_wall`.
@@ -365,6 +386,10 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     """
     from murus.dem.engine import stop_when
     from murus.motion.synthetic import harmonic_ramp, two_ramp
+
+    xi = XI_SAVALLE if xi is None else float(xi)
+    if not (math.isfinite(xi) and 0 <= xi < 1):
+        raise CollapseError(f"xi must be in [0, 1), got {xi!r}")
     from murus.retaining.dem_wall import EquivalentThrust, build_wall
 
     f = float(frequency)
@@ -499,19 +524,36 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     opts["backfill"] = bmode
     if bf is not None:
         opts["backfill_options"] = bf.summary()
+    zones = {}
+    if bmode == "continuum":
+        zm = bf.zones
+        zones = dict(zone_xy=zm.gxy.copy(), zone_cells=zm.zg.copy(),
+                     zone_state=zm.plastic_state().copy())
     return CollapseResult(wall.name, f, vmode, sig, A, float(A_pseudo), ap, thr, wall.height,
                           collapsed, t_col, A_col, float(m.time), t, d, acc, acc_v,
                           res["kh"], res["kv"], polys, dmag, wall_time, res.steps, res.dt,
                           res.status, opts, rot[bodies], mode, setup_time, centres, radii,
-                          ddisc)
+                          ddisc, **zones)
 
 
 def plot_collapse(polygons, displacement, discs=None, disc_displacement=None, title="",
-                  ax=None):
+                  ax=None, zones=None):
     """The stones (and the discs of a discrete backfill) at the end of a collapse run, coloured
     by their displacement relative to the base [m], to scale: ``polygons`` (k, 2) vertex
-    arrays [m], ``discs`` ``(centres (n, 2), radii (n,))`` [m]. Returns the Axes."""
+    arrays [m], ``discs`` ``(centres (n, 2), radii (n,))`` [m]; ``zones`` ``(xy, cells,
+    state)`` of a continuum backfill, drawn deformed and coloured by their plastic state
+    (:func:`murus.continuum.plots.plot_plastic_state`). Returns the Axes."""
     from murus.dem.plots import plot_blocks
+
+    if zones is not None and len(zones[1]):
+        from murus.continuum.plots import plot_plastic_state
+
+        if ax is None:
+            import matplotlib.pyplot as plt
+
+            _, ax = plt.subplots(figsize=(10.0, 3.8), layout="constrained")
+        ax = plot_plastic_state(zones[0], zones[1], zones[2], ax=ax)
+        ax.get_legend().set_title("backfill zones\n(plastic during the run)")
 
     values = np.asarray(displacement, float)
     if discs is not None and len(discs[1]):
@@ -584,6 +626,130 @@ def _map(executor: Executor | None, jobs):
         return [_case(j) for j in jobs]
     futs = [executor.submit(_case, j) for j in jobs]
     return [fu.result() for fu in futs]
+
+
+#: Factors on the time-step safety of the runs of a collapse ensemble (the first is the nominal
+#: run, the one a single :func:`collapse_run` makes): time steps 100, 95, 90, 85 and 80 % of it.
+DT_FACTORS = (1.0, 0.95, 0.90, 0.85, 0.80)
+
+
+@dataclass
+class CollapseEnsemble:
+    """The same collapse run with perturbed numerics (issue 18, item 6): a single run of a
+    chaotic collapse is sensitive to the time step (DSRW1 at 3 Hz on the equivalent thrust
+    moved by 6 % with a 10 % smaller step), so a value worth quoting is the median of several
+    runs with its range.
+
+    Attributes
+    ----------
+    results : list of CollapseResult
+        The runs, in the order of ``factors``; ``results[0]`` is the nominal run.
+    factors : tuple of float
+        Factor on the time-step safety of each run [-].
+    """
+
+    results: list[CollapseResult]
+    factors: tuple
+
+    @property
+    def A_col(self) -> np.ndarray:
+        """A_col of each run [m/s²]; ``inf`` for a run that did not collapse."""
+        return np.array([r.A_col if r.collapsed else math.inf for r in self.results])
+
+    @property
+    def median(self) -> float:
+        """Median A_col [m/s²] (``inf`` when half of the runs or more did not collapse)."""
+        return float(np.median(self.A_col))
+
+    @property
+    def range(self) -> tuple[float, float]:
+        """Smallest and largest A_col [m/s²]."""
+        a = self.A_col
+        return float(a.min()), float(a.max())
+
+    @property
+    def nominal(self) -> CollapseResult:
+        return self.results[0]
+
+    def summary(self) -> dict:
+        """JSON-ready: the nominal run's summary, with ``A_col_median``, ``A_col_min``,
+        ``A_col_max``, the A_col, t_col, mode, time step and wall time of each run."""
+        d = self.nominal.summary()
+        lo, hi = self.range
+        med = self.median
+        d.update(A_col_median=med, A_col_min=lo, A_col_max=hi,
+                 r_median=0.6 * med / self.nominal.A_pseudo,
+                 runs=[{"dt_factor": f, "A_col": r.A_col if r.collapsed else None,
+                        "t_col": r.t_col if r.collapsed else None, "mode": r.mode,
+                        "dt": r.dt, "steps": r.steps, "wall_time": r.wall_time}
+                       for f, r in zip(self.factors, self.results, strict=True)])
+        return d
+
+
+def collapse_ensemble(wall: RetainingWall, frequency: float, vertical: str = "none", *,
+                      runs: int = 5, executor: Executor | str | None = None,
+                      workers: int | None = None, **kw) -> CollapseEnsemble:
+    """:func:`collapse_run` ``runs`` times with the time step perturbed (its safety factor
+    times :data:`DT_FACTORS`): the median A_col and its range (issue 18, item 6).
+
+    Parameters
+    ----------
+    wall : RetainingWall
+        The wall.
+    frequency : float
+        [Hz].
+    vertical : str
+        Vertical component.
+    runs : int
+        Number of runs, 1 to ``len(DT_FACTORS)``; the first is the nominal run.
+    executor : concurrent.futures.Executor or str, optional
+        Where the runs go: default one after the other here; an Executor; or ``"serial"``,
+        ``"process"`` or ``"dask"`` (:func:`murus.studies.sweep.run_tasks`, which stops
+        within seconds on Ctrl-C).
+    workers : int, optional
+        Workers of a ``"process"`` or ``"dask"`` executor.
+    **kw
+        Keywords of :func:`collapse_run` (``safety`` is the nominal one; ``progress`` reports
+        each run here, or the runs done on an executor given by name).
+
+    Returns
+    -------
+    CollapseEnsemble
+
+    Raises
+    ------
+    CollapseError
+        If ``runs`` is out of range, or as :func:`collapse_run`.
+    """
+    n = int(runs)
+    if not 1 <= n <= len(DT_FACTORS) or n != runs:
+        raise CollapseError(f"runs must be an integer from 1 to {len(DT_FACTORS)}, got "
+                            f"{runs!r}")
+    safety = float(kw.pop("safety", 0.2))
+    prog = kw.pop("progress", None)
+    factors = DT_FACTORS[:n]
+    jobs = [(wall, frequency, vertical, dict(kw, safety=safety * f)) for f in factors]
+    if isinstance(executor, str):
+        from murus.studies.sweep import run_tasks
+
+        got: dict[int, CollapseResult] = {}
+        fails = run_tasks(_case, list(enumerate(jobs)), executor, workers=workers,
+                          retries=0, on_result=lambda i, r: got.__setitem__(i, r),
+                          progress=None if prog is None else
+                          (lambda done, total, _f: prog(done, total, "runs")))
+        if fails:
+            i, f = min(fails.items())
+            raise CollapseError(f"{wall.name}: run {i + 1} of the ensemble failed: "
+                                f"{f['error']}")
+        results = [got[i] for i in range(n)]
+    elif executor is None and prog is not None:
+        results = []
+        for i, j in enumerate(jobs):
+            j[3]["progress"] = (lambda t, te, info, i=i: prog(t, te, f"run {i + 1}/{n} {info}"))
+            results.append(_case(j))
+    else:
+        results = _map(executor, jobs)
+    return CollapseEnsemble(results, factors)
 
 
 @dataclass

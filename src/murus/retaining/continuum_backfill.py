@@ -47,12 +47,16 @@ from murus import G
 from murus.errors import MurusError
 from murus.retaining.geometry import RetainingWall
 
-__all__ = ["ContinuumBackfillError", "ContinuumBackfill", "BOUNDARIES", "CRUST_COHESION"]
+__all__ = ["ContinuumBackfillError", "ContinuumBackfill", "BOUNDARIES", "CRUST_COHESION",
+           "CRUST_HEIGHT"]
 
 #: Far-side boundaries during the dynamic run.
 BOUNDARIES = ("free-field", "fixed")
-#: Cohesion of the thin top layer [Pa] (Savalle et al. (2022), §2).
+#: Cohesion of the thin top layer [Pa] (Savalle et al. (2022), §2), for a wall of height
+#: :data:`CRUST_HEIGHT`; scaled with the height for others (see :class:`ContinuumBackfill`).
 CRUST_COHESION = 2.0e3
+#: Height of the full-scale walls of Savalle et al. (2022) [m] (Table 5).
+CRUST_HEIGHT = 2.5
 #: Default zone size as a fraction of the wall height.
 SIZE_FRACTION = 1.0 / 12.0
 
@@ -80,8 +84,12 @@ class ContinuumBackfill:
     stiffness_scale : float
         Factor on the interface stiffness of Savalle et al. (2022), Table 6 (Table 1 for the
         mock-ups) [-]; the wall's.
-    crust_cohesion : float
-        Cohesion of the top row of zones [Pa].
+    crust_cohesion : float, optional
+        Cohesion of the top row of zones [Pa]; default 2 kPa (the paper's, §2) times
+        ``H / 2.5 m``: at 1 g stresses scale with the size, so the crust keeps its role
+        (holding the unconfined surface zones, carrying little of the thrust) on a mock-up,
+        for which the paper gives no value (2 kPa over a top row of 8 mm would carry a shear
+        force of the order of the whole thrust on the 92 mm mock-up).
     E, nu : float, optional
         Elastic constants of the backfill [Pa, -]; default Table 6 (Table 1 for the mock-ups).
     settle_tol : float
@@ -101,7 +109,7 @@ class ContinuumBackfill:
 
     def __init__(self, wall: RetainingWall, W: float | None = None, *,
                  size: float | None = None, boundary: str = "free-field",
-                 stiffness_scale: float = 1e-3, crust_cohesion: float = CRUST_COHESION,
+                 stiffness_scale: float = 1e-3, crust_cohesion: float | None = None,
                  E: float | None = None, nu: float | None = None, settle_tol: float = 1e-4,
                  settle_steps: int = 200_000) -> None:
         from murus.retaining.backfill import SEED_ELASTIC, SEED_INTERFACE_K, _is_mock
@@ -119,6 +127,8 @@ class ContinuumBackfill:
         for name, v in (("stiffness_scale", stiffness_scale), ("size", size), ("W", W)):
             if v is not None and not (math.isfinite(v) and v > 0):
                 raise ContinuumBackfillError(f"{name} must be positive, got {v!r}")
+        if crust_cohesion is None:
+            crust_cohesion = CRUST_COHESION * wall.height / CRUST_HEIGHT
         if not (math.isfinite(crust_cohesion) and crust_cohesion >= 0):
             raise ContinuumBackfillError(f"crust_cohesion must be >= 0 [Pa], got "
                                          f"{crust_cohesion!r}")
@@ -197,6 +207,11 @@ class ContinuumBackfill:
         st = self.coupled.settle(elastic_first=True, tol=self.settle_tol,
                                  max_steps=self.settle_steps, external=external)
         self.settle_result = st
+        # the plastic state reported after the run is the one of the shaking: the settling's
+        # yield (K0 to the active state at the wall, the crust) is forgotten (reporting only)
+        from murus.continuum import kernels as K
+
+        zm.zstate[:] &= K.ST_SHEAR_NOW | K.ST_TENSION_NOW
         right = self.mesh.side("backfill.right")
         side = right[zm.gfix[right, 1] == 0]  # the far side above the base corner
         if self.boundary == "free-field":

@@ -51,7 +51,7 @@ Case file (TOML, ``examples/retaining/``)::
     peak_ratio = 0.6                        # A_peak = peak_ratio A_col, r = A_peak / A_pseudo
 
     [numerics]                   # keyword arguments of collapse_run (defaults there)
-    xi = 0.10
+    xi = 0.05
     stiffness_scale = 1e-3
     # t_pseudo, t_max, tail, threshold, safety, update_dt, sample_dt, motion_dt,
     # thrust_scale, vertical_ratio, damping_frame; [numerics.build]: build_wall options

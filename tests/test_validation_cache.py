@@ -1,0 +1,64 @@
+"""The cache of the long validation runs (validation/runcache.py) is keyed by the engine's
+source (issue 18, item 6): a change of code recomputes a run, a change of documentation or
+comments does not, and a record made by another engine is not read as current."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))
+import runcache  # noqa: E402
+
+CODE = '''"""Module doc."""
+
+
+def f(x):
+    """Doc of f."""
+    return 2 * x  # a comment
+'''
+
+
+def test_source_key_follows_code_not_documentation(tmp_path):
+    pkg = tmp_path / "eng"
+    pkg.mkdir()
+    (pkg / "a.py").write_text(CODE)
+    k0 = runcache.source_key("eng", root=tmp_path)
+    (pkg / "a.py").write_text(CODE.replace("Doc of f.", "Other words.")
+                              .replace("# a comment", "# another"))
+    assert runcache.source_key("eng", root=tmp_path) == k0
+    (pkg / "a.py").write_text(CODE.replace("2 * x", "3 * x"))
+    assert runcache.source_key("eng", root=tmp_path) != k0
+    (pkg / "a.py").write_text(CODE)
+    (pkg / "plots.py").write_text("Y = 1\n")  # not the engine
+    assert runcache.source_key("eng", root=tmp_path) == k0
+    (pkg / "b.py").write_text("Y = 1\n")
+    assert runcache.source_key("eng", root=tmp_path) != k0
+    assert runcache.source_key("eng/a.py", root=tmp_path) != runcache.source_key(
+        "eng", root=tmp_path)
+
+
+def _compute(key):  # writes the record, as a validation script's compute does
+    path = Path(_compute.cache) / f"{key}.json"
+    path.write_text(json.dumps({"key": key, "n": _compute.n}))
+    _compute.n += 1
+
+
+def test_a_record_of_another_engine_is_recomputed(tmp_path):
+    _compute.cache, _compute.n = str(tmp_path), 0
+    recs = runcache.ensure(["a"], _compute, tmp_path, engine="E1")
+    assert recs["a"]["n"] == 0 and recs["a"][runcache.ENGINE_FIELD] == "E1"
+    assert runcache.ensure(["a"], _compute, tmp_path, engine="E1")["a"]["n"] == 0  # cached
+    again = runcache.ensure(["a"], _compute, tmp_path, engine="E2")["a"]
+    assert again["n"] == 1 and again[runcache.ENGINE_FIELD] == "E2"
+
+
+def test_the_real_engine_key_is_stable():
+    k = runcache.source_key("dem", "continuum", "retaining", "motion/synthetic.py")
+    assert len(k) == 16 and k == runcache.source_key("motion/synthetic.py", "retaining",
+                                                     "continuum", "dem")
+    with pytest.raises(FileNotFoundError):
+        runcache.source_key("no_such_package_here")
