@@ -63,7 +63,18 @@ def test_the_collapse_result_carries_the_zones_at_the_end():
     bf = ContinuumBackfill(wall, size=0.5)
     bf.settle(build_wall(wall, stiffness_scale=1e-3, backstop=False))
     assert not (bf.zones.zstate & 12).any()
-    assert res.options["backfill_options"]["crust_cohesion"] == pytest.approx(2.0e3)
+    # the 17 mm layer's strength smeared over the top row: on DSRW1's flat surface the row's
+    # thickness is the mean vertical extent of its zones
+    xy, zg = bf.mesh.xy, bf.mesh.zones
+    row = np.isin(zg, bf.mesh.side("backfill.top")).any(axis=1)
+    t = np.ptp(xy[zg[row], 1], axis=1).mean()
+    assert bf.crust_row_cohesion == pytest.approx(2.0e3 * 0.017 / t, rel=0.02)
+    sn = np.sin(np.radians(wall.backfill_friction_deg))
+    n_phi = (1 + sn) / (1 - sn)
+    assert bf.zones.mprops[1, 5] == pytest.approx(2 * bf.crust_row_cohesion * np.sqrt(n_phi))
+    assert bf.zones.mprops[0, 5] == 0.0 and set(bf.zones.zmat[row]) == {1}
+    bo = res.options["backfill_options"]
+    assert bo["crust_cohesion"] == pytest.approx(2.0e3) and bo["crust_depth"] == 0.017
     mock = preset("mockup-2.7")
     assert ContinuumBackfill(mock).crust_cohesion == pytest.approx(2.0e3 * mock.height / 2.5)
 

@@ -10,8 +10,9 @@ Savalle et al. (2022)); the mesh follows the wall's inclined back and a sloped s
 
 Material (Savalle et al. (2022), Table 6, full scale; Table 1 for the mock-ups): unit weight
 ``wall.backfill_unit_weight``, E and nu of the table, friction ``wall.backfill_friction_deg``,
-zero cohesion and dilation, no tension, except the zones of the top row, which take a cohesion
-of 2 kPa ("an artificial thin cohesive layer ... cohesion of only 2 kPa", §2) so that the
+zero cohesion and dilation, no tension, except the zones of the top row, which take the
+strength of a layer of 2 kPa over 17 mm ("an artificial thin cohesive layer ... cohesion of only
+2 kPa with a tiny depth", §2; scaled with H for other walls, ``crust_*``) so that the
 unconfined surface zones do not flow. Interface (Table 6 / Table 1): ``kn = ks`` of the table
 times ``stiffness_scale`` (the wall's joints take the same factor in
 :func:`murus.retaining.dem_wall.build_wall`), friction ``wall.interface_friction_deg``, no
@@ -57,6 +58,9 @@ BOUNDARIES = ("free-field", "fixed")
 CRUST_COHESION = 2.0e3
 #: Height of the full-scale walls of Savalle et al. (2022) [m] (Table 5).
 CRUST_HEIGHT = 2.5
+#: Depth of the thin top layer [m] for a wall of height :data:`CRUST_HEIGHT`: "a tiny depth"
+#: (Savalle et al. (2022), §2), taken as one element of the paper's full-scale mesh (17 mm, §4.1).
+CRUST_DEPTH = 0.017
 #: Default zone size as a fraction of the wall height.
 SIZE_FRACTION = 1.0 / 12.0
 
@@ -85,11 +89,16 @@ class ContinuumBackfill:
         Factor on the interface stiffness of Savalle et al. (2022), Table 6 (Table 1 for the
         mock-ups) [-]; the wall's.
     crust_cohesion : float, optional
-        Cohesion of the top row of zones [Pa]; default 2 kPa (the paper's, §2) times
-        ``H / 2.5 m``: at 1 g stresses scale with the size, so the crust keeps its role
-        (holding the unconfined surface zones, carrying little of the thrust) on a mock-up,
-        for which the paper gives no value (2 kPa over a top row of 8 mm would carry a shear
-        force of the order of the whole thrust on the 92 mm mock-up).
+        Cohesion of the thin top layer [Pa]; default 2 kPa (the paper's, §2) times
+        ``H / 2.5 m`` (at 1 g stresses scale with the size).
+    crust_depth : float, optional
+        Depth of that layer [m]; default 17 mm times ``H / 2.5 m`` ("a tiny depth", §2: one
+        element of the paper's full-scale mesh, §4.1). The top row of zones, thicker than
+        that, takes the cohesion ``crust_cohesion * min(1, crust_depth / t)`` with ``t`` its
+        mean thickness: the same strength of the layer per metre of surface (cohesion times
+        depth) whatever the mesh, so that the layer does not stiffen the backfill more on a
+        coarser mesh (with the full 2 kPa on the 0.21 m top row of the default mesh, DSRW1 at
+        5 Hz collapsed 4 % later than without any crust).
     E, nu : float, optional
         Elastic constants of the backfill [Pa, -]; default Table 6 (Table 1 for the mock-ups).
     settle_tol : float
@@ -110,6 +119,7 @@ class ContinuumBackfill:
     def __init__(self, wall: RetainingWall, W: float | None = None, *,
                  size: float | None = None, boundary: str = "free-field",
                  stiffness_scale: float = 1e-3, crust_cohesion: float | None = None,
+                 crust_depth: float | None = None,
                  E: float | None = None, nu: float | None = None, settle_tol: float = 1e-4,
                  settle_steps: int = 200_000) -> None:
         from murus.retaining.backfill import SEED_ELASTIC, SEED_INTERFACE_K, _is_mock
@@ -129,6 +139,10 @@ class ContinuumBackfill:
                 raise ContinuumBackfillError(f"{name} must be positive, got {v!r}")
         if crust_cohesion is None:
             crust_cohesion = CRUST_COHESION * wall.height / CRUST_HEIGHT
+        if crust_depth is None:
+            crust_depth = CRUST_DEPTH * wall.height / CRUST_HEIGHT
+        if not (math.isfinite(crust_depth) and crust_depth >= 0):
+            raise ContinuumBackfillError(f"crust_depth must be >= 0 [m], got {crust_depth!r}")
         if not (math.isfinite(crust_cohesion) and crust_cohesion >= 0):
             raise ContinuumBackfillError(f"crust_cohesion must be >= 0 [Pa], got "
                                          f"{crust_cohesion!r}")
@@ -140,6 +154,8 @@ class ContinuumBackfill:
         self.boundary = b
         self.stiffness_scale = float(stiffness_scale)
         self.crust_cohesion = float(crust_cohesion)
+        self.crust_depth = float(crust_depth)
+        self.crust_row_cohesion = math.nan  # the top row's, set when built
         self.E = e0 if E is None else float(E)
         self.nu = n0 if nu is None else float(nu)
         self.k_interface = SEED_INTERFACE_K[kind] * self.stiffness_scale
@@ -166,11 +182,20 @@ class ContinuumBackfill:
         common = {"density": rho, "E": self.E, "nu": self.nu,
                   "friction_deg": wall.backfill_friction_deg, "dilation_deg": 0.0}
         soil = MohrCoulomb(cohesion=0.0, **common)
-        crust = MohrCoulomb(cohesion=self.crust_cohesion, **common)
-        # the top row of zones: the zones with a gridpoint on the surface
+        # the top row of zones: the zones with a gridpoint on the surface; the crust's
+        # strength per metre (cohesion x depth) smeared over the row's mean thickness
         top = np.zeros(mesh.xy.shape[0], bool)
         top[mesh.side("backfill.top")] = True
-        zmat = np.where(top[mesh.zones].any(axis=1), 1, 0)
+        row = top[mesh.zones].any(axis=1)
+        zmat = np.where(row, 1, 0)
+        q = mesh.xy[mesh.zones[row]]  # (n, 4, 2): the row's area over the surface's length
+        area = 0.5 * np.abs((q[..., 0] * np.roll(q[..., 1], -1, axis=1)
+                             - np.roll(q[..., 0], -1, axis=1) * q[..., 1]).sum(axis=1)).sum()
+        surf = mesh.xy[mesh.side("backfill.top")]
+        surf = surf[np.argsort(surf[:, 0])]
+        t_row = float(area / np.hypot(*np.diff(surf, axis=0).T).sum())
+        self.crust_row_cohesion = self.crust_cohesion * min(1.0, self.crust_depth / t_row)
+        crust = MohrCoulomb(cohesion=self.crust_row_cohesion, **common)
         zm = ContinuumModel(mesh.xy, mesh.zones, [soil, crust], zmat, gravity=m.gravity)
         # the far side on rollers for the static stage (its dynamic boundary comes after);
         # the bottom, its corners included, moves with the base
@@ -236,5 +261,6 @@ class ContinuumBackfill:
         return {"model": "continuum", "W": self.W, "size": self.size,
                 "boundary": self.boundary, "n_zones": None if zm is None else int(zm.nz),
                 "E": self.E, "nu": self.nu, "crust_cohesion": self.crust_cohesion,
+                "crust_depth": self.crust_depth, "crust_row_cohesion": self.crust_row_cohesion,
                 "k_interface": self.k_interface,
                 "settle": None if self.settle_result is None else self.settle_result.message}
