@@ -1,11 +1,12 @@
-"""Validation of the behaviour-factor study (issue 6 item 4; Savalle et al. (2022), §4.2-4.4, Tables
-7-8, Figure 14): the example case file ``examples/retaining/dsrw1_behaviour_factor.toml``
-(DSRW1: S2 at 3, 5, 10 Hz, at 5 Hz with a vertical component in phase and in opposition, and
-the S1 checks at 0.6 and 0.7 A_col of each) and DSRW2-DSRW4 at 5 Hz (S2 only), run by
-:func:`murus.retaining.study.run_behaviour_study` with the equivalent thrust.
+"""Validation of the behaviour-factor study (issue 6 item 4, issue 18; Savalle et al. (2022),
+§4.2-4.4, Tables 7-8, Figure 14): the example case files
+``examples/retaining/dsrw1_behaviour_factor.toml`` (DSRW1: S2 at 3, 5, 10 Hz, at 5 Hz with a
+vertical component in phase and in opposition, and the S1 checks at 0.6 and 0.7 A_col of
+each) and ``dsrw2..4_behaviour_factor.toml`` (5 Hz with its checks), run by
+:func:`murus.retaining.study.run_behaviour_study` on the continuum backfill of the paper.
 
-The study folders under ``validation/results/retaining_behaviour/`` are the cache: a study
-resumes there and computes only its missing cases (delete a folder to recompute it).
+The study folders under ``validation/results/retaining_behaviour/continuum/`` are the cache: a
+study resumes there and computes only its missing cases (delete a folder to recompute it).
 
 Usage::
 
@@ -21,31 +22,18 @@ import os
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-CACHE = ROOT / "validation" / "results" / "retaining_behaviour"
-EXAMPLE = ROOT / "examples" / "retaining" / "dsrw1_behaviour_factor.toml"
+CACHE = ROOT / "validation" / "results" / "retaining_behaviour" / "continuum"
+EXAMPLES = ROOT / "examples" / "retaining"
 DATA = ROOT / "tests" / "data" / "retaining" / "savalle2022_table8.csv"
-OTHERS = ("DSRW2", "DSRW3", "DSRW4")
-#: The study names the cached study folders were computed under. A study's name is part of its
-#: digest (murus.retaining.study.BehaviourStudy.digest), which a study folder must match, so
-#: these names stay as they were when the cache was made ("seed001" was the old handle of
-#: Savalle et al. (2022)); the example file itself is now named "dsrw1_behaviour_factor". The
-#: name changes no number: the digest of each run (case_digest) does not contain it.
-CACHE_NAMES = {"DSRW1": "seed001_dsrw1_behaviour_factor", "DSRW2": "seed001_dsrw2_5hz",
-               "DSRW3": "seed001_dsrw3_5hz", "DSRW4": "seed001_dsrw4_5hz"}
+WALLS = ("DSRW1", "DSRW2", "DSRW3", "DSRW4")
 
 
 def studies():
-    """name -> BehaviourStudy (named as in the cache, CACHE_NAMES)."""
-    import dataclasses
+    """name -> BehaviourStudy of the example case files."""
+    from murus.retaining.study import load_behaviour_study
 
-    from murus.retaining.study import behaviour_study, load_behaviour_study
-
-    out = {"DSRW1": dataclasses.replace(load_behaviour_study(EXAMPLE), name=CACHE_NAMES["DSRW1"])}
-    for w in OTHERS:
-        out[w] = behaviour_study({"study": {"name": CACHE_NAMES[w]},
-                                  "wall": {"preset": w},
-                                  "cases": {"frequencies": [5.0], "check_ratios": []}})
-    return out
+    return {w: load_behaviour_study(EXAMPLES / f"{w.lower()}_behaviour_factor.toml")
+            for w in WALLS}
 
 
 def run_all(workers: int = 1) -> dict:
@@ -83,15 +71,16 @@ def section(workers: int = 1) -> str:
             for r in _seed_rows()}
     L = ["## Dry-stone retaining walls: behaviour factor (Savalle et al. (2022), Tables 7-8, "
          "Figure 14)", ""]
-    L.append("The behaviour-factor study of `murus.retaining.study` on the example case file "
-             "`examples/retaining/dsrw1_behaviour_factor.toml` (DSRW1) and on DSRW2-4 "
-             "at 5 Hz, with the equivalent thrust and the numerics of the dynamic-collapse "
-             "section above (xi = 10 % on velocities relative to the base, joints at 1e-3 of "
-             "Table 6): S2 until d_top = 20 % H gives A_col, A_peak = 0.6 A_col, r = A_peak / "
-             "A_pseudo with the murus A_pseudo (limit equilibrium, same vertical component). "
-             "Produced by `python validation/retaining_behaviour.py` (the study folders in "
-             "`validation/results/retaining_behaviour/` are its cache); the same table comes "
-             "from `murus retaining behaviour-factor examples/retaining/"
+    L.append("The behaviour-factor study of `murus.retaining.study` on the example case files "
+             "`examples/retaining/dsrw1_behaviour_factor.toml` (DSRW1) and "
+             "`dsrw2..4_behaviour_factor.toml` (5 Hz), on the continuum backfill of the paper "
+             "with the numerics of the section *on the continuum backfill* below (one run per "
+             "case, the nominal one: the medians of five runs are there): S2 until d_top = 20 "
+             "% H gives A_col, A_peak = 0.6 A_col, r = A_peak / A_pseudo with the murus "
+             "A_pseudo (limit equilibrium, same vertical component). Produced by `python "
+             "validation/retaining_behaviour.py` (the study folders in "
+             "`validation/results/retaining_behaviour/continuum/` are its cache); the same table "
+             "comes from `murus retaining behaviour-factor examples/retaining/"
              "dsrw1_behaviour_factor.toml`.")
     L.append("")
     L.append("| wall | f [Hz] | vertical | seed A_col [m/s²] | murus A_col [m/s²] (error) | "
@@ -126,20 +115,12 @@ def section(workers: int = 1) -> str:
     if r1:
         L.append(f"- murus r of DSRW1 over its collapsed cases: mean {sum(r1) / len(r1):.2f}, "
                  f"minimum {min(r1):.2f} ({len(r1)} cases); Savalle et al. (2022) (DSRW1, Table "
-                 f"8): mean "
-                 f"2.08, minimum 1.83; over all the walls murus gives mean "
+                 f"8): mean 2.08, minimum 1.83; over all the walls murus gives mean "
                  f"{sum(r for _, r in rs) / len(rs):.2f}, minimum {min(r for _, r in rs):.2f}. "
-                 "The seed proposes r = 1.5 for design; the murus r is "
-                 f"{above}. It is higher than the paper's because its A_col is "
-                 "(dynamic-collapse section: the thrust without memory, the damping on the "
-                 "wall alone).")
+                 f"The seed proposes r = 1.5 for design; the murus r is {above}.")
     L.append("- S1 checks (seed Figure 14: stable at 0.6 A_col, collapsed at 0.7): the last "
-             "column gives the murus outcome; stable at 0.7 means that the wall of murus "
-             "survives a steady amplitude that made it collapse on the ramp: with the "
-             "equivalent thrust, nothing accumulates from one cycle to the next (no soil "
-             "fills the gap behind a wall that rocks back), so a long steady input does less "
-             "than the rising ramp, the opposite of the paper. 'skipped': the S2 run did not "
-             "collapse (no A_col to check).")
+             "column gives the murus outcome; 'skipped': the S2 run did not collapse (no A_col "
+             "to check).")
     order_s = sorted(a5, key=lambda w: -a5[w][0])
     order_m = sorted(a5, key=lambda w: -a5[w][1])
     L.append(f"- The walls at 5 Hz ranked by A_col: seed {' > '.join(order_s)}, murus "

@@ -53,6 +53,7 @@ def main() -> None:
     import restrained
     import retaining_backfill
     import retaining_behaviour
+    import retaining_continuum
     import retaining_dynamic
     import retaining_pseudostatic
     import rocking
@@ -68,6 +69,7 @@ def main() -> None:
                 ("retaining_dynamic", retaining_dynamic.section),
                 ("retaining_behaviour", retaining_behaviour.section),
                 ("retaining_backfill", retaining_backfill.section),
+                ("retaining_continuum", retaining_continuum.section),
                 ("studies", studies.section), ("identify", identify.section),
                 ("continuum", continuum.section)]
     parts = [HEADER]

@@ -204,10 +204,10 @@ _BIAXIAL_FILES = ["biaxial.png", "biaxial.svg", "biaxial.csv", "biaxial.json"]
 
 _STONE_H = typer.Option(None, "--stone-height", help="Course height [m] (needed for the "
                         "mock-ups, whose courses Savalle et al. (2022) does not give).")
-_STIFF = typer.Option(1e-3, "--stiffness-scale", help="Multiplies the joint stiffness of "
+_STIFF = typer.Option(None, "--stiffness-scale", help="Multiplies the joint stiffness of "
                       "Savalle et al. (2022), Table 6 (2.8e12 Pa/m); the time step grows as its "
-                      "inverse "
-                      "square root.")
+                      "inverse square root. Default 1e-2 with --backfill continuum (within 0.3 "
+                      "% of the printed stiffness's A_col), 1e-3 otherwise.")
 _XI = typer.Option(0.05, "--xi", help="Mass-proportional damping, fraction of critical at "
                    "the input frequency (Savalle et al. (2022), §3.1 and §4.1: 5 %, which its "
                    "Tables 1 and 6 print as the 10 % given to UDEC).")
@@ -227,7 +227,7 @@ def collapse(
     check_peak: bool = typer.Option(False, "--check-peak", help="Also run S1 at 0.6 and 0.7 "
                                     "A_col (Savalle et al. (2022), Figure 14)."),
     stone_height: float | None = _STONE_H,
-    stiffness_scale: float = _STIFF,
+    stiffness_scale: float | None = _STIFF,
     xi: float = _XI,
     threshold: float | None = _THR,
     t_max: float | None = _TMAX,

@@ -41,7 +41,8 @@ murus used 0.10, twice the paper's damping: DSRW1 at 5 Hz on the continuum backf
 6.91 instead of 5.92 m/s²). The damping acts on the
 velocity relative to the base (``damping_frame="base"``; ``"absolute"`` damps the velocity in
 the fixed frame, as UDEC does, so that it also resists the motion of the wall with the
-ground); joint stiffness of Table 6 times ``stiffness_scale`` (default
+ground); joint stiffness of Table 6 times ``stiffness_scale`` (:data:`STIFFNESS_SCALE`; for the
+equivalent thrust and the discs, default
 1e-3, so that a full-scale run takes about half a minute: the stones are nearly rigid either way,
 the elastic joint closure under the wall's weight is 2e-5 m at the default against a collapse
 threshold of 0.5 m); a kinematic backstop along the back face (the backfill cannot be
@@ -71,7 +72,13 @@ from murus.retaining.geometry import RetainingWall
 __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES",
            "pseudo_static_resistance", "ramp_rate", "collapse_run", "peak_ratio_check",
            "failure_mode", "plot_collapse", "behaviour_factor", "SEED_TABLE7", "XI_SAVALLE",
-           "DT_FACTORS", "CollapseEnsemble", "collapse_ensemble"]
+           "DT_FACTORS", "CollapseEnsemble", "collapse_ensemble", "STIFFNESS_SCALE"]
+
+#: Default factor on the joint stiffness of Savalle et al. (2022), Tables 1 and 6, per backfill
+#: model. Continuum: 1e-2, whose A_col is that of the stiffness as printed within 0.3 % (DSRW1 at
+#: 5 Hz: 6.15 against 6.14 m/s², where 1e-3 gives 5.92, -3.5 %; VALIDATION.md) at a third of its
+#: cost; the equivalent thrust and the disc backfill, validated at 1e-3, keep it.
+STIFFNESS_SCALE = {"thrust": 1e-3, "discrete": 1e-3, "continuum": 1e-2}
 
 #: Mass-proportional damping of Savalle et al. (2022), fraction of critical at the input frequency
 #: (§3.1 and §4.1: 5 %, given to UDEC as 10 % because the mass term alone gives half of it).
@@ -283,7 +290,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                  signal: str = "S2", A_rate: float | None = None, a_peak: float | None = None,
                  t_pseudo: float = 2.5, t_max: float | None = None, tail: float = 1.0,
                  threshold: float | None = None, xi: float | None = None,
-                 stiffness_scale: float = 1e-3, safety: float = 0.2, update_dt: float = 1e-3,
+                 stiffness_scale: float | None = None, safety: float = 0.2,
+                 update_dt: float = 1e-3,
                  sample_dt: float = 0.01, motion_dt: float = 1e-3, thrust_scale: float = 1.0,
                  vertical_ratio: float = 0.5, assumptions=None, build: dict | None = None,
                  A_pseudo: float | None = None,
@@ -320,9 +328,10 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     xi : float, optional
         Mass-proportional damping, fraction of critical at ``frequency`` [-]; default
         :data:`XI_SAVALLE` (5 %, the effective damping of Savalle et al. (2022), §3.1, §4.1).
-    stiffness_scale : float
+    stiffness_scale : float, optional
         Factor on the joint stiffness of Table 6 [-]; passed to
-        :func:`~murus.retaining.dem_wall.build_wall`.
+        :func:`~murus.retaining.dem_wall.build_wall`; default :data:`STIFFNESS_SCALE` of the
+        backfill model (1e-2 on the continuum, 1e-3 otherwise).
     safety : float
         Time-step safety factor on ``min sqrt(m / k)`` [-], in (0, 1]; passed to
         ``build_wall``.
@@ -430,6 +439,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     if bmode not in ("thrust", "discrete", "continuum"):
         raise CollapseError(f"backfill must be 'thrust', 'discrete' or 'continuum', got "
                             f"{backfill!r}")
+    if stiffness_scale is None:
+        stiffness_scale = STIFFNESS_SCALE[bmode]
     bf = None
     if bmode == "thrust":
         dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety, **(build or {}))

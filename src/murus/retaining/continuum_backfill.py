@@ -118,7 +118,7 @@ class ContinuumBackfill:
 
     def __init__(self, wall: RetainingWall, W: float | None = None, *,
                  size: float | None = None, boundary: str = "free-field",
-                 stiffness_scale: float = 1e-3, crust_cohesion: float | None = None,
+                 stiffness_scale: float = 1e-2, crust_cohesion: float | None = None,
                  crust_depth: float | None = None,
                  E: float | None = None, nu: float | None = None, settle_tol: float = 1e-4,
                  settle_steps: int = 200_000) -> None:

@@ -52,12 +52,12 @@ Case file (TOML, ``examples/retaining/``)::
 
     [numerics]                   # keyword arguments of collapse_run (defaults there)
     xi = 0.05
-    stiffness_scale = 1e-3
+    stiffness_scale = 1e-3       # default: 1e-2 on the continuum backfill, 1e-3 otherwise
     # t_pseudo, t_max, tail, threshold, safety, update_dt, sample_dt, motion_dt,
     # thrust_scale, vertical_ratio, damping_frame; [numerics.build]: build_wall options
     # backfill = "discrete"      # a disc backfill instead of the equivalent thrust, with
     # [numerics.backfill_options] W = 5.0, boundary = "absorbing", radius, spread, seed, rolling
-    # backfill = "continuum"     # Mohr-Coulomb zones (not yet validated), with
+    # backfill = "continuum"     # Mohr-Coulomb zones, the paper's model, with
     # [numerics.backfill_options] W = 5.0, size = 0.2, boundary = "free-field" | "fixed"
 
     [executor]                   # the CLI's --executor/--workers/--scheduler win
