@@ -66,7 +66,7 @@ def main(argv=None) -> None:
     from murus.retaining.geometry import preset
 
     small = preset("DSRW1", height=0.6, base_width=0.4, top_width=None)
-    collapse_run(small, F, t_max=0.05, A_pseudo=1.0)
+    collapse_run(small, F, t_max=0.05, A_pseudo=1.0, backfill="thrust")
     collapse_run(small, F, t_max=0.05, A_pseudo=1.0, backfill="discrete",
                  backfill_options=dict(W=1.0, boundary="absorbing", radius=0.02))
     rows = []

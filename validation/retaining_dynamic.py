@@ -130,6 +130,7 @@ def runs() -> dict[str, dict]:
     # paper's effective damping): kept explicit so that a recomputation gives the same runs
     for spec in out.values():
         spec["kw"].setdefault("xi", 0.10)
+        spec["kw"].setdefault("backfill", "thrust")  # the equivalent thrust (issue 6)
     return out
 
 

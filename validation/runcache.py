@@ -69,6 +69,20 @@ def _stamp(path: Path, engine: str) -> None:
     tmp.replace(path)
 
 
+class _Missing:
+    """``compute(key)`` unless a current record of ``key`` appeared in the meantime (another
+    process computing the same cache)."""
+
+    def __init__(self, compute, cache: Path, engine: str | None, recompute: bool):
+        self.compute, self.cache, self.engine = compute, cache, engine
+        self.recompute = recompute
+
+    def __call__(self, key):
+        if not self.recompute and _readable(self.cache / f"{key}.json", self.engine):
+            return None
+        return self.compute(key)
+
+
 def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool = False,
            jobs: int = 1, engine: str | None = None) -> dict[str, dict]:
     """The records ``cache/KEY.json`` of ``keys``; ``compute(key)`` (a module-level function
@@ -90,7 +104,8 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
                 print(f"  computed {todo[i]}", file=sys.stderr, flush=True)
                 p.advance()
 
-            fails = run_tasks(compute, list(enumerate(todo)), kind, workers=jobs, retries=0,
+            fails = run_tasks(_Missing(compute, cache, engine, recompute),
+                              list(enumerate(todo)), kind, workers=jobs, retries=0,
                               on_result=done)
         if fails:
             raise RuntimeError("validation runs failed: " + "; ".join(

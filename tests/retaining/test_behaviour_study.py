@@ -75,7 +75,8 @@ def small(frequencies=(3.0, 5.0), ratios=(0.6, 0.7), **numerics):
         "study": {"name": "t", "retries": 0},
         "wall": {"preset": "mockup-1.3", "stone_height": 0.011},
         "cases": {"frequencies": list(frequencies), "check_ratios": list(ratios)},
-        "numerics": {"stiffness_scale": 1e-5, "t_pseudo": 0.5, **numerics}})
+        "numerics": {"stiffness_scale": 1e-5, "t_pseudo": 0.5, "backfill": "thrust",
+                     **numerics}})
 
 
 

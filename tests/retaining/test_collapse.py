@@ -27,7 +27,7 @@ from murus.retaining.collapse import (
 )
 from murus.retaining.geometry import preset
 
-KW = dict(stiffness_scale=1e-4, t_pseudo=0.5)
+KW = dict(stiffness_scale=1e-4, t_pseudo=0.5, backfill="thrust")
 
 
 @pytest.fixture(scope="module")
@@ -111,8 +111,8 @@ def test_cli_collapse_and_errors(tmp_path):
     runner = CliRunner()
     out = tmp_path / "run"
     args = ["retaining", "collapse", "--preset", "mockup-1.3", "--stone-height", "0.011",
-            "--stiffness-scale", "1e-5", "--t-max", "0.3", "--frequency", "5", "--out",
-            str(out)]
+            "--stiffness-scale", "1e-5", "--t-max", "0.3", "--frequency", "5",
+            "--backfill", "thrust", "--out", str(out)]
     res = runner.invoke(app, args)
     assert res.exit_code == 0, res.output
     s = json.loads((out / "summary.json").read_text())
@@ -245,8 +245,8 @@ def test_cli_runs_option(tmp_path):
     runner = CliRunner()
     out = tmp_path / "run"
     args = ["retaining", "collapse", "--preset", "mockup-1.3", "--stone-height", "0.011",
-            "--stiffness-scale", "1e-4", "--t-max", "0.2", "--frequency", "5", "--out",
-            str(out)]
+            "--stiffness-scale", "1e-4", "--t-max", "0.2", "--frequency", "5",
+            "--backfill", "thrust", "--out", str(out)]
     res = runner.invoke(app, args + ["--runs", "2"])
     assert res.exit_code == 0, res.output
     s = json.loads((out / "summary.json").read_text())

@@ -93,7 +93,7 @@ def test_imports_stay_light():
 
 
 @pytest.mark.parametrize("args, word", [
-    (["--width", "5"], "need --backfill discrete or continuum"),
+    (["--backfill", "thrust", "--width", "5"], "need --backfill discrete or continuum"),
     (["--backfill", "discrete", "--boundary", "free-field"], "boundary must be one of"),
     (["--backfill", "soil"], "backfill must be 'thrust', 'discrete' or 'continuum'"),
     (["--damping-frame", "relative"], "--damping-frame must be 'base' or 'absolute'"),

@@ -232,12 +232,12 @@ def collapse(
     threshold: float | None = _THR,
     t_max: float | None = _TMAX,
     base: str | None = _BASE,
-    backfill: str = typer.Option("thrust", "--backfill", help="'thrust': the equivalent EN "
-                                 "1998-5 thrust on the back face (fast); 'discrete': a disc "
-                                 "backfill behind the wall (minutes; murus.retaining.backfill "
-                                 "says when to use which); 'continuum': Mohr-Coulomb zones "
-                                 "behind the wall, the paper's model (minutes; not yet "
-                                 "validated against its tables)."),
+    backfill: str = typer.Option("continuum", "--backfill", help="'continuum': Mohr-Coulomb "
+                                 "zones behind the wall, the paper's model and the reference "
+                                 "(about a minute); 'thrust': the equivalent EN 1998-5 thrust "
+                                 "on the back face (half a minute; A_col about 50 % above the "
+                                 "paper's); 'discrete': a disc backfill (minutes; research). "
+                                 "docs/retaining_backfills.md says when to use which."),
     width: float | None = typer.Option(None, "--width", help="With --backfill discrete or "
                                        "continuum: backfill width W [m] (default 2 H: 5 m "
                                        "for the Savalle et al. (2022) walls)."),

@@ -295,7 +295,7 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                  sample_dt: float = 0.01, motion_dt: float = 1e-3, thrust_scale: float = 1.0,
                  vertical_ratio: float = 0.5, assumptions=None, build: dict | None = None,
                  A_pseudo: float | None = None,
-                 damping_frame: str = "base", backfill: str = "thrust",
+                 damping_frame: str = "base", backfill: str = "continuum",
                  backfill_options: dict | None = None,
                  progress: Callable | None = None) -> CollapseResult:
     """Run the DEM wall under S2 (or S1 with ``a_peak``) until collapse (module docstring).
@@ -358,13 +358,14 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         base) or ``"absolute"`` (fixed frame, as UDEC/3DEC: "a force which is proportional to
         absolute velocity and mass", 3DEC 5.0 manual, Optional Features §2.2).
     backfill : str
-        ``"thrust"`` (the equivalent thrust on a wall with a backstop), ``"discrete"`` (a
-        disc backfill behind the wall, no backstop, no thrust:
-        :class:`~murus.retaining.backfill.DiscreteBackfill`) or ``"continuum"`` (Mohr-Coulomb
-        zones behind the wall, the model of Savalle et al. (2022), §2:
-        :class:`~murus.retaining.continuum_backfill.ContinuumBackfill`, not yet validated
-        against the paper's tables); ``wall_time`` then includes the generation and settling
-        of the backfill, ``options["backfill_options"]`` its summary.
+        ``"continuum"`` (default, the reference: Mohr-Coulomb zones behind the wall, the model
+        of Savalle et al. (2022), §2:
+        :class:`~murus.retaining.continuum_backfill.ContinuumBackfill`; VALIDATION.md against
+        its Tables 3, 7 and 8), ``"thrust"`` (the equivalent thrust on a wall with a
+        backstop: fast, about 50 % above the paper's A_col) or ``"discrete"`` (a disc
+        backfill behind the wall, no backstop, no thrust:
+        :class:`~murus.retaining.backfill.DiscreteBackfill`); with a backfill, ``wall_time``
+        includes its generation and settling, ``options["backfill_options"]`` its summary.
     backfill_options : dict, optional
         Keywords of :class:`~murus.retaining.backfill.DiscreteBackfill` (``W``,
         ``boundary``, ``radius``, ...) or of
