@@ -32,6 +32,7 @@ RUNS = [
     ("bench_interrupt.py", "RESULTS_interrupt.md"),
     ("bench_continuum.py", "RESULTS_continuum.md"),
     ("bench_coupled.py", "RESULTS_coupled.md"),
+    ("bench_retaining_continuum.py", "RESULTS_retaining_continuum.md"),
     # recorded by hand (two source trees compared; the commands are in the file)
     (None, "RESULTS_checks.md"),
     (None, "RESULTS_named_data.md"),

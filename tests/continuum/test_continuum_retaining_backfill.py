@@ -106,8 +106,9 @@ def test_cli_refuses_options_of_another_backfill(tmp_path, args, msg):
 def test_the_shipped_command_reproduces_the_validated_a_col():
     """Issue 18, items 3 and 6: DSRW1 at 5 Hz on the continuum backfill at its defaults (what
     ``murus retaining collapse --preset DSRW1 --frequency 5 --backfill continuum`` runs) gives
-    an A_col within the range of the five runs with perturbed time steps cached by
-    validation/retaining_continuum.py for VALIDATION.md, whose median is within 15 % of
+    an A_col within the range of the runs with perturbed time steps cached by
+    validation/retaining_continuum.py for VALIDATION.md (the same as the nominal one, bit for
+    bit), whose median is within 15 % of
     Savalle et al. (2022), Table 7 (5.38 m/s², tests/data/retaining/savalle2022_table8.csv)."""
     import csv
     import json
@@ -115,12 +116,15 @@ def test_the_shipped_command_reproduces_the_validated_a_col():
 
     root = Path(__file__).resolve().parents[2]
     cache = root / "validation" / "results" / "retaining_continuum"
-    recs = [json.loads((cache / f"t7_DSRW1_5_none_r{i}.json").read_text()) for i in range(5)]
+    recs = [json.loads(p.read_text()) for p in sorted(cache.glob("t7_DSRW1_5_none_r*.json"))]
+    assert len(recs) >= 3 and recs[0]["spec"]["run"] == 0
     a = sorted(r["summary"]["A_col"] for r in recs)
     with open(root / "tests" / "data" / "retaining" / "savalle2022_table8.csv") as fh:
         rows = list(csv.DictReader(x for x in fh if not x.startswith("#")))
     paper = next(float(r["A_col_m_s2"]) for r in rows
                  if r["wall"] == "DSRW1" and r["frequency_Hz"] == "5" and r["vertical"] == "none")
-    assert abs(a[2] / paper - 1) <= 0.15
-    res = collapse_run(preset("DSRW1"), 5.0, backfill="continuum")
-    assert res.collapsed and a[0] <= res.A_col <= a[4], (res.A_col, a)
+    assert abs(float(np.median(a)) / paper - 1) <= 0.15
+    res = collapse_run(preset("DSRW1"), 5.0)  # the defaults: the continuum backfill
+    assert res.collapsed and a[0] <= res.A_col <= a[-1], (res.A_col, a)
+    # the nominal run is the cached one, bit for bit: the validation is of this engine
+    assert res.A_col == recs[0]["summary"]["A_col"]

@@ -1,6 +1,9 @@
 """Collapse protocol and seismic behaviour factor of a dry-stone retaining wall
-(Savalle et al. (2022), §4.2-4.4, Tables 7 and 8; issue 6 item 4), on the DEM wall with the
-equivalent thrust (:mod:`murus.retaining.dem_wall`).
+(Savalle et al. (2022), §4.2-4.4, Tables 7 and 8; issues 6 and 18), on the DEM wall
+(:mod:`murus.retaining.dem_wall`) with a backfill: by default the paper's Mohr-Coulomb continuum
+(:mod:`murus.retaining.continuum_backfill`, the reference), or the equivalent EN 1998-5 thrust,
+or a disc assembly (:mod:`murus.retaining.backfill`); docs/retaining_backfills.md says which
+to use for what.
 
 Protocol (Savalle et al. (2022), §4.2-4.3):
 
@@ -41,14 +44,13 @@ murus used 0.10, twice the paper's damping: DSRW1 at 5 Hz on the continuum backf
 6.91 instead of 5.92 m/s²). The damping acts on the
 velocity relative to the base (``damping_frame="base"``; ``"absolute"`` damps the velocity in
 the fixed frame, as UDEC does, so that it also resists the motion of the wall with the
-ground); joint stiffness of Table 6 times ``stiffness_scale`` (:data:`STIFFNESS_SCALE`; for the
-equivalent thrust and the discs, default
-1e-3, so that a full-scale run takes about half a minute: the stones are nearly rigid either way,
-the elastic joint closure under the wall's weight is 2e-5 m at the default against a collapse
-threshold of 0.5 m); a kinematic backstop along the back face (the backfill cannot be
-entered, :func:`~murus.retaining.dem_wall.build_wall`). With ``backfill="discrete"`` the
-thrust and the backstop are replaced by a disc backfill behind the wall
-(:mod:`murus.retaining.backfill`, which says when to use which). Units: SI (m, s, m/s², m/s³, Hz).
+ground); joint stiffness of Table 6 times ``stiffness_scale`` (:data:`STIFFNESS_SCALE`: 1e-2
+on the continuum, whose A_col is then that of the printed stiffness within 0.3 %; 1e-3 for the
+equivalent thrust and the discs, so that a full-scale run takes about half a minute). With
+``backfill="thrust"`` a kinematic backstop runs along the back face (the backfill cannot be
+entered, :func:`~murus.retaining.dem_wall.build_wall`); with ``"discrete"`` or
+``"continuum"`` the backstop and the thrust are replaced by the backfill behind the wall.
+Units: SI (m, s, m/s², m/s³, Hz).
 
 Check of the thrust model: DSRW1 under a monotonic base acceleration ``a = 0.75 t`` (no
 carrier, 1e-3 stiffness) starts a mechanism near 1.5-1.65 m/s² (d_top 1 cm at 1.5, 2.2 cm at
