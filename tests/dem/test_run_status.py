@@ -64,6 +64,22 @@ def test_body_sizes_and_overlap_of_a_settled_block():
     assert st.overlap == pytest.approx(frac, rel=1e-3)
 
 
+def test_overlap_of_a_sub_contact_of_zero_extent(monkeypatch):
+    """A sub-contact whose extent along its normal is zero (or below the body's width by
+    rounding) has an exact fraction above its bound: the check reports it instead of failing
+    on an empty selection (seen at the end of the settling of DSRW4 on its continuum backfill,
+    issue 18)."""
+    import murus.dem.engine as E
+
+    m = Model(joint=Joint(kn=1e6, ks=1e6, friction_deg=30.0))
+    m.add_rectangle(2.0, 0.2, center=(0.0, -0.1), kinematic="fixed")
+    m.add_rectangle(0.4, 0.2, center=(0.0, 0.1), angle=0.0)
+    assert m.settle(tol=1e-6).converged
+    monkeypatch.setattr(E, "_extent", lambda m, b, nx, ny: np.zeros(len(b)))
+    frac, a, b, depth = overlap_fraction(m)
+    assert frac == np.inf and (a, b) == (0, 1) and depth > 0
+
+
 def test_soft_contact_stops_the_settling_and_the_run(tmp_path):
     # kn = 1e5 Pa/m: the static overlap would be 39 mm, 19.6 % of the block's height > 10 %
     m = Model(joint=Joint(kn=1e5, ks=1e5, friction_deg=30.0))

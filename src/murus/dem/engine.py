@@ -493,8 +493,11 @@ def overlap_fraction(m, exclude=None) -> tuple[float, int, int, float]:
 
     # the exact fraction of the sub-contact of largest bound, then of every sub-contact whose
     # bound reaches it (the others cannot exceed it)
-    f0 = float(exact(np.array([int(np.argmax(bound))]))[0])
-    sel = np.nonzero(bound >= f0)[0]
+    i0 = int(np.argmax(bound))
+    f0 = float(exact(np.array([i0]))[0])
+    # (that sub-contact itself always: its exact fraction may exceed its bound by rounding, or
+    # be inf for a zero extent, and then no bound reaches it)
+    sel = np.union1d(np.nonzero(bound >= f0)[0], [i0])
     frac = exact(sel)
     k = int(sel[int(np.argmax(frac))])
     return float(frac.max()), int(ba[k]), int(bb[k]), float(depth[k])
