@@ -261,8 +261,8 @@ def collapse(
     workers: int = typer.Option(1, "--workers", help="With --runs: processes running them "
                                 "(one numba thread each)."),
 ) -> None:
-    """S2 collapse run of the DEM wall with the equivalent thrust, a discrete or a continuum
-    backfill (Savalle et al. (2022), §4.2): writes d_top.csv (history), summary.json (A_col,
+    """S2 collapse run of the DEM wall on the continuum backfill of the paper (the default),
+    the equivalent thrust or a disc backfill (Savalle et al. (2022), §4.2): writes d_top.csv (history), summary.json (A_col,
     t_col, A_pseudo, r) and collapse.png (the blocks at the end of the run, coloured by their
     displacement relative to the base)."""
     from pathlib import Path
@@ -320,8 +320,10 @@ def collapse(
             res = ens.nominal
         checks = {}
         if check_peak and res.collapsed:
+            # at the median A_col of an ensemble (that of the single run otherwise)
+            a_col = res.A_col if ens is None else ens.median
             with LazyProgress("S1 checks at 0.6 and 0.7 A_col", unit="s") as bar:
-                checks = peak_ratio_check(wall, frequency, res.A_col, vertical=vertical,
+                checks = peak_ratio_check(wall, frequency, a_col, vertical=vertical,
                                           A_rate=res.A_rate, A_pseudo=res.A_pseudo,
                                           progress=bar.update, **kw)
     except (*_collapse_errors(), BackfillError, ContinuumBackfillError) as exc:
