@@ -491,8 +491,9 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
         "Every A_col is the **median of five runs** (of the first three where the table says "
         "so: the others are computed by the next `make validate`) whose time step is 100, 95, "
         "90, 85 and 80 % of the nominal one (`murus.retaining.collapse.collapse_ensemble`), "
-        "with the range in brackets; the nominal run is the one the shipped command makes, e.g. `murus "
-        "retaining collapse --preset DSRW1 --frequency 5 --backfill continuum` (add `--runs 5` "
+        "with the range in brackets; the nominal run is the one the shipped command makes, "
+        "e.g. `murus retaining collapse --preset DSRW1 --frequency 5 --backfill continuum` "
+        "(add `--runs 5` "
         "for the median). Produced by `python validation/retaining_continuum.py`; the runs are "
         "cached in `validation/results/retaining_continuum/`, each stamped with the key of "
         "the engine's source, so that a changed engine recomputes them.", "",

@@ -262,9 +262,9 @@ def collapse(
                                 "(one numba thread each)."),
 ) -> None:
     """S2 collapse run of the DEM wall on the continuum backfill of the paper (the default),
-    the equivalent thrust or a disc backfill (Savalle et al. (2022), §4.2): writes d_top.csv (history), summary.json (A_col,
-    t_col, A_pseudo, r) and collapse.png (the blocks at the end of the run, coloured by their
-    displacement relative to the base)."""
+    the equivalent thrust or a disc backfill (Savalle et al. (2022), §4.2): writes d_top.csv
+    (history), summary.json (A_col, t_col, A_pseudo, r) and collapse.png (the blocks at the
+    end of the run, coloured by their displacement relative to the base)."""
     from pathlib import Path
 
     from murus.progress import LazyProgress
