@@ -234,8 +234,8 @@ def collapse(
     base: str | None = _BASE,
     backfill: str = typer.Option("continuum", "--backfill", help="'continuum': Mohr-Coulomb "
                                  "zones behind the wall, the paper's model and the reference "
-                                 "(about a minute); 'thrust': the equivalent EN 1998-5 thrust "
-                                 "on the back face (half a minute; A_col about 50 % above the "
+                                 "(minutes); 'thrust': the equivalent EN 1998-5 thrust "
+                                 "on the back face (half a minute; A_col up to 57 % above the "
                                  "paper's); 'discrete': a disc backfill (minutes; research). "
                                  "docs/retaining_backfills.md says when to use which."),
     width: float | None = typer.Option(None, "--width", help="With --backfill discrete or "

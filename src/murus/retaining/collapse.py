@@ -364,7 +364,7 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         of Savalle et al. (2022), §2:
         :class:`~murus.retaining.continuum_backfill.ContinuumBackfill`; VALIDATION.md against
         its Tables 3, 7 and 8), ``"thrust"`` (the equivalent thrust on a wall with a
-        backstop: fast, about 50 % above the paper's A_col) or ``"discrete"`` (a disc
+        backstop: fast, up to 57 % above the paper's A_col) or ``"discrete"`` (a disc
         backfill behind the wall, no backstop, no thrust:
         :class:`~murus.retaining.backfill.DiscreteBackfill`); with a backfill, ``wall_time``
         includes its generation and settling, ``options["backfill_options"]`` its summary.
