@@ -43,8 +43,10 @@ def test_source_key_follows_code_not_documentation(tmp_path):
 
 def _compute(key):  # writes the record, as a validation script's compute does
     path = Path(_compute.cache) / f"{key}.json"
-    path.write_text(json.dumps({"key": key, "n": _compute.n}))
+    rec = {"key": key, "n": _compute.n}
+    path.write_text(json.dumps(rec))
     _compute.n += 1
+    return rec
 
 
 def test_a_record_of_another_engine_is_recomputed(tmp_path):

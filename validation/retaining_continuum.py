@@ -45,11 +45,9 @@ ENGINE = ("__init__.py", "dem", "continuum", "retaining", "motion/core.py",
 #: Runs per ensemble (the time-step factors of murus.retaining.collapse.DT_FACTORS).
 NRUNS = 5
 
-#: The mock-ups' input slope and courses: as the equivalent-thrust validation
+#: The mock-ups' input slope, courses and run length: those of the equivalent-thrust validation
 #: (validation/retaining_dynamic.py), where their reconstruction is explained.
-A_MOCK = 2.6 / 19.9
-MOCK_COURSE = 0.010
-MOCK_TMAX = 45.0
+from retaining_dynamic import A_MOCK, MOCK_TMAX, _mock_wall  # noqa: E402
 
 
 def _rows(name: str) -> list[dict]:
@@ -106,11 +104,10 @@ def runs() -> dict[str, dict]:
 def _wall(spec):
     from murus.retaining.geometry import preset
 
-    w = preset(spec["wall"], **spec.get("overrides", {}))
-    if w.name.lower().startswith("mockup"):
-        n = max(1, round(w.height / MOCK_COURSE))
-        w = w.with_(stone_height=w.height / n)
-    return w
+    name, over = spec["wall"], spec.get("overrides", {})
+    if name.lower().startswith("mockup-"):  # courses of about 10 mm, as the thrust validation
+        return _mock_wall(float(name.split("-", 1)[1]), **over)
+    return preset(name, **over)
 
 
 def _median_acol(prefix: str) -> tuple[float, int]:

@@ -86,7 +86,7 @@ class _Missing:
 def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool = False,
            jobs: int = 1, engine: str | None = None) -> dict[str, dict]:
     """The records ``cache/KEY.json`` of ``keys``; ``compute(key)`` (a module-level function
-    that writes that file) runs for the missing or unreadable ones (all of them with
+    that writes that file and returns its record) runs for the missing or unreadable ones (all of them with
     ``recompute``), and with ``engine`` (a :func:`source_key`) for those computed by another
     engine, each record then stamped with it. A run that raises is reported after the others
     finished (``RuntimeError``); Ctrl-C raises ``KeyboardInterrupt`` within about a second."""
@@ -98,8 +98,8 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
 
         kind = "process" if jobs > 1 and len(todo) > 1 else "serial"
         with progress(len(todo), f"  runs in {cache.name}", unit="runs") as p:
-            def done(i, _res):
-                if engine is not None:
+            def done(i, res):
+                if engine is not None and res is not None:  # (None: skipped, current)
                     _stamp(cache / f"{todo[i]}.json", engine)
                 print(f"  computed {todo[i]}", file=sys.stderr, flush=True)
                 p.advance()
