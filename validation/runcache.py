@@ -87,9 +87,10 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
            jobs: int = 1, engine: str | None = None) -> dict[str, dict]:
     """The records ``cache/KEY.json`` of ``keys``; ``compute(key)`` (a module-level function
     that writes that file and returns its record) runs for the missing or unreadable ones (all
-    of them with ``recompute``), and with ``engine`` (a :func:`source_key`) for those computed by another
-    engine, each record then stamped with it. A run that raises is reported after the others
-    finished (``RuntimeError``); Ctrl-C raises ``KeyboardInterrupt`` within about a second."""
+    of them with ``recompute``), and with ``engine`` (a :func:`source_key`) for those computed
+    by another engine, each record then stamped with it. A run that raises is reported after
+    the others finished (``RuntimeError``); Ctrl-C raises ``KeyboardInterrupt`` within about a
+    second."""
     todo = [k for k in keys if recompute or not _readable(cache / f"{k}.json", engine)]
     if todo:
         os.environ.setdefault("NUMBA_NUM_THREADS", "1")
