@@ -1,4 +1,4 @@
-"""``murus motion`` commands: info, spectrum, generate ec8, ramp.
+"""``murus motion`` commands: info, spectrum, process, plot, generate ec8, ramp.
 
 Thin layer over the library. Bad input exits with code 2 and a one-line message on stderr;
 outputs are written with :mod:`murus.outputs` (a temporary folder or file published at the
@@ -223,3 +223,167 @@ def ramp(
         gm = harmonic_ramp(amplitude_rate, frequency, duration, dt, vertical=vertical)
         write(gm, out)
     typer.echo(f"wrote {out} ({gm.npts} samples, peak {gm.pga:.4g} m/s²)")
+
+
+@app.command()
+def process(
+    file: Path = typer.Argument(..., help="Record file."),
+    out: Path = typer.Option(..., help="Output file (.csv or .at2); the operations are listed "
+                             "in its header."),
+    baseline: int = typer.Option(None, help="Remove a polynomial baseline of this degree "
+                                 "(0: the mean, the usual first step)."),
+    baseline_fit: str = typer.Option("acceleration", help="Quantity the baseline is fitted "
+                                     "to: acceleration, velocity or displacement."),
+    taper: float = typer.Option(None, help="Cosine taper over this fraction of the duration "
+                                "at both ends (0.05 is usual)."),
+    highpass: float = typer.Option(None, help="High-pass corner [Hz] (acausal Butterworth "
+                                   "with zero pads)."),
+    lowpass: float = typer.Option(None, help="Low-pass corner [Hz] (with --highpass: a "
+                                  "band-pass)."),
+    order: int = typer.Option(4, help="Order of the Butterworth filters."),
+    resample: float = typer.Option(None, help="New time step [s] (anti-alias low-pass at 0.4 "
+                                   "/ dt when down-sampling)."),
+    trim: str = typer.Option(None, help="Keep T0,T1 [s], e.g. 2,30."),
+    trim_arias: str = typer.Option(None, help="Keep between these fractions of the Arias "
+                                   "intensity, e.g. 0.001,0.999."),
+    pga: float = typer.Option(None, help="Scale to this PGA [m/s²]."),
+    pga_g: float = typer.Option(None, "--pga-g", help="Scale to this PGA [g]."),
+    sa: str = typer.Option(None, help="Scale to PSA(T) = VALUE, given as T,VALUE: T [s], "
+                           "VALUE [m/s²]."),
+    sa_damping: float = typer.Option(0.05, help="Damping of --sa [-]."),
+    units: str = typer.Option(None, help=UNITS_HELP),
+    dt: float = typer.Option(None, help="Time step [s] of a one-column file."),
+    out_units: str = typer.Option("m/s2", help="Units of a CSV output: m/s2, g or cm/s2 (AT2 "
+                                  "is in g)."),
+) -> None:
+    """Process a record and write it: baseline, taper, filter, resample, trim, scale, applied
+    in this order (the usual sequence, Boore and Bommer 2005; murus.motion.processing.process),
+    each operation recorded in the output's header."""
+    with _guard():
+        from murus.motion.io import normalize_units, write
+        from murus.motion.processing import process as run_process
+        from murus.outputs import check_file
+
+        check_file(out, (".csv", ".at2"))
+        if Path(out).resolve() == Path(file).resolve():
+            raise ValueError(f"--out {out}: is the input file; name another file")
+        normalize_units(out_units, "--out-units")
+        if baseline_fit not in ("acceleration", "velocity", "displacement"):
+            raise ValueError(f"--baseline-fit {baseline_fit}: choose acceleration, velocity or "
+                             "displacement")
+        if pga is not None and pga_g is not None:
+            raise ValueError("give --pga or --pga-g, not both")
+        for key, val in (("--taper", taper), ("--highpass", highpass), ("--lowpass", lowpass),
+                         ("--resample", resample), ("--pga", pga), ("--pga-g", pga_g),
+                         ("--sa-damping", sa_damping)):
+            if val is not None and not math.isfinite(val):
+                raise ValueError(f"{key} {val} is not a number")
+        if not 0 <= sa_damping < 1:
+            raise ValueError(f"--sa-damping {sa_damping} must be in [0, 1)")
+        target = pga if pga is not None else (pga_g * G if pga_g is not None else None)
+
+        def pair(key, v):
+            if v is None:
+                return None
+            parts = [x.strip() for x in v.split(",")]
+            try:
+                a, b = (float(x) for x in parts)
+            except ValueError:
+                raise ValueError(f"{key} {v}: expected two numbers separated by a comma"
+                                 ) from None
+            if not (math.isfinite(a) and math.isfinite(b)):
+                raise ValueError(f"{key} {v}: not finite numbers")
+            return a, b
+
+        trim_p, arias_p, sa_p = pair("--trim", trim), pair("--trim-arias", trim_arias), \
+            pair("--sa", sa)
+
+        gm = _load(file, units, dt)
+        done = run_process(gm, baseline=baseline, baseline_fit=baseline_fit,
+                           taper_fraction=taper, highpass_hz=highpass, lowpass_hz=lowpass,
+                           filter_order=order, resample_dt=resample, trim_s=trim_p,
+                           trim_arias_fractions=arias_p, pga=target, sa=sa_p,
+                           sa_damping=sa_damping)
+        if Path(out).suffix.lower() == ".at2" and done.acc_v is not None:
+            typer.echo("note: AT2 holds one component; the vertical one is not written",
+                       err=True)
+        write(done, out, units=out_units)
+    steps = done.meta.get("processing", [])
+    for i, s in enumerate(steps, 1):
+        typer.echo(f"  {i}. {s}")
+    typer.echo(f"wrote {out} ({done.npts} samples, dt {done.dt:g} s, PGA {done.pga:.4g} m/s², "
+               f"{len(steps)} operation(s))")
+
+
+_PLOT_NAMES = ["record.png", "measures.json", "measures.csv", "spectra.csv", "fourier.csv"]
+
+
+@app.command()
+def plot(
+    file: Path = typer.Argument(..., help="Record file."),
+    out: Path = typer.Option(Path("record"), help="Output directory."),
+    damping: list[float] = typer.Option([0.02, 0.05, 0.10, 0.20], "--damping",
+                                        help="Damping ratios of the response spectra "
+                                        "(repeatable)."),
+    n_periods: int = typer.Option(100, help="Number of log-spaced periods 0.01-10 s."),
+    as_json: bool = typer.Option(False, "--json", help="Print the intensity measures as JSON."),
+    units: str = typer.Option(None, help=UNITS_HELP),
+    dt: float = typer.Option(None, help="Time step [s] of a one-column file."),
+) -> None:
+    """A record at a glance: DIR/record.png (acceleration, velocity and displacement, Husid
+    plot with D5-95, Fourier amplitude spectrum, response spectra at several dampings), the
+    intensity measures (PGA, PGV, PGD, Arias, CAV, D5-75, D5-95, Housner intensity,
+    predominant and mean periods) printed and in DIR/measures.json and measures.csv, and the
+    spectra in spectra.csv and fourier.csv."""
+    with _guard():
+        if not damping or any(not (0 <= x < 1) for x in damping):
+            raise ValueError("--damping values must be in [0, 1)")
+        if len(set(damping)) != len(damping):
+            raise ValueError("--damping: repeated value")
+        if n_periods < 2:
+            raise ValueError("--n-periods must be >= 2")
+        check_dir(out, _PLOT_NAMES)
+        from murus.motion.measures import MEASURES, fourier_amplitude, intensity_measures
+        from murus.motion.spectra import default_periods, response_spectrum
+
+        gm = _load(file, units, dt)
+        im = intensity_measures(gm)
+        T = default_periods(n_periods)
+        spectra = [response_spectrum(gm, T, x) for x in damping]
+        f, c = fourier_amplitude(gm)
+        with _staged_dir(out, _PLOT_NAMES) as tmp:
+            (tmp / "measures.json").write_text(json.dumps(
+                {"file": str(file), "name": gm.name, "units": {k: u for k, (_, u) in
+                                                              MEASURES.items()}, **im},
+                indent=2) + "\n")
+            rows = ["measure,label,value,units"] + [
+                f"{k},{MEASURES[k][0].replace(',', ';')},{v:.10g},{MEASURES[k][1]}"
+                for k, v in im.items()]
+            (tmp / "measures.csv").write_text("\n".join(rows) + "\n")
+            head = "period_s," + ",".join(f"psa_{x:g}_m_s2" for x in damping)
+            lines = [head] + [",".join([f"{t:.10g}"] + [f"{sp.psa[i]:.10g}" for sp in spectra])
+                              for i, t in enumerate(T)]
+            (tmp / "spectra.csv").write_text("\n".join(lines) + "\n")
+            lines = ["frequency_hz,fourier_amplitude_m_s"] + [
+                f"{a:.10g},{b:.10g}" for a, b in zip(f, c, strict=True)]
+            (tmp / "fourier.csv").write_text("\n".join(lines) + "\n")
+            import matplotlib.pyplot as plt
+
+            from murus.motion.plots import plot_record
+
+            fig = plot_record(gm, spectra, im)
+            fig.savefig(tmp / "record.png", dpi=110)
+            plt.close(fig)
+    if as_json:
+        typer.echo(json.dumps(im))
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=f"{gm.name or file}: intensity measures")
+    for col in ("measure", "value", "units"):
+        table.add_column(col, justify="left" if col != "value" else "right")
+    for k, v in im.items():
+        table.add_row(MEASURES[k][0], f"{v:.4g}", MEASURES[k][1])
+    Console().print(table)
+    typer.echo(f"wrote {', '.join(_PLOT_NAMES)} to {out}/")

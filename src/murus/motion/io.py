@@ -652,7 +652,8 @@ def _clean(s) -> str:
 
 
 def format_csv(motion: GroundMotion, units: str = "m/s2") -> str:
-    """CSV text: commented header (name, dt, units, npts, metadata) then time, acc[, acc_v]."""
+    """CSV text: commented header (name, dt, units, npts, metadata, one ``# processing i:``
+    line per operation of ``meta['processing']``) then time, acc[, acc_v]."""
     uname = normalize_units(units)
     fac = UNITS[uname]
     out = [
@@ -665,6 +666,8 @@ def format_csv(motion: GroundMotion, units: str = "m/s2") -> str:
     for key in ("event", "station", "component"):
         if motion.meta.get(key):
             out.append(f"# {key}: {_clean(motion.meta[key])}")
+    for i, step in enumerate(motion.meta.get("processing", ()), 1):
+        out.append(f"# processing {i}: {_clean(step)}")
     cols = "time,acc" + (",acc_v" if motion.acc_v is not None else "")
     out.append(cols)
     t = motion.time
@@ -682,8 +685,12 @@ def format_csv(motion: GroundMotion, units: str = "m/s2") -> str:
 
 def format_at2(motion: GroundMotion) -> str:
     """PEER AT2 text (units of g with g = murus.G, 10 significant digits, 5 values a line).
-    AT2 holds the horizontal component only (a vertical component is not written)."""
+    AT2 holds the horizontal component only (a vertical component is not written); the
+    operations of ``meta['processing']`` are appended to the title line."""
     title = "PEER NGA STRONG MOTION DATABASE RECORD (written by murus)"
+    steps = [_clean(x) for x in motion.meta.get("processing", ())]
+    if steps:  # the processing on the title line (AT2 has no other free header line)
+        title += " processing: " + " | ".join(f"{i}. {x}" for i, x in enumerate(steps, 1))
     ev = _clean(motion.meta.get("event", motion.name or "record")).replace(",", ";")
     st = _clean(motion.meta.get("station", "")).replace(",", ";")
     comp = _clean(motion.meta.get("component", "")).replace(",", ";")

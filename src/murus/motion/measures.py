@@ -11,6 +11,12 @@ throughout :mod:`murus.motion` (velocity and displacement by :func:`murus.motion
 - CAV = integral |a| dt [m/s] (EPRI 1988).
 - Mean period Tm = sum(C_i² / f_i) / sum(C_i²) over 0.25 <= f_i <= 20 Hz, C_i the Fourier
   amplitudes [s] (Rathje, Abrahamson and Bray 1998, J. Geotech. Geoenviron. Eng. 124(2)).
+- Fourier amplitude spectrum |C(f)| = dt |sum a_k exp(-2 pi i f k dt)| [m/s] (the discrete
+  approximation of |integral a(t) exp(-2 pi i f t) dt|).
+- Housner (spectrum) intensity SI = integral of PSV(T, 5 %) dT from 0.1 to 2.5 s [m]
+  (Housner 1952).
+- Predominant period Tp: the period of the largest 5 %-damped PSA (Rathje, Abrahamson and Bray
+  1998; Rathje, Faraj, Russell and Bray 2004, Earthq. Spectra 20(1), 119-144).
 """
 
 from __future__ import annotations
@@ -22,7 +28,8 @@ from murus.motion.core import GroundMotion
 
 __all__ = [
     "pga", "pgv", "pgd", "arias", "husid", "significant_duration", "d5_75", "d5_95", "cav",
-    "mean_period", "summary", "BASELINE", "corrected_peaks",
+    "mean_period", "summary", "BASELINE", "corrected_peaks", "fourier_amplitude",
+    "housner_intensity", "predominant_period", "intensity_measures", "MEASURES",
 ]
 
 #: The baseline correction used for the PGV and PGD that ``murus motion info`` reports.
@@ -324,3 +331,123 @@ def summary(motion: GroundMotion) -> dict:
     except ValueError:
         out["tm"] = float("nan")
     return out
+
+
+def fourier_amplitude(motion: GroundMotion) -> tuple[np.ndarray, np.ndarray]:
+    """Fourier amplitude spectrum of the acceleration.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        Frequencies [Hz] from 0 to the Nyquist frequency, and amplitudes
+        ``dt |rfft(acc)|`` [m/s] (a sine of amplitude A lasting T_d seconds at one of the
+        frequencies of the grid has the amplitude A T_d / 2 there).
+    """
+    f = np.fft.rfftfreq(motion.npts, motion.dt)
+    return f, np.abs(np.fft.rfft(motion.acc)) * motion.dt
+
+
+def housner_intensity(motion: GroundMotion, damping: float = 0.05, t_lo: float = 0.1,
+                      t_hi: float = 2.5, n: int = 241) -> float:
+    """Housner's spectrum intensity SI = integral of PSV(T) dT from ``t_lo`` to ``t_hi`` [m].
+
+    Trapezoidal rule over ``n`` equally spaced periods (0.01 s apart by default) of the
+    pseudo-velocity PSV = omega SD (:func:`murus.motion.spectra.pseudo_spectrum`).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    damping : float
+        Damping ratio of the oscillators [-] (5 % as usual today; Housner used 20 %).
+    t_lo, t_hi : float
+        Bounds of the period range [s].
+    n : int
+        Number of periods of the rule.
+
+    Returns
+    -------
+    float
+        [m] (m/s integrated over s).
+
+    References
+    ----------
+    Housner, G. W. (1952), Spectrum intensities of strong-motion earthquakes, Proceedings of
+    the Symposium on Earthquake and Blast Effects on Structures, EERI, Los Angeles, 20-36.
+    """
+    from murus.motion.spectra import pseudo_spectrum
+
+    if not 0 < t_lo < t_hi or n < 2:
+        raise ValueError("housner_intensity: need 0 < t_lo < t_hi and n >= 2")
+    T = np.linspace(t_lo, t_hi, n)
+    psv = pseudo_spectrum(motion, T, damping) * T / (2.0 * np.pi)
+    return float(np.sum(0.5 * (psv[1:] + psv[:-1]) * np.diff(T)))
+
+
+def predominant_period(motion: GroundMotion, damping: float = 0.05, t_lo: float = 0.02,
+                       t_hi: float = 4.0, n: int = 400) -> float:
+    """The period of the largest pseudo-spectral acceleration [s], on ``n`` log-spaced periods
+    from ``t_lo`` to ``t_hi`` (grid step 1.3 % by default).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    damping : float
+        [-].
+    t_lo, t_hi : float
+        [s].
+    n : int
+        Number of periods.
+
+    Returns
+    -------
+    float
+        [s].
+
+    References
+    ----------
+    Rathje, Faraj, Russell and Bray (2004), Empirical relationships for frequency content
+    parameters of earthquake ground motions, Earthq. Spectra 20(1), 119-144,
+    doi:10.1193/1.1643356.
+    """
+    from murus.motion.spectra import pseudo_spectrum
+
+    T = np.geomspace(t_lo, t_hi, n)
+    return float(T[int(np.argmax(pseudo_spectrum(motion, T, damping)))])
+
+
+#: The intensity measures of :func:`intensity_measures`: key -> (label, units).
+MEASURES = {
+    "pga": ("PGA", "m/s²"), "pgv": ("PGV", "m/s"), "pgd": ("PGD", "m"),
+    "arias": ("Arias intensity", "m/s"), "cav": ("CAV", "m/s"),
+    "d5_75": ("significant duration D5-75", "s"), "d5_95": ("significant duration D5-95", "s"),
+    "housner": ("Housner intensity (5 %, 0.1-2.5 s)", "m"),
+    "tp": ("predominant period (5 % PSA)", "s"), "tm": ("mean period Tm", "s"),
+}
+
+
+def intensity_measures(motion: GroundMotion) -> dict:
+    """The measures of :data:`MEASURES` as floats (PGV and PGD after the end correction of
+    :func:`corrected_peaks`, as ``murus motion info`` gives them).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+
+    Returns
+    -------
+    dict
+        Key of :data:`MEASURES` -> value (SI units).
+    """
+    s = summary(motion)
+    s.update(corrected_peaks(motion))
+    s["housner"] = housner_intensity(motion)
+    s["tp"] = predominant_period(motion)
+    return {k: float(s[k]) for k in MEASURES}

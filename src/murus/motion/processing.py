@@ -20,7 +20,7 @@ from murus.motion.core import GroundMotion, integrate
 
 __all__ = [
     "baseline_correct", "end_correction", "highpass", "lowpass", "bandpass", "taper",
-    "trim_arias", "scale_to_pga", "scale_to_sa",
+    "trim_arias", "scale_to_pga", "scale_to_sa", "resample", "process", "PROCESSING_ORDER",
 ]
 
 
@@ -301,3 +301,185 @@ def scale_to_sa(motion: GroundMotion, period: float, target: float,
     if s == 0:
         raise ValueError("zero spectral acceleration: cannot scale")
     return motion.scaled(target / s)
+
+
+def resample(motion: GroundMotion, dt: float, antialias: bool = True,
+             order: int = 4) -> GroundMotion:
+    """Resample onto a uniform step ``dt`` [s] by linear interpolation; when the step grows
+    (down-sampling) and ``antialias``, a zero-phase Butterworth low-pass of ``order`` at 0.8
+    times the new Nyquist frequency, ``0.4 / dt``, is applied first, so that no energy above
+    the new Nyquist frequency folds back into the band kept (Boore and Bommer 2005, §5).
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    dt : float
+        New time step [s].
+    antialias : bool
+        Low-pass before down-sampling.
+    order : int
+        Order of the anti-alias filter.
+
+    Returns
+    -------
+    GroundMotion
+        A new record.
+
+    References
+    ----------
+    Boore and Bommer (2005), doi:10.1016/j.soildyn.2004.10.007.
+    """
+    dt = float(dt)
+    if not (math.isfinite(dt) and dt > 0):
+        raise ValueError(f"resampling step must be positive, got {dt!r} s")
+    if dt > motion.duration:
+        raise ValueError(f"resampling step {dt:g} s is longer than the record "
+                         f"({motion.duration:g} s)")
+    m = motion
+    if antialias and dt > motion.dt * (1 + 1e-9) and 0.4 / dt < 0.5 / motion.dt:
+        m = _filter(motion, "lowpass", 0.4 / dt, order)
+    return m.resampled(dt)
+
+
+#: The order in which :func:`process` applies its operations (the usual sequence of
+#: strong-motion processing, Boore and Bommer 2005: remove a baseline, taper the ends, filter
+#: with zero pads, then resample, cut and scale the processed record).
+PROCESSING_ORDER = ("baseline", "taper", "filter", "resample", "trim", "scale")
+
+
+def _step(m: GroundMotion, text: str) -> GroundMotion:
+    done = list(m.meta.get("processing", ()))
+    return m.with_meta(processing=done + [text])
+
+
+def process(motion: GroundMotion, *, baseline: int | None = None,
+            baseline_fit: str = "acceleration", taper_fraction: float | None = None,
+            highpass_hz: float | None = None, lowpass_hz: float | None = None,
+            filter_order: int = 4, resample_dt: float | None = None,
+            trim_s: tuple[float, float] | None = None,
+            trim_arias_fractions: tuple[float, float] | None = None,
+            pga: float | None = None, sa: tuple[float, float] | None = None,
+            sa_damping: float = 0.05) -> GroundMotion:
+    """Process a record: the operations given, in the order :data:`PROCESSING_ORDER`, each one
+    recorded as a line of ``meta['processing']`` (which the writers put in the file's header,
+    so that the processing can be repeated).
+
+    The sequence and the defaults follow the common practice of strong-motion processing
+    (Boore and Bommer 2005): a polynomial baseline (order 0 on the acceleration: the mean)
+    removed first; a cosine taper of the ends (5 % is usual); an acausal (zero-phase)
+    Butterworth filter of order 4 with zero pads of 1.5 n / f_c on both sides (Boore 2005);
+    high-pass and low-pass together make a band-pass. Then resampling (with an anti-alias
+    low-pass when down-sampling, :func:`resample`), trimming by time or by the Arias
+    intensity, and scaling to a PGA or to a pseudo-spectral acceleration.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (acceleration in m/s²).
+    baseline : int, optional
+        Degree of the polynomial baseline removed (:func:`baseline_correct`).
+    baseline_fit : str
+        Quantity the baseline is fitted to: ``"acceleration"``, ``"velocity"`` or
+        ``"displacement"``.
+    taper_fraction : float, optional
+        Fraction of the duration tapered at each end [-] (:func:`taper`).
+    highpass_hz, lowpass_hz : float, optional
+        Corner frequencies [Hz]; both given: a band-pass.
+    filter_order : int
+        Order of the Butterworth filter.
+    resample_dt : float, optional
+        New time step [s] (:func:`resample`).
+    trim_s : (float, float), optional
+        Keep the part between these times [s].
+    trim_arias_fractions : (float, float), optional
+        Keep the part between these fractions of the Arias intensity (:func:`trim_arias`).
+    pga : float, optional
+        Scale to this PGA [m/s²].
+    sa : (float, float), optional
+        (period [s], PSA [m/s²]): scale to this pseudo-spectral acceleration.
+    sa_damping : float
+        Damping of ``sa`` [-].
+
+    Returns
+    -------
+    GroundMotion
+        The processed record, ``meta['processing']`` listing the operations.
+
+    References
+    ----------
+    Boore and Bommer (2005), Processing of strong-motion accelerograms: needs, options and
+    consequences, Soil Dyn. Earthq. Eng. 25(2), 93-115, doi:10.1016/j.soildyn.2004.10.007.
+    Boore (2005), doi:10.1785/0120040160.
+    """
+    if trim_s is not None and trim_arias_fractions is not None:
+        raise ValueError("trim by time or by Arias intensity, not both")
+    if pga is not None and sa is not None:
+        raise ValueError("scale to a PGA or to a spectral acceleration, not both")
+    if not (isinstance(filter_order, int) and 1 <= filter_order <= 12):
+        raise ValueError(f"filter order {filter_order!r} must be an integer in 1..12")
+    m = motion
+    if baseline is not None:
+        if not (isinstance(baseline, int) and 0 <= baseline <= 10):
+            raise ValueError(f"baseline order {baseline!r} must be an integer in 0..10")
+        m = _step(baseline_correct(m, baseline, baseline_fit),
+                  f"baseline: polynomial of degree {baseline} fitted to the {baseline_fit} "
+                  "removed")
+    if taper_fraction is not None:
+        if not (math.isfinite(taper_fraction) and 0 < taper_fraction <= 0.5):
+            raise ValueError(f"taper fraction {taper_fraction!r} must be in (0, 0.5]")
+        m = _step(taper(m, taper_fraction), f"taper: cosine over {taper_fraction:g} of the "
+                  "duration at both ends")
+    if highpass_hz is not None or lowpass_hz is not None:
+        for name, f in (("high-pass", highpass_hz), ("low-pass", lowpass_hz)):
+            if f is not None and not (math.isfinite(f) and f > 0):
+                raise ValueError(f"{name} corner {f!r} Hz must be positive")
+        if highpass_hz is not None and lowpass_hz is not None:
+            m = bandpass(m, highpass_hz, lowpass_hz, filter_order)
+            what = f"band-pass {highpass_hz:g}-{lowpass_hz:g} Hz"
+        elif highpass_hz is not None:
+            m = highpass(m, highpass_hz, filter_order)
+            what = f"high-pass {highpass_hz:g} Hz"
+        else:
+            m = lowpass(m, lowpass_hz, filter_order)
+            what = f"low-pass {lowpass_hz:g} Hz"
+        m = _step(m, f"filter: acausal Butterworth {what}, order {filter_order}, zero pads "
+                  "(Boore 2005)")
+    if resample_dt is not None:
+        old = m.dt
+        m = _step(resample(m, resample_dt, order=filter_order),
+                  f"resample: dt {old:g} -> {float(resample_dt):g} s by linear interpolation"
+                  + (f", anti-alias low-pass {0.4 / resample_dt:g} Hz" if resample_dt > old
+                     else ""))
+    if trim_s is not None:
+        t0, t1 = (float(x) for x in trim_s)
+        if not (0 <= t0 < t1 and t0 < m.duration):
+            raise ValueError(f"trim [{t0:g}, {t1:g}] s is not inside the record "
+                             f"(0 to {m.duration:g} s)")
+        m = _step(m.sliced(t0, t1), f"trim: {t0:g} to {min(t1, m.duration):g} s, time origin "
+                  "moved to the start")
+    if trim_arias_fractions is not None:
+        a, b = (float(x) for x in trim_arias_fractions)
+        if not 0 <= a < b <= 1:
+            raise ValueError(f"Arias fractions {a:g}, {b:g} must satisfy 0 <= start < end <= 1")
+        m = trim_arias(m, a, b)
+        t0, t1 = m.meta["trim"]
+        m = _step(m, f"trim: {a:g} to {b:g} of the Arias intensity ({t0:.4g} to {t1:.4g} s "
+                  "of the record before), time origin moved to the start")
+    if pga is not None:
+        if not (math.isfinite(pga) and pga > 0):
+            raise ValueError(f"target PGA {pga!r} m/s² must be positive")
+        before = m.pga
+        m = scale_to_pga(m, pga)
+        m = _step(m, f"scale: x {pga / before:.6g} to PGA {pga:.6g} m/s²")
+    if sa is not None:
+        T, target = (float(x) for x in sa)
+        if not (math.isfinite(T) and T > 0 and math.isfinite(target) and target > 0):
+            raise ValueError(f"spectral target ({T!r} s, {target!r} m/s²) must be positive")
+        from murus.motion.spectra import psa
+
+        before = psa(m, T, sa_damping)
+        m = scale_to_sa(m, T, target, sa_damping)
+        m = _step(m, f"scale: x {target / before:.6g} to PSA({T:g} s, {sa_damping:.0%}) "
+                  f"{target:.6g} m/s²")
+    return m
