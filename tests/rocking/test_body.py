@@ -77,3 +77,30 @@ def test_self_weight_and_top_mass_combine():
 def test_bad_bodies(kwargs, key):
     with pytest.raises(BodyError, match=key):
         RigidBlock(**kwargs)
+
+
+def test_lumped_masses_on_the_centreline():
+    """Floors carried by a façade: masses m_i at heights y_i on the centreline. Centre of
+    gravity and inertia about a corner by hand; a mass at the top is the top mass."""
+    b = RigidBlock(width=0.5, height=6.0, density=2000.0, masses=((3000.0, 3.0), (2000.0, 6.0)))
+    mb = 2000.0 * 0.5 * 6.0
+    assert b.mass == pytest.approx(mb + 5000.0)
+    assert b.z_G == pytest.approx((mb * 3.0 + 3000 * 3.0 + 2000 * 6.0) / (mb + 5000.0))
+    assert b.I_O == pytest.approx(mb * (0.25 + 36.0) / 3 + 3000 * (9 + 0.0625)
+                                  + 2000 * (36 + 0.0625))
+    top = RigidBlock(width=0.5, height=6.0, density=2000.0, top_mass=2000.0)
+    same = RigidBlock(width=0.5, height=6.0, density=2000.0, masses=[[2000.0, 6.0]])
+    for q in ("mass", "z_G", "I_O", "R", "alpha", "p"):
+        assert getattr(same, q) == pytest.approx(getattr(top, q), rel=1e-14)
+    assert same.masses == ((2000.0, 6.0),)
+
+
+@pytest.mark.parametrize("masses, msg", [
+    (((1.0, 7.0),), "above the top"),
+    (((-1.0, 1.0),), "masses\\[0\\] mass"),
+    (((1.0,),), "pair"),
+    ((1.0,), "pairs"),
+])
+def test_bad_lumped_masses(masses, msg):
+    with pytest.raises(BodyError, match=msg):
+        RigidBlock(width=0.5, height=6.0, density=2000.0, masses=masses)

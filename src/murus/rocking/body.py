@@ -6,7 +6,8 @@ The body is a rectangle of width ``b`` (in the plane of rocking) and height ``h`
 rigid base with its two bottom corners O (right, pivot ``+1``) and O' (left, pivot ``-1``).  Its
 mass is the sum of a uniform rectangle of density ``rho`` and thickness ``t`` (out of plane) and of
 an optional lumped mass ``m_top`` at mid-top (Mordant et al. (SERIES), §3.1: 5 t on the tested
-walls).
+walls), and of optional lumped masses ``m_i`` at heights ``y_i`` on the centreline (the floors
+carried by a façade).
 
 - ``theta > 0`` is a clockwise rotation about O (Mordant et al. (SERIES), §3.1.1, EURODYN (2020),
   Figure 1).
@@ -76,6 +77,10 @@ class RigidBlock:
         Lumped mass at mid-top [kg] (Mordant et al. (SERIES): 5000 kg).
     name:
         Label used in reports.
+    masses:
+        Further lumped masses on the centreline, ``((m_i [kg], y_i [m]), ...)`` with
+        ``0 <= y_i <= h``: the floors a façade carries (their loads on the wall at mid-thickness,
+        moving with it). ``top_mass = m`` is ``masses = ((m, h),)``.
 
     Examples
     --------
@@ -90,6 +95,7 @@ class RigidBlock:
     density: float = 0.0
     top_mass: float = 0.0
     name: str = field(default="block", compare=False)
+    masses: tuple = ()
 
     #: Declared parameters and their validity limits (GUIDE §3).
     PARAMS = {
@@ -98,6 +104,7 @@ class RigidBlock:
         "thickness": ("m", "> 0"),
         "density": ("kg/m3", ">= 0"),
         "top_mass": ("kg", ">= 0"),
+        "masses": ("(kg, m)", "m_i >= 0, 0 <= y_i <= height"),
     }
 
     def __post_init__(self) -> None:
@@ -106,6 +113,21 @@ class RigidBlock:
         object.__setattr__(self, "thickness", _positive("thickness", self.thickness))
         object.__setattr__(self, "density", _non_negative("density", self.density))
         object.__setattr__(self, "top_mass", _non_negative("top_mass", self.top_mass))
+        lumped = []
+        try:
+            pairs = [tuple(p) for p in self.masses]
+        except TypeError:
+            raise BodyError("masses must be pairs (mass [kg], height [m])") from None
+        for i, p in enumerate(pairs):
+            if len(p) != 2:
+                raise BodyError(f"masses[{i}] must be a pair (mass [kg], height [m])")
+            m = _non_negative(f"masses[{i}] mass", p[0])
+            y = _non_negative(f"masses[{i}] height", p[1])
+            if y > self.height * (1 + 1e-12):
+                raise BodyError(f"masses[{i}] height {y:g} m is above the top of the body "
+                                f"({self.height:g} m)")
+            lumped.append((m, y))
+        object.__setattr__(self, "masses", tuple(lumped))
         if self.mass <= 0.0:
             raise BodyError("the body has no mass: give a positive density or top_mass")
 
@@ -118,7 +140,7 @@ class RigidBlock:
     @cached_property
     def mass(self) -> float:
         """Total mass ``m`` [kg]."""
-        return self.body_mass + self.top_mass
+        return self.body_mass + self.top_mass + sum(m for m, _ in self.masses)
 
     @property
     def weight(self) -> float:
@@ -129,7 +151,8 @@ class RigidBlock:
     @cached_property
     def z_G(self) -> float:
         """Height of the centre of gravity above the base [m]."""
-        return (self.body_mass * 0.5 * self.height + self.top_mass * self.height) / self.mass
+        return (self.body_mass * 0.5 * self.height + self.top_mass * self.height
+                + sum(m * y for m, y in self.masses)) / self.mass
 
     @cached_property
     def R(self) -> float:
@@ -147,11 +170,13 @@ class RigidBlock:
         """Moment of inertia about a base corner [kg m²] (Mordant et al. (SERIES), eq. 4,
         EURODYN (2020), Table 1).
 
-        Uniform rectangle: ``m_b (b² + h²) / 3``; top mass: ``m_top (h² + b²/4)``.
+        Uniform rectangle: ``m_b (b² + h²) / 3``; top mass: ``m_top (h² + b²/4)``; a lumped
+        mass on the centreline: ``m_i (y_i² + b²/4)``.
         """
         rect = self.body_mass * (self.width**2 + self.height**2) / 3.0
         top = self.top_mass * (self.height**2 + 0.25 * self.width**2)
-        return rect + top
+        lumped = sum(m * (y * y + 0.25 * self.width**2) for m, y in self.masses)
+        return rect + top + lumped
 
     @cached_property
     def p(self) -> float:
@@ -187,6 +212,7 @@ class RigidBlock:
             "thickness": self.thickness,
             "density": self.density,
             "top_mass": self.top_mass,
+            "masses": [list(p) for p in self.masses],
             "mass": self.mass,
             "z_G": self.z_G,
             "R": self.R,
