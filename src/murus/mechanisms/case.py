@@ -1,0 +1,245 @@
+"""Case files (TOML) of the kinematic checks of local mechanisms: schema, validation, run.
+
+Example (``examples/mechanisms/two_storey_facade.toml``)::
+
+    title = "two-storey façade"
+    [site]                  # the seismic hazard of each limit state
+    spectrum = "ntc"        # "ntc" (NTC 2018 §3.2.3.2) or "ec8" (EN 1998-1 §3.2.2.2)
+    soil = "B"              # ntc: soil category A-E; ec8: use ground = "B", spectrum_type = 1
+    topography = "T1"       # ntc: T1-T4 or the factor S_T
+    [site.SLV]              # required; [site.SLD] and [site.SLC] optional
+    ag_g = 0.20             # or ag [m/s2]
+    F0 = 2.4                # ntc only
+    Tc_star = 0.30          # ntc only [s]
+    [building]              # for mechanisms above the ground (floor spectra, §C7.2.3)
+    T1 = 0.25               # s
+    height = 6.5            # m (default: the sum of the storeys)
+    storeys = 2             # (default: the number of [[storeys]])
+    damping = 0.05
+    [analysis]
+    FC = 1.35               # confidence factor 1.00..1.35
+    q = 2.0                 # behaviour factor of the linear SLV check
+    mechanisms = ["overturning", "vertical-flexure"]
+    [[storeys]]             # bottom to top
+    height = 3.5            # m
+    thickness = 0.5         # m
+    density = 1800.0        # kg/m3 (or weight [N])
+    width = 1.0             # m (the strip analysed)
+    openings = 0.0          # m2 of openings in the strip
+    [[floors]]
+    level = 1               # the floor on top of storey 1
+    load = 20.0e3           # N
+    x = 0.30                # m from the outer face (default: mid-thickness)
+    tie = 10.0e3            # N, strength of the tie (0: none)
+    thrust = 0.0            # N, outward
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from murus.config import Strict, fail_at, load_toml, locate, validate
+
+__all__ = ["MechanismCase", "load_case", "build", "run_case"]
+
+_G = 9.81
+
+Pos = Field(gt=0, allow_inf_nan=False)
+
+
+class HazardCfg(Strict):
+    ag: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    ag_g: float | None = Field(default=None, ge=0, le=1.5, allow_inf_nan=False)
+    F0: float | None = Field(default=None, allow_inf_nan=False)
+    Tc_star: float | None = Field(default=None, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def _one_ag(self):
+        if (self.ag is None) == (self.ag_g is None):
+            raise ValueError("give either ag [m/s2] or ag_g [g]")
+        return self
+
+    @property
+    def ag_si(self) -> float:
+        return self.ag if self.ag is not None else self.ag_g * _G
+
+
+class SiteCfg(Strict):
+    spectrum: Literal["ntc", "ec8"] = "ntc"
+    soil: str = "A"
+    topography: str | float = "T1"
+    ground: str = "A"
+    spectrum_type: int = 1
+    importance: str | float | None = None
+    SLD: HazardCfg | None = None
+    SLV: HazardCfg
+    SLC: HazardCfg | None = None
+
+
+class BuildingCfg(Strict):
+    T1: float = Pos
+    height: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    storeys: int | None = Field(default=None, ge=1)
+    damping: float = Field(default=0.05, gt=0, le=0.3, allow_inf_nan=False)
+
+
+class AnalysisCfg(Strict):
+    FC: float = Field(default=1.35, ge=1.0, le=1.35, allow_inf_nan=False)
+    q: float = Field(default=2.0, ge=1.0, le=4.0, allow_inf_nan=False)
+    mechanisms: list[Literal["overturning", "vertical-flexure"]] = ["overturning",
+                                                                     "vertical-flexure"]
+    flexure_storeys: list[int] | None = None
+    points: int = Field(default=101, ge=11, le=10001)
+
+
+class StoreyCfg(Strict):
+    height: float = Pos
+    thickness: float = Pos
+    density: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    weight: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    width: float = Field(default=1.0, gt=0, allow_inf_nan=False)
+    openings: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+
+
+class FloorCfg(Strict):
+    level: int = Field(ge=1)
+    load: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    x: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    tie: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    thrust: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    inertial: bool = True
+
+
+class MechanismCase(Strict):
+    title: str = "façade"
+    site: SiteCfg
+    building: BuildingCfg | None = None
+    analysis: AnalysisCfg = AnalysisCfg()
+    storeys: list[StoreyCfg] = Field(min_length=1)
+    floors: list[FloorCfg] = []
+
+
+def load_case(path) -> tuple[MechanismCase, Path, str]:
+    """Read and validate a mechanism case file; errors are one-line :class:`CaseError`."""
+    path = Path(path)
+    data, text = load_toml(path)
+    return validate(MechanismCase, data, path, text), path, text
+
+
+def _spectrum(site: SiteCfg, ls: str, h: HazardCfg, path: Path, text: str):
+    from murus.eurocode.ntc import NTCError, NTCSpectrum
+    from murus.mechanisms.demand import EC8Spectrum
+
+    try:
+        if site.spectrum == "ntc":
+            for k in ("F0", "Tc_star"):
+                if getattr(h, k) is None:
+                    raise fail_at(path, text, ("site", ls, k), "required key is missing for "
+                                  "the NTC spectrum")
+            try:
+                return NTCSpectrum(h.ag_si, h.F0, h.Tc_star, site.soil, site.topography)
+            except NTCError as exc:
+                k = exc.key[0] if exc.key else "ag"
+                loc = ("site", k) if k in ("soil", "topography") else (
+                    "site", ls, "ag" if h.ag is not None else "ag_g") if k == "ag" else (
+                    "site", ls, k)
+                raise fail_at(path, text, loc, str(exc)) from None
+        for k in ("F0", "Tc_star"):
+            if getattr(h, k) is not None:
+                raise fail_at(path, text, ("site", ls, k), "not a parameter of the EN 1998-1 "
+                              "spectrum")
+        return EC8Spectrum(h.ag_si, site.ground, site.spectrum_type, site.importance)
+    except ValueError as exc:
+        if getattr(exc, "source", None) is not None:
+            raise
+        raise fail_at(path, text, ("site",), str(exc)) from None
+
+
+def build(case: MechanismCase, path: Path, text: str):
+    """Storeys, floors and seismic input of a validated case.
+
+    Returns
+    -------
+    tuple
+        ``(storeys, floors, seismic)``.
+    """
+    from murus.mechanisms.checks import Seismic
+    from murus.mechanisms.demand import Building, DemandError
+    from murus.mechanisms.kinematics import Floor, MechanismError, Storey
+
+    storeys = []
+    for i, s in enumerate(case.storeys):
+        try:
+            storeys.append(Storey(**s.model_dump()))
+        except MechanismError as exc:
+            raise locate(exc, path, text, ("storeys", i)) from None
+    n = len(storeys)
+    floors = []
+    for i, f in enumerate(case.floors):
+        if f.level > n:
+            raise fail_at(path, text, ("floors", i, "level"),
+                          f"level {f.level} is above the top storey ({n})")
+        try:
+            floors.append(Floor(**f.model_dump()))
+        except MechanismError as exc:
+            raise locate(exc, path, text, ("floors", i)) from None
+    spectra = {}
+    for ls in ("SLD", "SLV", "SLC"):
+        h = getattr(case.site, ls)
+        if h is not None:
+            spectra[ls] = _spectrum(case.site, ls, h, path, text)
+    bld = None
+    if case.building is not None:
+        b = case.building
+        H = b.height if b.height is not None else sum(s.height for s in storeys)
+        try:
+            bld = Building(b.T1, H, b.storeys if b.storeys is not None else n, b.damping)
+        except DemandError as exc:
+            raise locate(exc, path, text, ("building",)) from None
+        if H < sum(s.height for s in storeys) * (1 - 1e-9):
+            raise fail_at(path, text, ("building", "height"), f"{H:g} m is lower than the "
+                          "façade")
+    elif n > 1 or "vertical-flexure" in case.analysis.mechanisms:
+        raise fail_at(path, text, ("building",), "required for mechanisms above the ground "
+                      "(T1 [s] for the floor spectra of the Circolare 2019 §C7.2.3)")
+    a = case.analysis
+    try:
+        seismic = Seismic(spectra, bld, a.FC, a.q)
+    except MechanismError as exc:
+        raise locate(exc, path, text, ("analysis",)) from None
+    if a.flexure_storeys is not None:
+        for j, k in enumerate(a.flexure_storeys):
+            if not 1 <= k <= n:
+                raise fail_at(path, text, ("analysis", "flexure_storeys", j),
+                              f"storey {k} is not in 1..{n}")
+    return storeys, floors, seismic
+
+
+def run_case(case: MechanismCase, path: Path, text: str) -> dict:
+    """Run the mechanisms of a case.
+
+    Returns
+    -------
+    dict
+        ``results`` (list of MechanismResult, by mechanism and hinge), ``governing``
+        (MechanismResult), ``seismic``.
+    """
+    from murus.mechanisms.facade import flexure_of_storey, governing, overturning
+    from murus.mechanisms.kinematics import MechanismError
+
+    storeys, floors, seismic = build(case, path, text)
+    a = case.analysis
+    results = []
+    try:
+        if "overturning" in a.mechanisms:
+            results += overturning(storeys, floors, seismic, a.points)
+        if "vertical-flexure" in a.mechanisms:
+            ks = a.flexure_storeys or list(range(1, len(storeys) + 1))
+            for k in ks:
+                results.append(flexure_of_storey(storeys, floors, k - 1, seismic, a.points))
+    except MechanismError as exc:
+        raise fail_at(path, text, ("storeys",), str(exc)) from None
+    return {"results": results, "governing": governing(results), "seismic": seismic}
