@@ -14,8 +14,8 @@ from typer.core import TyperGroup
 
 from murus import cliutil
 from murus.identify.cli import app as lab_app
-from murus.motion.cli import app as motion_app
 from murus.mechanisms.cli import mechanism
+from murus.motion.cli import app as motion_app
 from murus.retaining.cli import app as retaining_app
 from murus.rocking.design_cli import app as design_app
 from murus.studies.cli import app as study_app

@@ -46,28 +46,30 @@ def _label(name: str) -> str:
 
 
 def _print_table(run: dict, title: str) -> None:
+    from rich import box
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
-    table = Table(title=f"{escape(title)}: local mechanisms (Circolare 2019 §C8.7.1.2.1)")
-    for col in ("mechanism", "z [m]", "alpha0", "a0*", "check", "capacity", "demand", "ratio",
-                "result"):
+    table = Table(title=f"{escape(title)}: local mechanisms (Circolare 2019 §C8.7.1.2.1)",
+                  box=box.SIMPLE, pad_edge=False)
+    for col in ("mechanism", "alpha0", "check", "capacity", "demand", "ratio", "result"):
         table.add_column(col, justify="left" if col in ("mechanism", "check") else "right",
                          no_wrap=True)
     for r in run["results"]:
         first = True
         for c in r.checks:
-            unit = " m/s2" if c.unit == "m/s2" else " mm"
+            unit = "m/s2" if c.unit == "m/s2" else "mm"
             k = 1.0 if c.unit == "m/s2" else 1e3
             table.add_row(
-                escape(_label(r.name)) if first else "", f"{r.z:.2f}" if first else "",
-                f"{r.alpha0:.4f}" if first else "", f"{r.a0_star:.3f}" if first else "",
+                escape(_label(r.name)) if first else "", f"{r.alpha0:.3f}" if first else "",
                 f"{c.limit_state} {'a' if c.method == 'linear' else 'd'}",
-                f"{c.capacity * k:.3g}{unit}", f"{c.demand * k:.3g}{unit}", f"{c.ratio:.2f}",
+                f"{c.capacity * k:.3g} {unit}", f"{c.demand * k:.3g} {unit}", f"{c.ratio:.2f}",
                 "[green]PASS" if c.passed else "[red]FAIL")
             first = False
     Console().print(table)
+    typer.echo("a: linear check of the activation acceleration a0* (m/s2); d: nonlinear check "
+               "of the displacement (mm); ratio = capacity / demand")
     g = run["governing"]
     typer.echo(f"governing: {g.name}, capacity/demand {g.ratio:.2f} "
                f"({'PASS' if g.passed else 'FAIL'})")
