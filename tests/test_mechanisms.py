@@ -16,6 +16,7 @@ from murus.cli import app
 from murus.eurocode.ntc import NTCError, NTCSpectrum, soil_coefficients
 from murus.mechanisms import (
     Building,
+    CornerOverturning,
     Floor,
     MechanismError,
     Seismic,
@@ -122,6 +123,21 @@ def test_vertical_flexure_closed_form():
     assert res.e_star == pytest.approx(1.0)
 
 
+def test_corner_wedge_closed_form():
+    h, t, rho, phi = 3.0, 0.5, 1800.0, 30.0
+    L = h * math.tan(math.radians(phi))
+    r2 = math.sqrt(2.0)
+    W = rho * G * t * L * h / 2            # each triangle
+    s1, s2 = (L / 3 + t / 2) / r2, (t / 2 + t + L / 3) / r2   # distances along the bisector
+    c = CornerOverturning(height=h, t1=t, t2=t, density=rho, crack_angle_deg=phi)
+    assert alpha(c) == pytest.approx((s1 + s2) / (2 * 2 * h / 3), rel=1e-7)
+    assert participation(c)["e_star"] == pytest.approx(1.0)
+    # a thrust F at the top along the bisector: alpha0 falls by F h / (2 W 2h/3)
+    F = 0.05 * W
+    ct = CornerOverturning(height=h, t1=t, t2=t, density=rho, crack_angle_deg=phi, thrust=F)
+    assert alpha(ct) == pytest.approx((W * (s1 + s2) - F * h) / (2 * W * 2 * h / 3), rel=1e-7)
+
+
 def test_floor_spectrum_and_displacement_demand():
     sp = _site()
     b = Building(T1=0.25, height=6.7, storeys=2)
@@ -201,8 +217,9 @@ def test_cli_json_and_out(tmp_path):
     res = runner.invoke(app, ["mechanism", str(EXAMPLE), "--json", "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
-    assert {m["name"] for m in out["mechanisms"]} >= {"overturning from storey 1",
-                                                      "overturning from storey 2"}
+    assert {m["name"] for m in out["mechanisms"]} == {
+        "overturning from storey 1", "overturning from storey 2", "vertical flexure of storey 1",
+        "vertical flexure of storey 2", "corner overturning 1"}
     assert out["governing"]["ratio"] == min(m["ratio"] for m in out["mechanisms"])
     saved = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert saved["governing"] == out["governing"]
@@ -216,6 +233,8 @@ def test_cli_json_and_out(tmp_path):
     (("thickness = 0.45", "thickness = -0.45"), "storeys"),
     (("level = 2", "level = 5"), "level"),
     (("F0 = 2.40", "F0 = 9.0"), "F0"),
+    (("crack_angle_deg = 30.0", "crack_angle_deg = 80.0"), "corners"),
+    (("T1 = 0.25", "T1 = 0.0"), "T1"),
 ])
 def test_cli_bad_input_one_line(tmp_path, edit, where):
     text = EXAMPLE.read_text(encoding="utf-8").replace(*edit)

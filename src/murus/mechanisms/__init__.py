@@ -1,8 +1,8 @@
 """Kinematic checks of local out-of-plane mechanisms of masonry façades (NTC 2018, Circolare 2019
 n. 7 §C8.7.1.2.1): simple overturning of one or several storeys (every hinge level), vertical
-flexure of a wall restrained at top and bottom; linear (activation acceleration a0*) and nonlinear
-(capacity curve, displacement demand) checks at the limit states SLD, SLV and SLC, with the
-floor spectra of §C7.2.3 for mechanisms above the ground.
+flexure of a wall restrained at top and bottom, overturning of a corner wedge; linear
+(activation acceleration a0*) and nonlinear (capacity curve, displacement demand) checks at the
+limit states SLD, SLV and SLC, with the floor spectra of §C7.2.3 for mechanisms above the ground.
 
 Sign convention (:mod:`murus.mechanisms.kinematics`): x outward (the direction of overturning),
 y upward, origin at the outer face of the wall at the foundation. SI units.
@@ -24,6 +24,7 @@ _EXPORTS = {
     "Mechanism": "kinematics",
     "SimpleOverturning": "kinematics",
     "VerticalFlexure": "kinematics",
+    "CornerOverturning": "kinematics",
     "alpha": "kinematics",
     "participation": "kinematics",
     "Building": "demand",

@@ -32,6 +32,13 @@ Example (``examples/mechanisms/two_storey_facade.toml``)::
     x = 0.30                # m from the outer face (default: mid-thickness)
     tie = 10.0e3            # N, strength of the tie (0: none)
     thrust = 0.0            # N, outward
+    [[corners]]             # optional: overturning of a corner wedge (kinematics.CornerOverturning)
+    height = 6.7            # m above the hinge
+    t1 = 0.45               # m, the two walls
+    t2 = 0.45
+    density = 2000.0
+    crack_angle_deg = 30.0  # cracks from the vertical
+    roof_load = 5.0e3       # N on the wedge; thrust (hip rafter), tie1, tie2 [N]; z0 [m]
 """
 
 from __future__ import annotations
@@ -89,8 +96,8 @@ class BuildingCfg(Strict):
 class AnalysisCfg(Strict):
     FC: float = Field(default=1.35, ge=1.0, le=1.35, allow_inf_nan=False)
     q: float = Field(default=2.0, ge=1.0, le=4.0, allow_inf_nan=False)
-    mechanisms: list[Literal["overturning", "vertical-flexure"]] = ["overturning",
-                                                                     "vertical-flexure"]
+    mechanisms: list[Literal["overturning", "vertical-flexure", "corner"]] = [
+        "overturning", "vertical-flexure", "corner"]
     flexure_storeys: list[int] | None = None
     points: int = Field(default=101, ge=11, le=10001)
 
@@ -113,6 +120,20 @@ class FloorCfg(Strict):
     inertial: bool = True
 
 
+class CornerCfg(Strict):
+    height: float = Pos
+    t1: float = Pos
+    t2: float = Pos
+    density: float = Pos
+    crack_angle_deg: float = Field(default=30.0, gt=0, lt=75, allow_inf_nan=False)
+    roof_load: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    roof_load_s: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    thrust: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    tie1: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    tie2: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+    z0: float = Field(default=0.0, ge=0, allow_inf_nan=False)
+
+
 class MechanismCase(Strict):
     title: str = "façade"
     site: SiteCfg
@@ -120,6 +141,7 @@ class MechanismCase(Strict):
     analysis: AnalysisCfg = AnalysisCfg()
     storeys: list[StoreyCfg] = Field(min_length=1)
     floors: list[FloorCfg] = []
+    corners: list[CornerCfg] = []
 
 
 def load_case(path) -> tuple[MechanismCase, Path, str]:
@@ -242,4 +264,16 @@ def run_case(case: MechanismCase, path: Path, text: str) -> dict:
                 results.append(flexure_of_storey(storeys, floors, k - 1, seismic, a.points))
     except MechanismError as exc:
         raise fail_at(path, text, ("storeys",), str(exc)) from None
+    if "corner" in a.mechanisms:
+        from murus.mechanisms.checks import analyse
+        from murus.mechanisms.kinematics import CornerOverturning
+
+        for i, c in enumerate(case.corners):
+            try:
+                mech = CornerOverturning(**c.model_dump())
+                res = analyse(mech, seismic, a.points)
+            except MechanismError as exc:
+                raise locate(exc, path, text, ("corners", i)) from None
+            res.name = f"corner overturning {i + 1}"
+            results.append(res)
     return {"results": results, "governing": governing(results), "seismic": seismic}

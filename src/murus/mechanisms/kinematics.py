@@ -36,6 +36,7 @@ from murus.errors import MurusError
 
 __all__ = [
     "MechanismError", "Storey", "Floor", "Mechanism", "SimpleOverturning", "VerticalFlexure",
+    "CornerOverturning",
     "alpha", "virtual", "participation", "GRAVITY",
 ]
 
@@ -443,3 +444,106 @@ class VerticalFlexure(Mechanism):
         W = np.array([w1, w2, self.top_load if self.top_inertial else 0.0])
         e = np.zeros((0, 2))
         return State(pts, P, W, e, np.zeros(0), e, np.zeros(0))
+
+
+@dataclass(frozen=True)
+class CornerOverturning(Mechanism):
+    """Overturning of a building corner: a rigid wedge of the two walls meeting at the corner,
+    detached by straight cracks, rotating about the horizontal axis through the external corner
+    of its base, orthogonal to the bisector of the corner; the horizontal forces act along the
+    bisector, outward.
+
+    The formulation (the simplest one murus could state completely): in each wall the wedge is
+    a triangle with its apex at the corner at the hinge level and its top side along the top of
+    the walls, of width ``height * tan(crack_angle)`` (wall 1 measured from the corner, wall 2
+    from the inner face of wall 1, so that the corner pier is counted once). A rigid rotation
+    about a horizontal axis moves each point in the vertical plane orthogonal to the axis: the
+    points are described by their height and their distance s from the axis along the outward
+    bisector (s = -(X + Y) / sqrt(2) for a point at X, Y in plan from the external corner), and
+    the virtual work of Circolare 2019 eq. [C8.7.1.1] is written in that plane. Ties along wall 1
+    and wall 2 at the top level restrain the wedge with their component along the bisector
+    (strength / sqrt(2) each); a thrust along the bisector (hip rafter) pushes it outward.
+
+    Parameters
+    ----------
+    height : float
+        Height of the wedge above the hinge [m].
+    t1, t2 : float
+        Thickness of wall 1 and wall 2 [m].
+    density : float
+        Masonry density [kg/m³].
+    crack_angle_deg : float
+        Angle of the cracks from the vertical [deg] (0 < angle < 75).
+    roof_load : float
+        Vertical load on the top of the wedge [N] (moves with it; its mass pushes too).
+    roof_load_s : float, optional
+        Its distance from the corner along the inward bisector [m] (default: the centroid of the
+        wedge's top in plan).
+    thrust : float
+        Outward thrust along the bisector at the top [N].
+    tie1, tie2 : float
+        Strengths of the ties along wall 1 and wall 2 at the top [N].
+    z0 : float
+        Height of the hinge above the foundation [m].
+
+    References
+    ----------
+    Circolare 2019 §C8.7.1.2.1 (kinematic chain and virtual work, eq. C8.7.1.1); the corner
+    overturning ("ribaltamento del cantonale") is one of the recurrent mechanisms of the Italian
+    practice listed with the Circolare 2009 §C8A.4.
+    """
+
+    height: float = 3.0
+    t1: float = 0.5
+    t2: float = 0.5
+    density: float = 1800.0
+    crack_angle_deg: float = 30.0
+    roof_load: float = 0.0
+    roof_load_s: float | None = None
+    thrust: float = 0.0
+    tie1: float = 0.0
+    tie2: float = 0.0
+    z0: float = 0.0
+
+    def __post_init__(self):
+        for k in ("height", "t1", "t2", "density"):
+            _positive(getattr(self, k), (k,), k)
+        for k in ("roof_load", "thrust", "tie1", "tie2", "z0"):
+            _positive(getattr(self, k), (k,), k, allow_zero=True)
+        if not 0 < self.crack_angle_deg < 75:
+            raise MechanismError("crack_angle_deg must be in (0, 75)", key=("crack_angle_deg",))
+        h, t1, t2 = self.height, self.t1, self.t2
+        L = h * math.tan(math.radians(self.crack_angle_deg))
+        g = GRAVITY * self.density
+        r2 = math.sqrt(2.0)
+        # wall 1: triangle (X from 0 to L at the top), Y = t1 / 2; wall 2: Y from t1, X = t2 / 2
+        W1 = g * t1 * 0.5 * L * h
+        W2 = g * t2 * 0.5 * L * h
+        X1, Y1 = L / 3.0, 0.5 * t1
+        X2, Y2 = 0.5 * t2, t1 + L / 3.0
+        pts = [(-(X1 + Y1) / r2, 2.0 * h / 3.0), (-(X2 + Y2) / r2, 2.0 * h / 3.0)]
+        P, W = [W1, W2], [W1, W2]
+        if self.roof_load > 0:
+            s = (self.roof_load_s if self.roof_load_s is not None
+                 else (W1 * (X1 + Y1) + W2 * (X2 + Y2)) / (r2 * (W1 + W2)))
+            pts.append((-s, h))
+            P.append(self.roof_load)
+            W.append(self.roof_load)
+        ties, T = [], []
+        for tie in (self.tie1, self.tie2):
+            if tie > 0:
+                ties.append((-(L / 2 + 0.5 * t1) / r2, h))
+                T.append(tie / r2)
+        thr, F = ([(0.0, h)], [self.thrust]) if self.thrust > 0 else ([], [])
+        object.__setattr__(self, "name", "corner overturning")
+        object.__setattr__(self, "theta_max", 0.5 * math.pi)
+        object.__setattr__(self, "_base", (self.z0, _arr(pts), np.array(P), np.array(W),
+                                           _arr(ties), np.array(T, dtype=float), _arr(thr),
+                                           np.array(F, dtype=float)))
+
+    @property
+    def z(self) -> float:
+        """Height of the hinge above the foundation [m]."""
+        return float(self.z0)
+
+    state = SimpleOverturning.state
