@@ -245,3 +245,46 @@ def test_cli_bad_input_one_line(tmp_path, edit, where):
     lines = res.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error:") and where in lines[0], lines
     assert not (tmp_path / "o").exists()
+
+
+def test_cli_ec8_single_storey(tmp_path):
+    # a one-storey wall on EN 1998-1 ground B: the linear SLV demand is ag S / q (S = 1.2)
+    case = tmp_path / "wall.toml"
+    case.write_text(
+        'title = "free-standing wall"\n'
+        '[site]\nspectrum = "ec8"\nground = "B"\n[site.SLV]\nag = 2.0\n'
+        '[analysis]\nFC = 1.0\nmechanisms = ["overturning"]\n'
+        '[[storeys]]\nheight = 4.0\nthickness = 0.5\ndensity = 1800.0\n', encoding="utf-8")
+    res = CliRunner().invoke(app, ["mechanism", str(case), "--json"])
+    assert res.exit_code == 0, res.output
+    m = json.loads(res.stdout)["mechanisms"][0]
+    lin = [c for c in m["checks"] if c["method"] == "linear"][0]
+    assert m["alpha0"] == pytest.approx(0.125, rel=1e-6)
+    assert lin["demand"] == pytest.approx(2.0 * 1.2 / 2.0, rel=1e-9)
+    assert lin["ratio"] == pytest.approx(0.125 * G / 1.2, rel=1e-6)
+
+
+def test_public_api_docstrings():
+    # numpydoc sections, by the rule of tests/test_docstrings.py (errors exempt)
+    import importlib
+    import inspect
+    import re
+
+    bad = []
+    for modname in ("murus.mechanisms", "murus.eurocode.ntc", "murus.mechanisms.demand",
+                    "murus.mechanisms.checks", "murus.mechanisms.facade",
+                    "murus.mechanisms.kinematics", "murus.mechanisms.case",
+                    "murus.mechanisms.cli"):
+        mod = importlib.import_module(modname)
+        for name in mod.__all__:
+            obj = getattr(mod, name)
+            if not (inspect.isfunction(obj) or inspect.isclass(obj)):
+                continue
+            if inspect.isclass(obj) and issubclass(obj, BaseException):
+                continue
+            doc = inspect.getdoc(obj) or ""
+            params = [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")]
+            sections = "Parameters|Attributes" if inspect.isclass(obj) else "Parameters"
+            if not doc or (params and not re.search(rf"^({sections})\n-{{3,}}", doc, re.M)):
+                bad.append(f"{modname}.{name}")
+    assert not bad, bad

@@ -135,6 +135,17 @@ class CornerCfg(Strict):
 
 
 class MechanismCase(Strict):
+    """A validated case file (module docstring).
+
+    Attributes
+    ----------
+    title : str
+    site, building, analysis
+        The tables ``[site]``, ``[building]``, ``[analysis]``.
+    storeys, floors, corners : list
+        The arrays of tables ``[[storeys]]``, ``[[floors]]``, ``[[corners]]``.
+    """
+
     title: str = "façade"
     site: SiteCfg
     building: BuildingCfg | None = None
@@ -145,7 +156,18 @@ class MechanismCase(Strict):
 
 
 def load_case(path) -> tuple[MechanismCase, Path, str]:
-    """Read and validate a mechanism case file; errors are one-line :class:`CaseError`."""
+    """Read and validate a mechanism case file; errors are one-line :class:`CaseError`.
+
+    Parameters
+    ----------
+    path : path-like
+        The TOML file.
+
+    Returns
+    -------
+    tuple
+        ``(case, path, text)``.
+    """
     path = Path(path)
     data, text = load_toml(path)
     return validate(MechanismCase, data, path, text), path, text
@@ -182,6 +204,13 @@ def _spectrum(site: SiteCfg, ls: str, h: HazardCfg, path: Path, text: str):
 
 def build(case: MechanismCase, path: Path, text: str):
     """Storeys, floors and seismic input of a validated case.
+
+    Parameters
+    ----------
+    case : MechanismCase
+    path : pathlib.Path
+    text : str
+        The TOML text (for the lines of the errors).
 
     Returns
     -------
@@ -242,6 +271,12 @@ def build(case: MechanismCase, path: Path, text: str):
 
 def run_case(case: MechanismCase, path: Path, text: str) -> dict:
     """Run the mechanisms of a case.
+
+    Parameters
+    ----------
+    case : MechanismCase
+    path : pathlib.Path
+    text : str
 
     Returns
     -------

@@ -114,7 +114,26 @@ class Seismic:
 
 @dataclass(frozen=True)
 class Check:
-    """One check: capacity >= demand (ratio = capacity / demand >= 1 passes)."""
+    """One check: capacity >= demand (ratio = capacity / demand >= 1 passes).
+
+    Attributes
+    ----------
+    limit_state : str
+        ``"SLD"``, ``"SLV"`` or ``"SLC"``.
+    method : str
+        ``"linear"`` (accelerations) or ``"nonlinear"`` (displacements).
+    quantity : str
+        The checked quantity (``"a0*"``, ``"d_SLV"``, ...).
+    capacity, demand : float
+        In ``unit`` (m/s2 or m).
+    unit : str
+    ratio : float
+        capacity / demand as defined by the check (module docstring).
+    equation : str
+        The equations of the Circolare used.
+    details : dict
+        Intermediate values (period, damping, floor acceleration, ...).
+    """
 
     limit_state: str
     method: str

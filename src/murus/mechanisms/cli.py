@@ -20,7 +20,19 @@ __all__ = ["mechanism", "summary"]
 
 
 def summary(run: dict, title: str = "") -> dict:
-    """The JSON summary of a run of :func:`murus.mechanisms.case.run_case`."""
+    """The JSON summary of a run of :func:`murus.mechanisms.case.run_case`.
+
+    Parameters
+    ----------
+    run : dict
+        The run.
+    title : str
+        The case's title.
+
+    Returns
+    -------
+    dict
+    """
     res = run["results"]
     gov = run["governing"]
     s = run["seismic"]
@@ -83,7 +95,17 @@ def mechanism(
 ) -> None:
     """Kinematic checks of local mechanisms of a masonry façade (NTC 2018, Circolare 2019
     §C8.7.1): simple overturning at every hinge level and vertical flexure, linear (a0*) and
-    nonlinear (displacement) checks at SLD, SLV, SLC."""
+    nonlinear (displacement) checks at SLD, SLV, SLC.
+
+    Parameters
+    ----------
+    case : pathlib.Path
+        The case file.
+    json_out : bool
+        Print the summary as JSON.
+    out : pathlib.Path, optional
+        Output folder.
+    """
     from murus.config import CaseError
     from murus.mechanisms.case import load_case, run_case
     from murus.outputs import OutputError
@@ -105,7 +127,7 @@ def mechanism(
         with guard(OutputError), staged_dir(out, names=names) as tmp:
             (tmp / "summary.json").write_text(dumps(summ), encoding="utf-8")
             for r, name in zip(run["results"], names[1:], strict=True):
-                ax = plot_capacity(r)
+                ax = plot_capacity(r, seismic=run["seismic"])
                 ax.figure.tight_layout()
                 ax.figure.savefig(tmp / name, dpi=110)
                 plt.close(ax.figure)

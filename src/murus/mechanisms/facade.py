@@ -99,6 +99,16 @@ def flexure_of_storey(storeys, floors, index: int, seismic: Seismic, n: int = 10
     of the storeys above (at the middle of the storey above) and the loads of the floors at its
     top level and above, without horizontal inertia (the floor above restrains the top).
 
+    Parameters
+    ----------
+    storeys : sequence of Storey
+    floors : sequence of Floor
+    index : int
+        The storey (0-based).
+    seismic : Seismic
+    n : int
+        Points of the capacity curve.
+
     Returns
     -------
     MechanismResult
@@ -126,7 +136,16 @@ def flexure_of_storey(storeys, floors, index: int, seismic: Seismic, n: int = 10
 
 
 def governing(results) -> MechanismResult:
-    """The result with the smallest capacity / demand ratio."""
+    """The result with the smallest capacity / demand ratio.
+
+    Parameters
+    ----------
+    results : sequence of MechanismResult
+
+    Returns
+    -------
+    MechanismResult
+    """
     return min(results, key=lambda r: r.ratio)
 
 
@@ -139,7 +158,9 @@ def plot_capacity(result: MechanismResult, ax=None, seismic: Seismic | None = No
     result : MechanismResult
     ax : matplotlib.axes.Axes, optional
     seismic : Seismic, optional
-        Unused (kept for a demand curve in a later version).
+        The seismic input of the checks: adds the SLV demand spectrum in the acceleration-
+        displacement plane (ground spectrum, or the floor spectrum of §C7.2.3 at the height of
+        the mechanism, damping 8 %) and the secant line at T_SLV.
 
     Returns
     -------
@@ -162,10 +183,31 @@ def plot_capacity(result: MechanismResult, ax=None, seismic: Seismic | None = No
                        label=f"d_{ch.limit_state} = {ch.capacity * 1e3:.1f} mm")
             ax.axvline(ch.demand * 1e3, color=col, ls="--", lw=1,
                        label=f"{ch.limit_state} demand {ch.demand * 1e3:.1f} mm")
+    nl = [ch for ch in result.checks if ch.method == "nonlinear" and ch.limit_state == "SLV"]
+    if seismic is not None and nl:
+        from murus.mechanisms.demand import floor_spectrum
+
+        sp = seismic.spectra["SLV"]
+        T = np.linspace(0.05, 4.0, 200)
+        xi = nl[0].details["damping"]
+        if result.z > 0 and seismic.building is not None:
+            a = np.maximum(floor_spectrum(sp, seismic.building, result.z, T, xi), sp.Se(T, xi))
+        else:
+            a = np.asarray(sp.Se(T, xi))
+        d = a * T ** 2 / (4 * math.pi ** 2)
+        dmax = 1.5 * max(float(np.max(c["d_star"])), nl[0].demand)
+        keep = d <= dmax
+        ax.plot(d[keep] * 1e3, a[keep], color="tab:orange", lw=1, alpha=0.7,
+                label=f"SLV demand spectrum, xi = {100 * xi:g} %")
+        Ts = nl[0].details["T"]
+        dd = np.array([0.0, nl[0].demand])
+        ax.plot(dd * 1e3, dd * 4 * math.pi ** 2 / Ts ** 2, color="tab:gray", lw=0.8,
+                ls="-.", label=f"T_SLV = {Ts:.2f} s")
     ax.set_xlabel("d* [mm]")
     ax.set_ylabel("a* [m/s2]")
     ax.set_xlim(left=0)
-    ax.set_ylim(bottom=0)
+    lin = [ch.demand for ch in result.checks if ch.method == "linear"]
+    ax.set_ylim(0, max([2.0 * float(np.max(c["a_star"]))] + [1.3 * x for x in lin]))
     ax.set_title(f"{result.name}: ratio {result.ratio:.2f} "
                  f"({'PASS' if result.passed else 'FAIL'})")
     ax.legend(fontsize=7)

@@ -242,6 +242,10 @@ def participation(mech: Mechanism) -> dict:
     ``M* = e* sum W / g`` (Circolare 2009 eq. C8A.4.2), with the virtual displacements dx of the
     initial configuration; the control point is the centroid of the weights W.
 
+    Parameters
+    ----------
+    mech : Mechanism
+
     Returns
     -------
     dict
