@@ -23,8 +23,8 @@ References
 ----------
 Circolare 21 gennaio 2019 n. 7 C.S.LL.PP., §C7.2.3, eqs. C7.2.5-C7.2.10; NTC 2018 §3.2.3.2.
 S. Degli Abbati, S. Cattari, S. Lagomarsino (2018), Theoretically-based and practice-oriented
-formulations for the floor spectra evaluation, Earthquake Spectra 34(1), 79-106,
-doi:10.1193/120316EQS238M.
+formulations for the floor spectra evaluation, Earthquake Spectra (volume, pages and DOI not
+confirmed here).
 """
 
 from __future__ import annotations
