@@ -288,3 +288,19 @@ def test_public_api_docstrings():
             if not doc or (params and not re.search(rf"^({sections})\n-{{3,}}", doc, re.M)):
                 bad.append(f"{modname}.{name}")
     assert not bad, bad
+
+
+def test_ties_in_the_curve():
+    # by default the ties act in alpha0 but not in the capacity curve (d0* = t / 2 of the free
+    # block); with ties_in_curve the tie keeps the wall up to a larger rotation
+    t, h, rho = 0.5, 4.0, 1800.0
+    W = rho * G * t * h
+    wall = SimpleOverturning([Storey(h, t, density=rho)], [Floor(1, tie=0.2 * W)])
+    s = Seismic({"SLV": _site()}, FC=1.0)
+    res = analyse(wall, s)
+    assert res.alpha0 == pytest.approx((W * t / 2 + 0.2 * W * h) / (W * h / 2), rel=1e-7)
+    assert res.d0_star == pytest.approx(t / 2, rel=1e-6)
+    assert res.info["ties_in_curve"] is False
+    tied = analyse(wall, s, ties_in_curve=True)
+    assert tied.d0_star > res.d0_star and tied.info["ties_in_curve"] is True
+    assert tied.curve["alpha"][0] == pytest.approx(res.alpha0)

@@ -20,6 +20,7 @@ Example (``examples/mechanisms/two_storey_facade.toml``)::
     FC = 1.35               # confidence factor 1.00..1.35
     q = 2.0                 # behaviour factor of the linear SLV check
     mechanisms = ["overturning", "vertical-flexure"]
+    ties_in_curve = false   # ties act in alpha0, not in the curve that gives d0 (§C8.7.1.2.1.6)
     [[storeys]]             # bottom to top
     height = 3.5            # m
     thickness = 0.5         # m
@@ -100,6 +101,7 @@ class AnalysisCfg(Strict):
         "overturning", "vertical-flexure", "corner"]
     flexure_storeys: list[int] | None = None
     points: int = Field(default=101, ge=11, le=10001)
+    ties_in_curve: bool = False
 
 
 class StoreyCfg(Strict):
@@ -292,7 +294,7 @@ def run_case(case: MechanismCase, path: Path, text: str) -> dict:
     results = []
     try:
         if "overturning" in a.mechanisms:
-            results += overturning(storeys, floors, seismic, a.points)
+            results += overturning(storeys, floors, seismic, a.points, a.ties_in_curve)
         if "vertical-flexure" in a.mechanisms:
             ks = a.flexure_storeys or list(range(1, len(storeys) + 1))
             for k in ks:
@@ -306,7 +308,7 @@ def run_case(case: MechanismCase, path: Path, text: str) -> dict:
         for i, c in enumerate(case.corners):
             try:
                 mech = CornerOverturning(**c.model_dump())
-                res = analyse(mech, seismic, a.points)
+                res = analyse(mech, seismic, a.points, a.ties_in_curve)
             except MechanismError as exc:
                 raise locate(exc, path, text, ("corners", i)) from None
             res.name = f"corner overturning {i + 1}"

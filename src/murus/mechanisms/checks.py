@@ -269,7 +269,23 @@ def capacity_curve(mech: Mechanism, FC: float = 1.0, n: int = 101) -> dict:
             "d0_star": float(d[-1]), **part}
 
 
-def analyse(mech: Mechanism, seismic: Seismic, n: int = 101) -> MechanismResult:
+class _WithoutTies:
+    """``mech`` with its ties removed (the capacity curve without the ties, :func:`analyse`)."""
+
+    def __init__(self, mech):
+        self.mech = mech
+        self.name = mech.name
+        self.theta_max = mech.theta_max
+
+    def state(self, theta):
+        from dataclasses import replace
+
+        s = self.mech.state(theta)
+        return replace(s, T=np.zeros_like(s.T))
+
+
+def analyse(mech: Mechanism, seismic: Seismic, n: int = 101,
+            ties_in_curve: bool = False) -> MechanismResult:
     """Linear and nonlinear kinematic checks of ``mech`` (module docstring).
 
     Parameters
@@ -278,14 +294,21 @@ def analyse(mech: Mechanism, seismic: Seismic, n: int = 101) -> MechanismResult:
     seismic : Seismic
     n : int
         Points of the capacity curve.
+    ties_in_curve : bool
+        Keep the ties in the capacity curve of the nonlinear checks. The curve that gives d0
+        holds "only the actions whose presence is verified up to collapse" (§C8.7.1.2.1.6): a tie
+        at its strength up to rotations of tens of degrees rarely is, so by default the ties act
+        in alpha0 (linear checks, and the activation ratio that bounds the nonlinear ones from
+        below) and not in the curve.
 
     Returns
     -------
     MechanismResult
     """
     FC, q = seismic.FC, seismic.q
-    cur = capacity_curve(mech, FC, n)
-    al0 = float(cur["alpha"][0])
+    al0 = alpha(mech, 0.0)
+    has_ties = bool(mech.state(0.0).T.size)
+    cur = capacity_curve(mech if ties_in_curve or not has_ties else _WithoutTies(mech), FC, n)
     e = cur["e_star"]
     a0s = al0 * GRAVITY / (e * FC)
     z = mech.z
@@ -329,7 +352,7 @@ def analyse(mech: Mechanism, seismic: Seismic, n: int = 101) -> MechanismResult:
                    "displacement_ratio": ratio, "activation_ratio": act_ls}
         checks.append(Check(ls, "nonlinear", f"d_{ls}", du, demand, "m", max(ratio, act_ls),
                             spec["eq"], details))
-    info = {"activation_ratio_SLV": act}
+    info = {"activation_ratio_SLV": act, "ties_in_curve": bool(ties_in_curve and has_ties)}
     return MechanismResult(mech.name, z, al0, e, cur["M_star"], a0s, cur["d0_star"], FC,
                            {k: cur[k] for k in ("theta", "alpha", "d_star", "a_star")},
                            checks, info)

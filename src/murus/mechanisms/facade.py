@@ -22,7 +22,8 @@ __all__ = ["overturning", "vertical_flexure", "flexure_of_storey", "governing",
            "plot_capacity"]
 
 
-def overturning(storeys, floors, seismic: Seismic, n: int = 101) -> list[MechanismResult]:
+def overturning(storeys, floors, seismic: Seismic, n: int = 101,
+                ties_in_curve: bool = False) -> list[MechanismResult]:
     """Simple overturning with the hinge at the base of each storey in turn (the storeys above
     it move as one block); one result per hinge level, bottom first.
 
@@ -34,6 +35,8 @@ def overturning(storeys, floors, seismic: Seismic, n: int = 101) -> list[Mechani
     seismic : Seismic
     n : int
         Points of each capacity curve.
+    ties_in_curve : bool
+        Keep the ties in the capacity curves (:func:`murus.mechanisms.checks.analyse`).
 
     Returns
     -------
@@ -44,7 +47,8 @@ def overturning(storeys, floors, seismic: Seismic, n: int = 101) -> list[Mechani
     floors = [f if isinstance(f, Floor) else Floor(**f) for f in floors]
     out = []
     for k in range(len(storeys)):
-        out.append(analyse(SimpleOverturning(storeys, floors, hinge=k), seismic, n))
+        out.append(analyse(SimpleOverturning(storeys, floors, hinge=k), seismic, n,
+                           ties_in_curve))
     return out
 
 
