@@ -54,7 +54,8 @@ def _slug(name: str) -> str:
 def _label(name: str) -> str:
     """A short label of a mechanism for the table."""
     return (name.replace("overturning from storey ", "overturning ")
-            .replace("vertical flexure of storey ", "v. flexure "))
+            .replace("vertical flexure of storey ", "v. flexure ")
+            .replace("corner overturning ", "corner "))
 
 
 def _print_table(run: dict, title: str) -> None:
