@@ -97,6 +97,17 @@ def test_single_block_closed_forms():
     assert alpha(tied) == pytest.approx((W * t / 2 + 0.1 * W * h) / (W * h / 2), rel=1e-7)
 
 
+@pytest.mark.parametrize("n", [1, 2, 5, 40])
+def test_slices_approach_the_continuous_mass(n):
+    # n slices of one storey: e* = 3 n^2 / (4 n^2 - 1) (1 -> 3/4), d0* = t/2 (4/3 - 1/(3 n^2))
+    t, h = 0.5, 4.0
+    wall = SimpleOverturning([Storey(h, t, density=1800.0)], [], slices=n)
+    assert alpha(wall) == pytest.approx(t / h, rel=1e-7)
+    assert participation(wall)["e_star"] == pytest.approx(3 * n * n / (4 * n * n - 1), rel=1e-9)
+    d0 = capacity_curve(wall)["d0_star"]
+    assert d0 == pytest.approx(t / 2 * (4 / 3 - 1 / (3 * n * n)), rel=1e-6)
+
+
 def test_two_blocks_participation_closed_form():
     # two equal weights at heights 1 and 3 (lumped): e* = (W + 3W)^2 / (2W (W + 9W)) = 0.8
     st = [Storey(2.0, 0.4, weight=1000.0), Storey(2.0, 0.4, weight=1000.0)]

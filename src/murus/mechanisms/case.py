@@ -21,6 +21,7 @@ Example (``examples/mechanisms/two_storey_facade.toml``)::
     q = 2.0                 # behaviour factor of the linear SLV check
     mechanisms = ["overturning", "vertical-flexure"]
     ties_in_curve = false   # ties act in alpha0, not in the curve that gives d0 (§C8.7.1.2.1.6)
+    slices = 1              # weights per storey (overturning): 1 = one per block, as eq. C8.7.1.1
     [[storeys]]             # bottom to top
     height = 3.5            # m
     thickness = 0.5         # m
@@ -102,6 +103,7 @@ class AnalysisCfg(Strict):
     flexure_storeys: list[int] | None = None
     points: int = Field(default=101, ge=11, le=10001)
     ties_in_curve: bool = False
+    slices: int = Field(default=1, ge=1, le=1000)
 
 
 class StoreyCfg(Strict):
@@ -294,7 +296,8 @@ def run_case(case: MechanismCase, path: Path, text: str) -> dict:
     results = []
     try:
         if "overturning" in a.mechanisms:
-            results += overturning(storeys, floors, seismic, a.points, a.ties_in_curve)
+            results += overturning(storeys, floors, seismic, a.points, a.ties_in_curve,
+                                   a.slices)
         if "vertical-flexure" in a.mechanisms:
             ks = a.flexure_storeys or list(range(1, len(storeys) + 1))
             for k in ks:

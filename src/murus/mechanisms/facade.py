@@ -23,7 +23,7 @@ __all__ = ["overturning", "vertical_flexure", "flexure_of_storey", "governing",
 
 
 def overturning(storeys, floors, seismic: Seismic, n: int = 101,
-                ties_in_curve: bool = False) -> list[MechanismResult]:
+                ties_in_curve: bool = False, slices: int = 1) -> list[MechanismResult]:
     """Simple overturning with the hinge at the base of each storey in turn (the storeys above
     it move as one block); one result per hinge level, bottom first.
 
@@ -37,6 +37,8 @@ def overturning(storeys, floors, seismic: Seismic, n: int = 101,
         Points of each capacity curve.
     ties_in_curve : bool
         Keep the ties in the capacity curves (:func:`murus.mechanisms.checks.analyse`).
+    slices : int
+        Horizontal slices per storey (:class:`murus.mechanisms.kinematics.SimpleOverturning`).
 
     Returns
     -------
@@ -47,8 +49,8 @@ def overturning(storeys, floors, seismic: Seismic, n: int = 101,
     floors = [f if isinstance(f, Floor) else Floor(**f) for f in floors]
     out = []
     for k in range(len(storeys)):
-        out.append(analyse(SimpleOverturning(storeys, floors, hinge=k), seismic, n,
-                           ties_in_curve))
+        out.append(analyse(SimpleOverturning(storeys, floors, hinge=k, slices=slices), seismic,
+                           n, ties_in_curve))
     return out
 
 

@@ -294,6 +294,11 @@ class SimpleOverturning(Mechanism):
         Floors and roof; a floor at the level of the hinge or below stays still.
     hinge : int
         Index of the lowest moving storey (0: the hinge at the foundation).
+    slices : int
+        Horizontal slices per storey, each with its weight at its centroid (1: one weight per
+        storey, the sums over the block weights of eq. [C8.7.1.1]). More slices approach the
+        continuous distribution of the mass: e* = 3 n^2 / (4 n^2 - 1) for one storey of n
+        slices, 1 for n = 1, 3/4 in the limit; d0* = t/2 (4/3 - 1/(3 n^2)), t/2 to 2t/3.
 
     Notes
     -----
@@ -306,8 +311,12 @@ class SimpleOverturning(Mechanism):
     storeys: tuple = ()
     floors: tuple = ()
     hinge: int = 0
+    slices: int = 1
 
     def __post_init__(self):
+        if int(self.slices) != self.slices or not 1 <= self.slices <= 1000:
+            raise MechanismError(f"slices must be an integer in 1..1000, got {self.slices!r}",
+                                 key=("slices",))
         object.__setattr__(self, "storeys", tuple(self.storeys))
         object.__setattr__(self, "floors", tuple(self.floors))
         n = len(self.storeys)
@@ -322,11 +331,13 @@ class SimpleOverturning(Mechanism):
         object.__setattr__(self, "name", f"overturning from storey {self.hinge + 1}")
         levels = np.cumsum([0.0] + [s.height for s in self.storeys])
         pts, P, W = [], [], []
+        m = int(self.slices)
         for i in range(self.hinge, n):
             s = self.storeys[i]
-            pts.append((-0.5 * s.thickness, 0.5 * (levels[i] + levels[i + 1])))
-            P.append(s.W)
-            W.append(s.W)
+            for j in range(m):  # m horizontal slices of equal weight (openings spread evenly)
+                pts.append((-0.5 * s.thickness, levels[i] + (j + 0.5) * s.height / m))
+                P.append(s.W / m)
+                W.append(s.W / m)
         ties, T, thr, F = [], [], [], []
         for f in self.floors:
             if f.level <= self.hinge:
