@@ -206,6 +206,16 @@ def _spectrum(site: SiteCfg, ls: str, h: HazardCfg, path: Path, text: str):
         raise fail_at(path, text, ("site",), str(exc)) from None
 
 
+def _needs_building(case: MechanismCase, n: int) -> bool:
+    """True when a mechanism of the case stands above the ground (floor spectra needed)."""
+    a = case.analysis
+    if "overturning" in a.mechanisms and n > 1:
+        return True
+    if "vertical-flexure" in a.mechanisms and max(a.flexure_storeys or [n]) > 1:
+        return True
+    return "corner" in a.mechanisms and any(c.z0 > 0 for c in case.corners)
+
+
 def build(case: MechanismCase, path: Path, text: str):
     """Storeys, floors and seismic input of a validated case.
 
@@ -257,7 +267,7 @@ def build(case: MechanismCase, path: Path, text: str):
         if H < sum(s.height for s in storeys) * (1 - 1e-9):
             raise fail_at(path, text, ("building", "height"), f"{H:g} m is lower than the "
                           "façade")
-    elif n > 1 or "vertical-flexure" in case.analysis.mechanisms:
+    elif _needs_building(case, n):
         raise fail_at(path, text, ("building",), "required for mechanisms above the ground "
                       "(T1 [s] for the floor spectra of the Circolare 2019 §C7.2.3)")
     a = case.analysis
