@@ -315,3 +315,19 @@ def test_ties_in_the_curve():
     tied = analyse(wall, s, ties_in_curve=True)
     assert tied.d0_star > res.d0_star and tied.info["ties_in_curve"] is True
     assert tied.curve["alpha"][0] == pytest.approx(res.alpha0)
+
+
+def test_verdict_code_and_all():
+    # "code": the SLV verdict is the nonlinear check, the linear SLV check is for information;
+    # "all": every check governs
+    t, h = 0.5, 4.0
+    wall = SimpleOverturning([Storey(h, t, density=1800.0)], [])
+    s = Seismic({"SLV": _site(ag_g=0.3)}, FC=1.0)
+    code, every = analyse(wall, s), analyse(wall, s, verdict="all")
+    lin_c = [c for c in code.checks if c.method == "linear"][0]
+    nl_c = [c for c in code.checks if c.method == "nonlinear"][0]
+    assert not lin_c.governs and nl_c.governs
+    assert code.ratio == pytest.approx(nl_c.ratio)
+    assert every.ratio == pytest.approx(min(lin_c.ratio, nl_c.ratio))
+    with pytest.raises(MechanismError):
+        analyse(wall, s, verdict="strict")

@@ -22,6 +22,7 @@ Example (``examples/mechanisms/two_storey_facade.toml``)::
     mechanisms = ["overturning", "vertical-flexure"]
     ties_in_curve = false   # ties act in alpha0, not in the curve that gives d0 (§C8.7.1.2.1.6)
     slices = 1              # weights per storey (overturning): 1 = one per block, as eq. C8.7.1.1
+    verdict = "code"        # SLV verdict by the nonlinear check ("all": every check governs)
     [[storeys]]             # bottom to top
     height = 3.5            # m
     thickness = 0.5         # m
@@ -104,6 +105,7 @@ class AnalysisCfg(Strict):
     points: int = Field(default=101, ge=11, le=10001)
     ties_in_curve: bool = False
     slices: int = Field(default=1, ge=1, le=1000)
+    verdict: Literal["code", "all"] = "code"
 
 
 class StoreyCfg(Strict):
@@ -307,11 +309,12 @@ def run_case(case: MechanismCase, path: Path, text: str) -> dict:
     try:
         if "overturning" in a.mechanisms:
             results += overturning(storeys, floors, seismic, a.points, a.ties_in_curve,
-                                   a.slices)
+                                   a.slices, a.verdict)
         if "vertical-flexure" in a.mechanisms:
             ks = a.flexure_storeys or list(range(1, len(storeys) + 1))
             for k in ks:
-                results.append(flexure_of_storey(storeys, floors, k - 1, seismic, a.points))
+                results.append(flexure_of_storey(storeys, floors, k - 1, seismic, a.points,
+                                                 a.verdict))
     except MechanismError as exc:
         raise fail_at(path, text, ("storeys",), str(exc)) from None
     if "corner" in a.mechanisms:
@@ -321,7 +324,7 @@ def run_case(case: MechanismCase, path: Path, text: str) -> dict:
         for i, c in enumerate(case.corners):
             try:
                 mech = CornerOverturning(**c.model_dump())
-                res = analyse(mech, seismic, a.points, a.ties_in_curve)
+                res = analyse(mech, seismic, a.points, a.ties_in_curve, a.verdict)
             except MechanismError as exc:
                 raise locate(exc, path, text, ("corners", i)) from None
             res.name = f"corner overturning {i + 1}"

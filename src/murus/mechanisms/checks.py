@@ -133,6 +133,9 @@ class Check:
         The equations of the Circolare used.
     details : dict
         Intermediate values (period, damping, floor acceleration, ...).
+    governs : bool
+        The check enters the verdict of the mechanism (False: the simplified linear SLV check
+        when the nonlinear one was made, shown for information; :func:`analyse`).
     """
 
     limit_state: str
@@ -144,13 +147,14 @@ class Check:
     ratio: float
     equation: str
     details: dict = field(default_factory=dict)
+    governs: bool = True
 
     @property
     def passed(self) -> bool:
         return bool(self.ratio >= 1.0)
 
     def as_dict(self) -> dict:
-        return {"limit_state": self.limit_state, "method": self.method,
+        return {"limit_state": self.limit_state, "method": self.method, "governs": self.governs,
                 "quantity": self.quantity, "capacity": self.capacity, "demand": self.demand,
                 "unit": self.unit, "ratio": self.ratio, "passed": self.passed,
                 "equation": self.equation, **self.details}
@@ -192,12 +196,12 @@ class MechanismResult:
 
     @property
     def ratio(self) -> float:
-        """The smallest capacity / demand ratio of the checks."""
-        return min(c.ratio for c in self.checks)
+        """The smallest capacity / demand ratio of the checks that govern."""
+        return min(c.ratio for c in self.checks if c.governs)
 
     @property
     def passed(self) -> bool:
-        return all(c.passed for c in self.checks)
+        return all(c.passed for c in self.checks if c.governs)
 
     def summary(self) -> dict:
         return {"name": self.name, "z": self.z, "alpha0": self.alpha0, "e_star": self.e_star,
@@ -285,7 +289,7 @@ class _WithoutTies:
 
 
 def analyse(mech: Mechanism, seismic: Seismic, n: int = 101,
-            ties_in_curve: bool = False) -> MechanismResult:
+            ties_in_curve: bool = False, verdict: str = "code") -> MechanismResult:
     """Linear and nonlinear kinematic checks of ``mech`` (module docstring).
 
     Parameters
@@ -300,11 +304,18 @@ def analyse(mech: Mechanism, seismic: Seismic, n: int = 101,
         at its strength up to rotations of tens of degrees rarely is, so by default the ties act
         in alpha0 (linear checks, and the activation ratio that bounds the nonlinear ones from
         below) and not in the curve.
+    verdict : str
+        ``"code"``: the SLV verdict is the nonlinear check, the linear one (with q) being the
+        simplified method for when no capacity curve is computed (§C8.7.1.2.1.7); it is kept
+        for information. ``"all"``: every check governs (the more conservative reading).
 
     Returns
     -------
     MechanismResult
     """
+    if verdict not in ("code", "all"):
+        raise MechanismError(f"verdict must be 'code' or 'all', got {verdict!r}",
+                             key=("verdict",))
     FC, q = seismic.FC, seismic.q
     al0 = alpha(mech, 0.0)
     has_ties = bool(mech.state(0.0).T.size)
@@ -333,7 +344,8 @@ def analyse(mech: Mechanism, seismic: Seismic, n: int = 101,
     act = a0s / dem
     checks.append(Check("SLV", "linear", "a0*", a0s, dem / q, "m/s2", a0s * q / dem,
                         "[C8.7.1.8], [C7.2.8], q (C8.7.1.2.1.7)",
-                        {"q": q, "a_ground": float(sp.pga), "a_floor": floor}))
+                        {"q": q, "a_ground": float(sp.pga), "a_floor": floor},
+                        governs=verdict == "all"))
     d, a = cur["d_star"], cur["a_star"]
     for ls in ("SLV", "SLC"):
         if ls not in seismic.spectra:

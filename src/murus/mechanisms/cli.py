@@ -58,6 +58,13 @@ def _label(name: str) -> str:
             .replace("corner overturning ", "corner "))
 
 
+def _by_activation(c) -> bool:
+    """The ratio of a nonlinear check is the activation one (C8.7.1.2.1.8, last paragraph)."""
+    d = c.details
+    return c.method == "nonlinear" and d.get("activation_ratio", 0) > d.get(
+        "displacement_ratio", float("inf"))
+
+
 def _print_table(run: dict, title: str) -> None:
     from rich import box
     from rich.console import Console
@@ -77,12 +84,17 @@ def _print_table(run: dict, title: str) -> None:
             table.add_row(
                 escape(_label(r.name)) if first else "", f"{r.alpha0:.3f}" if first else "",
                 f"{c.limit_state} {'a' if c.method == 'linear' else 'd'}",
-                f"{c.capacity * k:.3g} {unit}", f"{c.demand * k:.3g} {unit}", f"{c.ratio:.2f}",
-                "[green]PASS" if c.passed else "[red]FAIL")
+                f"{c.capacity * k:.3g} {unit}", f"{c.demand * k:.3g} {unit}",
+                f"{c.ratio:.2f}" + ("*" if _by_activation(c) else ""),
+                ("[green]PASS" if c.passed else "[red]FAIL") if c.governs
+                else ("[dim]pass" if c.passed else "[dim]fail"))
             first = False
     Console().print(table)
     typer.echo("a: linear check of the activation acceleration a0* (m/s2); d: nonlinear check "
-               "of the displacement (mm); ratio = capacity / demand")
+               "of the displacement (mm); ratio = capacity / demand; *: the activation "
+               "acceleration governs (ag,SLD > ag,SLV, §C8.7.1.2.1.8); lower case: for "
+               "information, not in the verdict (the linear SLV check is the simplified "
+               "method, §C8.7.1.2.1.7)")
     g = run["governing"]
     typer.echo(f"governing: {g.name}, capacity/demand {g.ratio:.2f} "
                f"({'PASS' if g.passed else 'FAIL'})")

@@ -23,7 +23,8 @@ __all__ = ["overturning", "vertical_flexure", "flexure_of_storey", "governing",
 
 
 def overturning(storeys, floors, seismic: Seismic, n: int = 101,
-                ties_in_curve: bool = False, slices: int = 1) -> list[MechanismResult]:
+                ties_in_curve: bool = False, slices: int = 1,
+                verdict: str = "code") -> list[MechanismResult]:
     """Simple overturning with the hinge at the base of each storey in turn (the storeys above
     it move as one block); one result per hinge level, bottom first.
 
@@ -39,6 +40,8 @@ def overturning(storeys, floors, seismic: Seismic, n: int = 101,
         Keep the ties in the capacity curves (:func:`murus.mechanisms.checks.analyse`).
     slices : int
         Horizontal slices per storey (:class:`murus.mechanisms.kinematics.SimpleOverturning`).
+    verdict : str
+        ``"code"`` or ``"all"`` (:func:`murus.mechanisms.checks.analyse`).
 
     Returns
     -------
@@ -50,7 +53,7 @@ def overturning(storeys, floors, seismic: Seismic, n: int = 101,
     out = []
     for k in range(len(storeys)):
         out.append(analyse(SimpleOverturning(storeys, floors, hinge=k, slices=slices), seismic,
-                           n, ties_in_curve))
+                           n, ties_in_curve, verdict))
     return out
 
 
@@ -61,7 +64,7 @@ def _flexure_alpha0(base: dict, h1: float) -> float:
 def vertical_flexure(height: float, thickness: float, weight: float, seismic: Seismic,
                      top_load: float = 0.0, top_load_x: float | None = None,
                      top_inertial: bool = False, z0: float = 0.0, n: int = 101,
-                     grid: int = 199) -> MechanismResult:
+                     grid: int = 199, verdict: str = "code") -> MechanismResult:
     """Vertical flexure of a wall restrained at top and bottom, with the intermediate hinge at
     the height that minimises alpha0 (a grid of ``grid`` heights refined by golden section).
 
@@ -74,6 +77,12 @@ def vertical_flexure(height: float, thickness: float, weight: float, seismic: Se
     seismic : Seismic
     top_load, top_load_x, top_inertial, z0
         As for :class:`murus.mechanisms.kinematics.VerticalFlexure`.
+    n : int
+        Points of the capacity curve.
+    grid : int
+        Hinge heights of the first search.
+    verdict : str
+        ``"code"`` or ``"all"`` (:func:`murus.mechanisms.checks.analyse`).
 
     Returns
     -------
@@ -95,12 +104,13 @@ def vertical_flexure(height: float, thickness: float, weight: float, seismic: Se
         else:
             lo = c
     h1 = 0.5 * (lo + hi)
-    res = analyse(VerticalFlexure(h1=h1, **base), seismic, n)
+    res = analyse(VerticalFlexure(h1=h1, **base), seismic, n, verdict=verdict)
     res.info["h1"] = h1
     return res
 
 
-def flexure_of_storey(storeys, floors, index: int, seismic: Seismic, n: int = 101):
+def flexure_of_storey(storeys, floors, index: int, seismic: Seismic, n: int = 101,
+                      verdict: str = "code"):
     """Vertical flexure of the storey ``index`` (0-based) of a façade: the top load is the weight
     of the storeys above (at the middle of the storey above) and the loads of the floors at its
     top level and above, without horizontal inertia (the floor above restrains the top).
@@ -114,6 +124,8 @@ def flexure_of_storey(storeys, floors, index: int, seismic: Seismic, n: int = 10
     seismic : Seismic
     n : int
         Points of the capacity curve.
+    verdict : str
+        ``"code"`` or ``"all"`` (:func:`murus.mechanisms.checks.analyse`).
 
     Returns
     -------
@@ -136,7 +148,7 @@ def flexure_of_storey(storeys, floors, index: int, seismic: Seismic, n: int = 10
     x = moment / load if load > 0 else None
     z0 = float(sum(t.height for t in storeys[:index]))
     res = vertical_flexure(s.height, s.thickness, s.W, seismic, top_load=load, top_load_x=x,
-                           z0=z0, n=n)
+                           z0=z0, n=n, verdict=verdict)
     res.name = f"vertical flexure of storey {index + 1}"
     return res
 
