@@ -246,6 +246,7 @@ def test_cli_json_and_out(tmp_path):
     (("F0 = 2.40", "F0 = 9.0"), "F0"),
     (("crack_angle_deg = 30.0", "crack_angle_deg = 80.0"), "corners"),
     (("T1 = 0.25", "T1 = 0.0"), "T1"),
+    (("x = 0.30", "x = 0.60"), "floors.x"),
 ])
 def test_cli_bad_input_one_line(tmp_path, edit, where):
     text = EXAMPLE.read_text(encoding="utf-8").replace(*edit)

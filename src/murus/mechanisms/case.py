@@ -306,6 +306,12 @@ def run_case(case: MechanismCase, path: Path, text: str) -> dict:
     storeys, floors, seismic = build(case, path, text)
     a = case.analysis
     results = []
+    from murus.mechanisms.kinematics import SimpleOverturning
+
+    try:
+        SimpleOverturning(storeys, floors)
+    except MechanismError as exc:
+        raise locate(exc, path, text) from None
     try:
         if "overturning" in a.mechanisms:
             results += overturning(storeys, floors, seismic, a.points, a.ties_in_curve,

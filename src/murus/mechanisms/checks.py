@@ -207,7 +207,9 @@ class MechanismResult:
         return {"name": self.name, "z": self.z, "alpha0": self.alpha0, "e_star": self.e_star,
                 "M_star": self.M_star, "a0_star": self.a0_star, "d0_star": self.d0_star,
                 "FC": self.FC, "ratio": self.ratio, "passed": self.passed, **self.info,
-                "checks": [c.as_dict() for c in self.checks]}
+                "checks": [c.as_dict() for c in self.checks],
+                "capacity_curve": {"d_star": [float(x) for x in self.curve["d_star"]],
+                                   "a_star": [float(x) for x in self.curve["a_star"]]}}
 
 
 def _collapse_rotation(mech: Mechanism) -> float:

@@ -328,6 +328,10 @@ class SimpleOverturning(Mechanism):
             if f.level > n:
                 raise MechanismError(f"level {f.level} is above the top storey ({n})",
                                      key=("floors", i, "level"))
+            if f.x is not None and f.x > self.storeys[f.level - 1].thickness:
+                raise MechanismError(f"x = {f.x:g} m is beyond the inner face of the wall "
+                                     f"({self.storeys[f.level - 1].thickness:g} m thick)",
+                                     key=("floors", i, "x"))
         object.__setattr__(self, "name", f"overturning from storey {self.hinge + 1}")
         levels = np.cumsum([0.0] + [s.height for s in self.storeys])
         pts, P, W = [], [], []
