@@ -14,6 +14,7 @@ from typer.core import TyperGroup
 
 from murus import cliutil
 from murus.identify.cli import app as lab_app
+from murus.mechanisms.cli import mechanism
 from murus.motion.cli import app as motion_app
 from murus.retaining.cli import app as retaining_app
 from murus.rocking.design_cli import app as design_app
@@ -61,6 +62,7 @@ app.add_typer(design_app, name="design")
 app.add_typer(retaining_app, name="retaining")
 app.add_typer(study_app, name="study")
 app.add_typer(lab_app, name="lab")
+app.command("mechanism")(mechanism)
 # "studies" is accepted too (hidden), so that either spelling works
 app.add_typer(study_app, name="studies", hidden=True)
 
