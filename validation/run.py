@@ -47,6 +47,7 @@ def main() -> None:
     import continuum
     import eurocode
     import identify
+    import mechanisms_dynamics
     import mordant_series_model
     import motion
     import rest_rule
@@ -62,6 +63,7 @@ def main() -> None:
 
     sections = [("rocking", rocking.section), ("restrained", restrained.section),
                 ("rest_rule", rest_rule.section),
+                ("mechanisms_dynamics", mechanisms_dynamics.section),
                 ("mordant_series_model", mordant_series_model.section),
                 ("winkler", lambda: winkler.run(ROOT / "docs" / "figures" / "winkler")),
                 ("motion", motion.section), ("eurocode", eurocode.section),
