@@ -211,13 +211,18 @@ def detect_format(path, text: str | None = None) -> str:
     if ext in (".csv", ".tsv") or _looks_like_columns(lines):
         return "csv"
     raise MotionFormatError(
-        f"{path.name}: unrecognised record format (first line: {_short(first.strip())}); "
+        f"{path.name}: unrecognised record format (first line: {_first_line(first)}); "
         f"murus reads {_FORMAT_NAMES}"
     )
 
 
 _FORMAT_NAMES = ("PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII "
                  "and CSV/text columns")
+
+
+def _first_line(line: str) -> str:
+    s = "".join(c if c.isprintable() else "?" for c in line.strip())
+    return repr(s if len(s) <= 48 else s[:45] + "...")
 
 
 def _looks_like_columns(lines: list[str]) -> bool:

@@ -92,9 +92,11 @@ def is_dmg(lines: list[str]) -> bool:
 
 
 def is_knet(lines: list[str]) -> bool:
-    """True for a K-NET/KiK-net ASCII header ("Origin Time" ... "Scale Factor")."""
+    """True for a K-NET/KiK-net ASCII header ("Origin Time", then "Station Code", "Sampling
+    Freq(Hz)" or "Scale Factor" lines)."""
     return (bool(lines) and lines[0].startswith("Origin Time")
-            and any(ln.startswith("Scale Factor") for ln in lines[:20]))
+            and any(ln.startswith(("Scale Factor", "Station Code", "Sampling Freq"))
+                    for ln in lines[:20]))
 
 
 def _orientation(text: str) -> tuple[float | None, bool]:
