@@ -11,10 +11,15 @@ Formats, chosen by content (then extension) unless ``format`` is given:
     header lines (``SAMPLING_INTERVAL_S``, ``NDATA``, ``UNITS``, ``DATA_TYPE`` ...) followed by
     one value per line.
 ``cosmos``
-    COSMOS Strong-Motion Data Format (v1.20) processed (V2) file: 14 text header lines, an
-    integer header, a real header (value 62 is the sampling interval in ms), comment lines and
-    a data block "N acceleration pts, approx T secs, units=cm/sec2 (04), Format=(...)". The first
-    acceleration block is read.
+    COSMOS Strong-Motion Data Format (v1.20) V1 (uncorrected) or V2 (processed) file: 14 text
+    header lines, an integer header, a real header (value 62 is the sampling interval in ms),
+    comment lines and a data block "N acceleration pts, approx T secs, units=cm/sec2 (04),
+    Format=(...)". V0 files in raw counts are refused (they need the instrument response).
+    Files holding several channels one after the other are read channel by channel;
+    integer-header value 54 is the channel azimuth (500 = up, 600 = down).
+``dmg``, ``knet``
+    CSMIP/DMG V1 and V2 (California Geological Survey) and K-NET/KiK-net ASCII (NIED): see
+    :mod:`murus.motion.networks`.
 ``csv`` / text
     One or more columns separated by commas, semicolons or blanks. Two columns are time [s] and
     acceleration, three add the vertical acceleration, one column is acceleration at a step ``dt``.
@@ -25,6 +30,11 @@ Formats, chosen by content (then extension) unless ``format`` is given:
 Units: g, m/s2 and cm/s2 (gal). A value in g is converted with ``murus.G`` = 9.81 m/s² (the
 constant used everywhere in murus, so that a record written in g and read back is unchanged;
 note that PEER and COSMOS use g = 9.80665 m/s² for their own conversions, a 0.03 % difference).
+
+Multi-channel files: :func:`read` returns one channel (``channel=``: default the first
+horizontal one), :func:`read_all` all of them, each with ``meta["channel"]``, ``"component"``,
+``"azimuth_deg"`` and ``"vertical"``. A file that matches no format is refused with
+"unrecognised record format" and its first line (never parsed as CSV by default).
 
 Every error is a :class:`MotionFormatError` (a ``ValueError``) whose message is one line that
 names the file and, where it applies, the line number: ``record.csv line 12: 'abc' is not a
@@ -826,7 +836,18 @@ def read(path, units: str | None = None, dt: float | None = None, scale: float =
 def read_all(path, units: str | None = None, dt: float | None = None,
              format: str | None = None) -> list[GroundMotion]:
     """Every acceleration channel of a record file, in file order (one item for single-channel
-    formats). Parameters as :func:`read`.
+    formats).
+
+    Parameters
+    ----------
+    path : str or Path
+        Record file (see :func:`read`).
+    units : {"g", "m/s2", "cm/s2"}, optional
+        As :func:`read`.
+    dt : float, optional
+        As :func:`read` [s].
+    format : str, optional
+        Skip detection.
 
     Returns
     -------
