@@ -152,7 +152,7 @@ class MotionFields(Strict):
     units: Literal["g", "m/s2", "cm/s2"] | None = None
     dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     scale: float = Field(default=1.0, allow_inf_nan=False)
-    format: Literal["at2", "esm", "cosmos", "dmg", "knet", "csv"] | None = None
+    format: Literal["at2", "esm", "cosmos", "dmg", "knet", "csv", "sac", "mseed"] | None = None
     channel: int | str | None = None
     vertical: bool | str = False
     amplitude: float | None = Field(default=None, allow_inf_nan=False)

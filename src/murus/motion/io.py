@@ -20,6 +20,9 @@ Formats, chosen by content (then extension) unless ``format`` is given:
 ``dmg``, ``knet``
     CSMIP/DMG V1 and V2 (California Geological Survey) and K-NET/KiK-net ASCII (NIED): see
     :mod:`murus.motion.networks`.
+``sac``, ``mseed``
+    Binary SAC and miniSEED, recognised by their first bytes, read through ObsPy (optional
+    extra ``murus[seismo]``): see :mod:`murus.motion.seismo`.
 ``csv`` / text
     One or more columns separated by commas, semicolons or blanks. Two columns are time [s] and
     acceleration, three add the vertical acceleration, one column is acceleration at a step ``dt``.
@@ -72,7 +75,7 @@ _UNIT_ALIASES = {
     "cm/s2": "cm/s2", "cm/s^2": "cm/s2", "cm/s**2": "cm/s2", "cm/s/s": "cm/s2", "gal": "cm/s2",
     "cm/sec2": "cm/s2", "cm/sec/sec": "cm/s2", "cm/sec^2": "cm/s2", "cmps2": "cm/s2",
 }
-FORMATS = ("at2", "esm", "cosmos", "dmg", "knet", "csv")
+FORMATS = ("at2", "esm", "cosmos", "dmg", "knet", "csv", "sac", "mseed")
 
 _NUM_RE = re.compile(r"^[+-]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][+-]?\d+)?$")
 _MAX_ABS = 1e6  # m/s²; 100 000 g: anything larger is a corrupt file
@@ -226,8 +229,8 @@ def detect_format(path, text: str | None = None) -> str:
     )
 
 
-_FORMAT_NAMES = ("PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII "
-                 "and CSV/text columns")
+_FORMAT_NAMES = ("PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII, "
+                 "CSV/text columns, and SAC and miniSEED with ObsPy")
 
 
 def _first_line(line: str) -> str:
@@ -705,6 +708,13 @@ _READERS = {"at2": _read_at2, "esm": _read_esm, "cosmos": _read_cosmos, "csv": _
 
 def _read_channels(path, units, dt, format) -> tuple[list[GroundMotion], str]:
     path = Path(path)
+    fmt_bin = _binary_format(path, format)
+    if fmt_bin is not None:
+        from murus.motion.seismo import read_obspy
+
+        if units is not None:
+            normalize_units(units, path.name)
+        return read_obspy(path, fmt_bin, units, None if dt is None else float(dt)), fmt_bin
     text = _read_text(path)
     fmt = detect_format(path, text) if format is None else str(format).lower()
     if fmt not in FORMATS:
@@ -728,6 +738,22 @@ def _read_channels(path, units, dt, format) -> tuple[list[GroundMotion], str]:
     gm = _READERS[fmt](src, units, dt)
     gm.meta.setdefault("channel", 1)
     return [gm], fmt
+
+
+def _binary_format(path: Path, format) -> str | None:
+    """'sac' or 'mseed' for a binary seismological file (or when asked for), else None."""
+    if format is not None:
+        f = str(format).lower()
+        return f if f in ("sac", "mseed") else None
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(1024)
+        size = path.stat().st_size
+    except OSError:
+        return None  # _read_text gives the message
+    from murus.motion.seismo import sniff_binary
+
+    return sniff_binary(head, size)
 
 
 def _label(gm: GroundMotion) -> str:
@@ -811,7 +837,7 @@ def read(path, units: str | None = None, dt: float | None = None, scale: float =
         Time step [s] of a one-column file; for the other formats a check against the file.
     scale : float
         Factor applied after conversion to m/s².
-    format : {"at2", "esm", "cosmos", "dmg", "knet", "csv"}, optional
+    format : {"at2", "esm", "cosmos", "dmg", "knet", "csv", "sac", "mseed"}, optional
         Skip detection.
     channel : int or str, optional
         Channel of a multi-channel file (see :func:`select_channel`); default the first
