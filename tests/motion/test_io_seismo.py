@@ -6,6 +6,8 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from murus.motion import MotionFormatError, read
 from murus.motion.io import read_all
@@ -93,3 +95,41 @@ def test_mseed_through_obspy(tmp_path):
 
     gm = read_components(p, units="g")
     assert gm.acc_v is not None and gm.meta["component"] == "HNE"
+    short = tmp_path / "short.mseed"
+    short.write_bytes(p.read_bytes()[:700])  # a record cut in the middle
+    with pytest.raises(MotionFormatError, match="short.mseed: not a clean MSEED file"):
+        read(short, units="m/s2")
+
+
+def _mseed_bytes(tmp_path):
+    obspy = pytest.importorskip("obspy")
+    t = np.arange(500) * 0.01
+    tr = obspy.Trace(data=np.sin(2 * np.pi * t).astype("f4"),
+                     header={"station": "TST", "channel": "HNE", "delta": 0.01})
+    p = tmp_path / "base.mseed"
+    obspy.Stream([tr]).write(str(p), format="MSEED", reclen=512)
+    return p.read_bytes()
+
+
+@settings(max_examples=40, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(kind=st.sampled_from(["sac", "mseed"]), cut=st.integers(0, 2000),
+       pos=st.integers(0, 2000), byte=st.integers(0, 255))
+def test_corrupted_binary_refused_or_valid(tmp_path, kind, cut, pos, byte):
+    """Truncated or overwritten SAC/miniSEED bytes: a one-line refusal naming the file, or a
+    record with finite values (never a traceback)."""
+    pytest.importorskip("obspy")
+    data = bytearray(_sac_bytes(np.sin(np.arange(300) * 0.1) * 1e8) if kind == "sac"
+                     else _mseed_bytes(tmp_path))
+    if pos < len(data):
+        data[pos] = byte
+    data = bytes(data[:max(cut, 1) if cut < len(data) else len(data)])
+    p = tmp_path / f"c.{kind}"
+    p.write_bytes(data)
+    try:
+        chans = read_all(p, units=None if kind == "sac" else "m/s2")
+    except MotionFormatError as e:
+        assert "\n" not in str(e) and "c." + kind in str(e)
+        return
+    for gm in chans:
+        assert gm.npts >= 2 and gm.dt > 0 and np.all(np.isfinite(gm.acc))

@@ -3,7 +3,8 @@
 Both are binary seismological formats. ObsPy (Beyreuther et al. 2010; Krischer et al. 2015)
 reads them; murus adds the checks it applies to every record: one-line errors naming the file,
 units, finite values, at least two samples, one segment per channel (a record with gaps is
-refused).
+refused), and any warning of ObsPy while reading (a truncated miniSEED file is otherwise read
+short) is a refusal.
 
 Units: a SAC file whose header declares acceleration (IDEP = IACC, nm/s²) is converted to m/s²;
 any other SAC file, and every miniSEED file (the format carries no units: network data are
@@ -100,11 +101,18 @@ def read_obspy(path: Path, fmt: str, units: str | None, dt_arg: float | None
     except ImportError:
         raise _fail(path, f"reading {fmt.upper()} files needs ObsPy: pip install "
                           "'murus[seismo]' (or pip install obspy)") from None
+    import warnings
+
     try:
-        st = obspy.read(str(path), format="SAC" if fmt == "sac" else "MSEED")
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            st = obspy.read(str(path), format="SAC" if fmt == "sac" else "MSEED")
     except Exception as exc:  # ObsPy raises many types for a corrupt file
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise _fail(path, f"not a readable {fmt.upper()} file ({first[:80]})") from None
+    if caught:  # e.g. a truncated miniSEED read short: refuse rather than guess
+        first = str(caught[0].message).strip().splitlines()[0]
+        raise _fail(path, f"not a clean {fmt.upper()} file (ObsPy: {first[:100]})")
     if len(st) == 0:
         raise _fail(path, "no data")
     ids = [tr.id for tr in st]
