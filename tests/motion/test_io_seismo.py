@@ -97,7 +97,7 @@ def test_mseed_through_obspy(tmp_path):
     assert gm.acc_v is not None and gm.meta["component"] == "HNE"
     short = tmp_path / "short.mseed"
     short.write_bytes(p.read_bytes()[:700])  # a record cut in the middle
-    with pytest.raises(MotionFormatError, match="short.mseed: not a clean MSEED file"):
+    with pytest.raises(MotionFormatError, match="short.mseed: not a (clean|readable) MSEED file"):
         read(short, units="m/s2")
 
 
