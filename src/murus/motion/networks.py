@@ -142,12 +142,9 @@ def _fixed_block(src: _Src, start: int, npts: int, width: int, what: str) -> tup
     return vals, i
 
 
-def _declared_pga(src: _Src, m: re.Match | None, lineno: int, acc: np.ndarray, meta: dict):
-    """Store a declared peak in ``meta`` and warn if the data disagree (to its printed
-    precision)."""
-    if m is None:
-        return
-    tok, utok = m.group(1), m.group(2)
+def _declared_pga(src: _Src, tok: str, utok: str, lineno: int, acc: np.ndarray, meta: dict):
+    """Store a declared peak ``tok`` [``utok``] in ``meta`` and warn if the data disagree (to
+    its printed precision)."""
     try:
         fac = UNITS[normalize_units(utok)]
     except ValueError:
@@ -253,7 +250,8 @@ def read_dmg(src: _Src, units: str | None, dt_arg: float | None) -> list[GroundM
             "azimuth_deg": az, "vertical": vert,
             "name": f"{src.path.stem}_ch{chan_no}",
         }
-        _declared_pga(src, max_m, max_line, acc, meta)
+        if max_m is not None:
+            _declared_pga(src, max_m.group(1), max_m.group(2), max_line, acc, meta)
         out.append(_make(src, acc, dt, meta))
         # skip the rest of the channel (V2 velocity and displacement blocks) to its '/&' line
         while j < n and not lines[j].lstrip().startswith("/&"):
@@ -366,8 +364,6 @@ def read_knet(src: _Src, units: str | None, dt_arg: float | None) -> list[Ground
         meta["magnitude"] = float(hdr["magnitude"][0])
     if "max_acc" in hdr:
         mtok, ml = hdr["max_acc"]
-        mm = re.fullmatch(r"(-?[0-9]*\.?[0-9]+)", mtok)
-        if mm:
-            _declared_pga(src, re.match(r"(.*) (gal) at", f"{mm.group(1)} gal at"), ml, acc,
-                          meta)
+        if re.fullmatch(r"-?[0-9]*\.?[0-9]+", mtok):
+            _declared_pga(src, mtok, "gal", ml, acc, meta)
     return [_make(src, acc, dt, meta)]
