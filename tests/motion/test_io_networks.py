@@ -413,3 +413,27 @@ def test_random_bytes_network_extensions(tmp_path, data, ext):
         assert "\n" not in str(e) and p.name in str(e)
         return
     assert np.all(np.isfinite(gm.acc)) and gm.dt > 0 and isinstance(gm, GroundMotion)
+
+
+def test_cut_files_are_refused(tmp_path):
+    """A file cut at a channel boundary is caught by the V1 channel count; one cut inside a
+    channel by the missing '/&' line (DMG) or the broken next channel (COSMOS)."""
+    lines = CLC.read_text().splitlines()
+    p = tmp_path / "cut.v1"
+    p.write_text("\n".join(lines[:158]) + "\n")  # channels 1 and 2 only
+    with pytest.raises(MotionFormatError, match="cut.v1 line 5: the header declares 3 channels "
+                                                "but the file has 2"):
+        read_all(p)
+    v2 = _dmg_v2_text(_v2_chans()).splitlines()
+    end = [i for i, ln in enumerate(v2) if ln.startswith("/&")][0]
+    q = tmp_path / "cut.V2"
+    q.write_text("\n".join(v2[:end - 3]) + "\n")  # inside the displacement block
+    with pytest.raises(MotionFormatError, match=r"cut.V2 line \d+: file ends before the end "
+                                                "of channel 1"):
+        read_all(q)
+    two = (_cosmos_text(1, 90) + _cosmos_text(1, 500)).splitlines()
+    r = tmp_path / "cut.V1"
+    r.write_text("\n".join(two[:55]) + "\n")  # inside the text header of channel 2
+    with pytest.raises(MotionFormatError, match="cut.V1 line 50: text after channel 1 is not a "
+                                                "COSMOS channel"):
+        read_all(r)

@@ -440,6 +440,7 @@ def _is_text_line(line: str) -> bool:
 
 
 _COSMOS_COUNT = re.compile(r"^\s*(\d+)\s+(.*)$")
+_COSMOS_BLOCK = re.compile(r"^\s*\d+\s+.*\bunits\s*=", re.IGNORECASE)
 
 
 def _read_cosmos(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotion:
@@ -456,6 +457,14 @@ def _read_cosmos_all(src: _Src, units: str | None, dt_arg: float | None) -> list
         more = next((i for i in range(nxt, len(src.lines))
                      if "integer-header values follow" in src.lines[i].lower()), None)
         if more is None:
+            tail = [i for i in range(nxt, len(src.lines)) if src.lines[i].strip()]
+            # other data blocks of the last channel (velocity, displacement) may follow it
+            # directly; any other text is a cut or broken next channel
+            rest = tail[0] if tail and not _COSMOS_BLOCK.match(src.lines[tail[0]]) else None
+            if rest is not None:
+                raise src.err(rest + 1, f"text after channel {len(out)} is not a COSMOS "
+                                        "channel (file cut, or a channel without its "
+                                        "integer header)")
             return out
         start = nxt
 

@@ -18,7 +18,9 @@ orientation), ``vertical`` (bool), ``station``, ``units_in`` and, where the file
     "n Accelerogram points at 100 pts/sec in units of g.  Format: (8f9.6)" (V1) or "n points
     of accel data equally spaced at .005 sec, in cm/sec2. (8f10.3)" (V2), values in the stated
     Fortran fixed-width format. V2 channels then hold velocity and displacement blocks (not
-    read). Each channel ends with a line starting "/&". The layout is that of the files the
+    read). Each channel ends with a line starting "/&" (a file that ends before it is refused);
+    a V1 header "(3 Chns of  3 at Sta)" gives the number of channels the file must hold. The
+    layout is that of the files the
     CGS publishes (CESMD) and follows the reader of gmprocess (USGS, public domain/CC0:
     ``gmprocess/io/dmg/core.py``); the older V1 layout of analog records (interleaved time
     and acceleration pairs, no text line before the data) is refused with a message.
@@ -82,6 +84,7 @@ _DMG_MAX_V1 = re.compile(r"\bmax\s*=\s*(-?[0-9]*\.?[0-9]+)\s*([A-Za-z/0-9]+?)[,.
 _DMG_MAX_V2 = re.compile(
     r"peak\s+acceleration\s*=\s*(-?[0-9]*\.?[0-9]+)\s*([A-Za-z/0-9]+?)[,.]?\s+at",
     re.IGNORECASE)
+_DMG_NCHAN = re.compile(r"\(\s*(\d+)\s+chns?\s+of\s+\d+\s+at\s+sta", re.IGNORECASE)
 _DEG = re.compile(r"^(-?\d+(?:\.\d*)?)\s*(?:deg|degrees)?\b", re.IGNORECASE)
 
 
@@ -180,6 +183,7 @@ def read_dmg(src: _Src, units: str | None, dt_arg: float | None) -> list[GroundM
     title = lines[0].strip() if lines else ""
     level = "V1" if title.upper().startswith("UNCORRECTED") else "V2"
     out: list[GroundMotion] = []
+    declared_chans = None
     i = 0
     n = len(lines)
     while i < n:
@@ -259,9 +263,21 @@ def read_dmg(src: _Src, units: str | None, dt_arg: float | None) -> list[GroundM
                 raise src.err(j + 1, "a new acceleration block before the end of the channel "
                                      "('/&' line)")
             j += 1
+        if j >= n:
+            raise src.err(n, f"file ends before the end of channel {chan_no} (its '/&' line)")
+        if declared_chans is None:  # "(3 Chns of  3 at Sta)" in the first channel's header
+            declared_chans = (0, 0)
+            for r, ln in enumerate(hdr):
+                cm = _DMG_NCHAN.search(ln)
+                if cm:
+                    declared_chans = (int(cm.group(1)), start + r + 1)
+                    break
         i = j + 1
     if not out:
         raise src.err(None, "no channel found")
+    if declared_chans and declared_chans[0] and declared_chans[0] != len(out):
+        raise src.err(declared_chans[1], f"the header declares {declared_chans[0]} channels "
+                                         f"but the file has {len(out)}")
     return out
 
 
