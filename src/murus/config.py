@@ -143,14 +143,18 @@ class Strict(BaseModel):
 
 class MotionFields(Strict):
     """The ``[motion]`` keys shared by every kind of case file: a record (file, units, dt,
-    scale, format) or an analytic signal (amplitude or amplitude_g, frequency, cycles). Each
-    case schema adds its own motion types and keys."""
+    scale, format; ``channel`` of a multi-channel file, ``vertical = true`` to take the file's
+    vertical channel as the vertical acceleration, or ``vertical = "file"`` for a separate
+    file holding it) or an analytic signal (amplitude or amplitude_g, frequency, cycles).
+    Each case schema adds its own motion types and keys."""
 
     file: str | None = None
     units: Literal["g", "m/s2", "cm/s2"] | None = None
     dt: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     scale: float = Field(default=1.0, allow_inf_nan=False)
-    format: Literal["at2", "esm", "cosmos", "csv"] | None = None
+    format: Literal["at2", "esm", "cosmos", "dmg", "knet", "csv", "sac", "mseed"] | None = None
+    channel: int | str | None = None
+    vertical: bool | str = False
     amplitude: float | None = Field(default=None, allow_inf_nan=False)
     amplitude_g: float | None = Field(default=None, allow_inf_nan=False)
     frequency: float | None = Field(default=None, gt=0, allow_inf_nan=False)
@@ -163,6 +167,8 @@ class MotionFields(Strict):
             raise ValueError("a record needs file = '...'")
         if kind != "record" and self.file:
             raise ValueError(f"type '{kind}' takes no file")
+        if kind != "record" and (self.channel is not None or self.vertical):
+            raise ValueError("channel and vertical go with a record file")
         if kind in pulses and (self.amplitude is None) == (self.amplitude_g is None):
             raise ValueError(f"type '{kind}' needs exactly one of amplitude, amplitude_g")
 

@@ -5,6 +5,7 @@ SI units: s, m/s², m/s, m. Heavy modules (scipy.signal, h5py, matplotlib) are i
 
 >>> from murus.motion import GroundMotion, read, write
 >>> from murus.motion import synthetic, spectra, measures, processing
+>>> from murus.motion.components import rotate, rotd_spectrum, read_components
 """
 
 from murus._lazy import lazy_exports
@@ -43,4 +44,4 @@ def suite(name: str = "farfield", components: str = "both", normalized: bool = F
 __getattr__, __dir__ = lazy_exports(
     __name__, {"RecordsExtraMissing": "records"}, globals(),
     submodules=("synthetic", "spectra", "measures", "processing", "artificial", "records", "io",
-                "plots"))
+                "plots", "networks", "components", "seismo"))

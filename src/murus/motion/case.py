@@ -54,7 +54,10 @@ def read_record(m, path: Path, text: str):
     ----------
     m : murus.config.MotionFields
         The validated table: ``file`` (relative to the case file's folder), ``units``, ``dt``,
-        ``scale``, ``format``.
+        ``scale``, ``format``, ``channel`` (of a multi-channel file; default the first
+        horizontal one) and ``vertical`` (``true``: the file's vertical channel becomes
+        ``acc_v``, which the rocking and DEM engines apply; a file name: the vertical channel
+        of that file, e.g. the .UD file of a K-NET station).
     path : pathlib.Path
         The case file.
     text : str
@@ -79,7 +82,20 @@ def read_record(m, path: Path, text: str):
     if not f.exists():
         raise fail_at(path, text, ("motion", "file"), f"motion file '{m.file}' not found")
     try:
-        gm = read(f, units=m.units, dt=m.dt, scale=m.scale, format=m.format)
+        channel = getattr(m, "channel", None)
+        vertical = getattr(m, "vertical", False)
+        if vertical:
+            from murus.motion.components import read_components
+
+            paths = [f]
+            if isinstance(vertical, str):
+                vf = Path(vertical)
+                paths.append(vf if vf.is_absolute() else path.parent / vf)
+            gm = read_components(paths if len(paths) > 1 else f, horizontal=channel,
+                                 units=m.units, dt=m.dt, scale=m.scale, format=m.format)
+        else:
+            gm = read(f, units=m.units, dt=m.dt, scale=m.scale, format=m.format,
+                      channel=channel)
     except MotionFormatError as exc:
         raise fail_at(path, text, ("motion", "file"), f"motion file {exc}") from None
     except ValueError as exc:

@@ -47,21 +47,27 @@ def _staged_dir(out: Path, names=None):
     return staged_dir(out, command_line(), names)
 
 
-def _load(file: Path, units: str | None, dt: float | None):
+def _load(file: Path, units: str | None, dt: float | None, channel: str | None = None):
     from murus.motion.io import read
 
-    return read(file, units=units, dt=dt)
+    return read(file, units=units, dt=dt, channel=channel)
 
 
 UNITS_HELP = "Units of a CSV/text file without a '# units:' line: g, m/s2 or cm/s2."
+FORMATS_HELP = ("Record file: PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net "
+                "ASCII, CSV/text (detected from the content).")
+CHANNEL_HELP = ("Channel of a multi-channel file: its number (2), orientation as written "
+                "('360 Deg', 'Up', 'E-W'), azimuth (90) or N, E, Z. Default: the first "
+                "horizontal channel.")
 
 
 @app.command()
 def info(
-    file: Path = typer.Argument(..., help="Record file (AT2, ESM, COSMOS V2, CSV/text)."),
+    file: Path = typer.Argument(..., help=FORMATS_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print a JSON object (SI units)."),
     units: str = typer.Option(None, help=UNITS_HELP),
     dt: float = typer.Option(None, help="Time step [s] of a one-column file."),
+    channel: str = typer.Option(None, help=CHANNEL_HELP),
 ) -> None:
     """Format, dt, npts, PGA, PGV, PGD, Arias intensity, D5-75, D5-95 and CAV of a record.
 
@@ -69,17 +75,25 @@ def info(
     final velocity and displacement zero; murus.motion.measures.BASELINE), with the
     uncorrected values beside them."""
     with _guard():
+        from murus.motion.io import read_all, select_channel
         from murus.motion.measures import corrected_peaks, summary
 
-        gm = _load(file, units, dt)
+        chans = read_all(file, units=units, dt=dt)
+        gm = select_channel(chans, channel, file.name)
         s = summary(gm)
         s.update(corrected_peaks(gm))
     s = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in s.items()}
-    s = {"file": str(file), "format": gm.meta.get("format"), "name": gm.name, **s}
+    s = {"file": str(file), "format": gm.meta.get("format"), "name": gm.name,
+         **{k: gm.meta.get(k) for k in ("station", "channel", "component")}, **s}
+    s["channels"] = [f"{c.meta.get('channel')} ({c.meta.get('component', '')})".replace(" ()", "")
+                     for c in chans]
     if as_json:
         typer.echo(json.dumps(s))
         return
     typer.echo(f"{file}  [{s['format']}]")
+    if len(chans) > 1:
+        typer.echo(f"  channel {s['channels'][chans.index(gm)]} of {len(chans)}: "
+                   f"{', '.join(s['channels'])} (choose with --channel)")
     typer.echo(f"  npts {s['npts']}   dt {s['dt']:g} s   duration {s['duration']:.3f} s")
     typer.echo(f"  PGA {s['pga']:.4g} m/s² ({s['pga'] / G:.4g} g)   PGV {s['pgv']:.4g} m/s"
                f"   PGD {s['pgd']:.4g} m (after baseline correction)")
@@ -91,12 +105,13 @@ def info(
 
 @app.command()
 def spectrum(
-    file: Path = typer.Argument(..., help="Record file."),
+    file: Path = typer.Argument(..., help=FORMATS_HELP),
     damping: float = typer.Option(0.05, help="Damping ratio (fraction of critical)."),
     out: Path = typer.Option(Path("spectrum"), help="Output directory."),
     units: str = typer.Option(None, help=UNITS_HELP),
     dt: float = typer.Option(None, help="Time step [s] of a one-column file."),
     n_periods: int = typer.Option(100, help="Number of log-spaced periods 0.01-10 s."),
+    channel: str = typer.Option(None, help=CHANNEL_HELP),
 ) -> None:
     """Response spectrum: DIR/spectrum.csv (columns period [s], sd [m], sv [m/s], sa [m/s²],
     psv [m/s], psa [m/s²]) and DIR/spectrum.png."""
@@ -108,7 +123,7 @@ def spectrum(
         check_dir(out, ["spectrum.csv", "spectrum.png"])
         from murus.motion.spectra import default_periods, response_spectrum
 
-        gm = _load(file, units, dt)
+        gm = _load(file, units, dt, channel)
         sp = response_spectrum(gm, default_periods(n_periods), damping)
         with _staged_dir(out, ["spectrum.csv", "spectrum.png"]) as tmp:
             lines = ["period,sd,sv,sa,psv,psa"]
@@ -145,6 +160,9 @@ def generate_ec8_cmd(
     t_hi: float = typer.Option(2.0, help="Upper period of the check range [s] (without --t1)."),
     dt: float = typer.Option(0.01, help="Time step [s]."),
     stationary: float = typer.Option(10.0, help="Stationary part of the envelope [s]."),
+    fmt: str = typer.Option("csv", "--format",
+                            help="Format of the records: csv (m/s², commented header) or at2 "
+                                 "(PEER AT2 in g, read by other tools)."),
 ) -> None:
     """Artificial records compatible with the EN 1998-1 elastic spectrum, with the
     §3.2.3.1.2 report (report.txt, report.json) and a figure of the spectra (spectra.png)."""
@@ -166,6 +184,9 @@ def generate_ec8_cmd(
         rng = (0.2 * t1, 2.0 * t1) if t1 else (t_lo, t_hi)
         if not 0 < rng[0] < rng[1]:
             raise ValueError("period range must satisfy 0 < T_lo < T_hi")
+        fmt = fmt.lower()
+        if fmt not in ("csv", "at2"):
+            raise ValueError(f"--format {fmt!r}: use csv or at2")
         check_dir(out, _EC8_NAMES)
         agm = ag * G
         recs = generate_ec8(agm, ground, spectrum_type, n=n, seed=seed, dt=dt,
@@ -173,7 +194,7 @@ def generate_ec8_cmd(
         rep = check_ec8(recs, agm, ground, spectrum_type, period_range=rng)
         with _staged_dir(out, _EC8_NAMES) as tmp:
             for r in recs:
-                write(r, tmp / f"{r.name}.csv")
+                write(r, tmp / f"{r.name}.{fmt}", format=fmt)
             (tmp / "report.txt").write_text(rep.to_text() + "\n")
             (tmp / "report.json").write_text(json.dumps(rep.to_dict(), indent=2) + "\n")
             import matplotlib

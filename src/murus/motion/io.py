@@ -11,10 +11,18 @@ Formats, chosen by content (then extension) unless ``format`` is given:
     header lines (``SAMPLING_INTERVAL_S``, ``NDATA``, ``UNITS``, ``DATA_TYPE`` ...) followed by
     one value per line.
 ``cosmos``
-    COSMOS Strong-Motion Data Format (v1.20) processed (V2) file: 14 text header lines, an
-    integer header, a real header (value 62 is the sampling interval in ms), comment lines and
-    a data block "N acceleration pts, approx T secs, units=cm/sec2 (04), Format=(...)". The first
-    acceleration block is read.
+    COSMOS Strong-Motion Data Format (v1.20) V1 (uncorrected) or V2 (processed) file: 14 text
+    header lines, an integer header, a real header (value 62 is the sampling interval in ms),
+    comment lines and a data block "N acceleration pts, approx T secs, units=cm/sec2 (04),
+    Format=(...)". V0 files in raw counts are refused (they need the instrument response).
+    Files holding several channels one after the other are read channel by channel;
+    integer-header value 54 is the channel azimuth (500 = up, 600 = down).
+``dmg``, ``knet``
+    CSMIP/DMG V1 and V2 (California Geological Survey) and K-NET/KiK-net ASCII (NIED): see
+    :mod:`murus.motion.networks`.
+``sac``, ``mseed``
+    Binary SAC and miniSEED, recognised by their first bytes, read through ObsPy (optional
+    extra ``murus[seismo]``): see :mod:`murus.motion.seismo`.
 ``csv`` / text
     One or more columns separated by commas, semicolons or blanks. Two columns are time [s] and
     acceleration, three add the vertical acceleration, one column is acceleration at a step ``dt``.
@@ -25,6 +33,11 @@ Formats, chosen by content (then extension) unless ``format`` is given:
 Units: g, m/s2 and cm/s2 (gal). A value in g is converted with ``murus.G`` = 9.81 m/s² (the
 constant used everywhere in murus, so that a record written in g and read back is unchanged;
 note that PEER and COSMOS use g = 9.80665 m/s² for their own conversions, a 0.03 % difference).
+
+Multi-channel files: :func:`read` returns one channel (``channel=``: default the first
+horizontal one), :func:`read_all` all of them, each with ``meta["channel"]``, ``"component"``,
+``"azimuth_deg"`` and ``"vertical"``. A file that matches no format is refused with
+"unrecognised record format" and its first line (never parsed as CSV by default).
 
 Every error is a :class:`MotionFormatError` (a ``ValueError``) whose message is one line that
 names the file and, where it applies, the line number: ``record.csv line 12: 'abc' is not a
@@ -46,7 +59,8 @@ from murus import G
 from murus.errors import MurusError
 from murus.motion.core import GroundMotion
 
-__all__ = ["MotionFormatError", "read", "write", "detect_format", "UNITS", "FORMATS"]
+__all__ = ["MotionFormatError", "read", "read_all", "select_channel", "write", "detect_format",
+           "UNITS", "FORMATS"]
 
 #: conversion factors to m/s²
 UNITS = {
@@ -61,7 +75,7 @@ _UNIT_ALIASES = {
     "cm/s2": "cm/s2", "cm/s^2": "cm/s2", "cm/s**2": "cm/s2", "cm/s/s": "cm/s2", "gal": "cm/s2",
     "cm/sec2": "cm/s2", "cm/sec/sec": "cm/s2", "cm/sec^2": "cm/s2", "cmps2": "cm/s2",
 }
-FORMATS = ("at2", "esm", "cosmos", "csv")
+FORMATS = ("at2", "esm", "cosmos", "dmg", "knet", "csv", "sac", "mseed")
 
 _NUM_RE = re.compile(r"^[+-]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][+-]?\d+)?$")
 _MAX_ABS = 1e6  # m/s²; 100 000 g: anything larger is a corrupt file
@@ -156,7 +170,11 @@ _ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.\-()]*):(.*)$")
 
 
 def detect_format(path, text: str | None = None) -> str:
-    """Format name ('at2', 'esm', 'cosmos' or 'csv') from the content, then the extension.
+    """Format name from the content, then the extension.
+
+    'at2', 'esm', 'cosmos', 'dmg', 'knet' or 'csv'. A file that looks like none of them is
+    refused with a message quoting its first line (it is never parsed as CSV by default: a
+    text header would give a puzzling number error on line 2).
 
     Parameters
     ----------
@@ -168,6 +186,11 @@ def detect_format(path, text: str | None = None) -> str:
     Returns
     -------
     str
+
+    Raises
+    ------
+    MotionFormatError
+        "unrecognised record format" for anything else.
     """
     path = Path(path)
     if text is None:
@@ -184,14 +207,50 @@ def detect_format(path, text: str | None = None) -> str:
         ln.startswith("SAMPLING_INTERVAL_S") for ln in lines[:120]
     ):
         return "esm"
+    from murus.motion.networks import is_dmg, is_knet
+
+    if is_dmg(lines):
+        return "dmg"
+    if is_knet(lines):
+        return "knet"
     ext = path.suffix.lower()
     if ext == ".at2":
         return "at2"
-    if ext in (".v2", ".smc", ".cosmos"):
+    if ext in (".v2", ".smc", ".cosmos") and not first.lower().startswith(
+            ("uncorrected", "corrected")):
         return "cosmos"
     if ext == ".asc" and _ESM_KEY.match(first.strip()):
         return "esm"
-    return "csv"
+    if ext in (".csv", ".tsv") or _looks_like_columns(lines):
+        return "csv"
+    raise MotionFormatError(
+        f"{path.name}: unrecognised record format (first line: {_first_line(first)}); "
+        f"murus reads {_FORMAT_NAMES}"
+    )
+
+
+_FORMAT_NAMES = ("PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII, "
+                 "CSV/text columns, and SAC and miniSEED with ObsPy")
+
+
+def _first_line(line: str) -> str:
+    s = "".join(c if c.isprintable() else "?" for c in line.strip())
+    return repr(s if len(s) <= 48 else s[:45] + "...")
+
+
+def _looks_like_columns(lines: list[str]) -> bool:
+    """True if the first lines that are not blank or '#' comments are rows of numbers,
+    optionally after one line of column names (a CSV/text record)."""
+    rows = [ln.strip() for ln in lines[:200] if ln.strip() and not ln.lstrip().startswith(
+        ("#", "%"))][:2]
+    if not rows:
+        return True  # comments only: the CSV reader says what is missing
+
+    def numeric(row):
+        toks = [t for t in _SPLIT.split(row) if t]
+        return bool(toks) and _NUM_RE.match(toks[0]) is not None
+
+    return numeric(rows[0]) or (len(rows) > 1 and numeric(rows[1]))
 
 
 # ----------------------------------------------------------------------------------- readers
@@ -381,17 +440,49 @@ def _is_text_line(line: str) -> bool:
 
 
 _COSMOS_COUNT = re.compile(r"^\s*(\d+)\s+(.*)$")
+_COSMOS_BLOCK = re.compile(r"^\s*\d+\s+.*\bunits\s*=", re.IGNORECASE)
 
 
 def _read_cosmos(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotion:
+    return _cosmos_channel(src, units, dt_arg, 0)[0]
+
+
+def _read_cosmos_all(src: _Src, units: str | None, dt_arg: float | None) -> list[GroundMotion]:
+    """Every channel of a COSMOS file (channels written one after the other)."""
+    out = []
+    start = 0
+    while True:
+        gm, nxt = _cosmos_channel(src, units, dt_arg, start, len(out) + 1)
+        out.append(gm)
+        more = next((i for i in range(nxt, len(src.lines))
+                     if "integer-header values follow" in src.lines[i].lower()), None)
+        if more is None:
+            tail = [i for i in range(nxt, len(src.lines)) if src.lines[i].strip()]
+            # other data blocks of the last channel (velocity, displacement) may follow it
+            # directly; any other text is a cut or broken next channel
+            rest = tail[0] if tail and not _COSMOS_BLOCK.match(src.lines[tail[0]]) else None
+            if rest is not None:
+                raise src.err(rest + 1, f"text after channel {len(out)} is not a COSMOS "
+                                        "channel (file cut, or a channel without its "
+                                        "integer header)")
+            return out
+        start = nxt
+
+
+def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: int,
+                    position: int = 1) -> tuple[GroundMotion, int]:
     lines = src.lines
     # locate the integer header line (normally line 14, after 13 text lines)
     k = next(
-        (i for i, ln in enumerate(lines[:60]) if "integer-header values follow" in ln.lower()),
+        (i for i in range(start, min(start + 60, len(lines)))
+         if "integer-header values follow" in lines[i].lower()),
         None,
     )
     if k is None:
         raise src.err(None, "COSMOS integer header line not found")
+    text0 = max(start, k - 13)
+    while text0 < k and not lines[text0].strip():
+        text0 += 1
 
     def block_line(i, what):
         if i >= len(lines):
@@ -407,7 +498,7 @@ def _read_cosmos(src: _Src, units: str | None, dt_arg: float | None) -> GroundMo
     nint, nl_int, fmt_int = block_line(k, "integer header")
     if nl_int is None:
         raise src.err(k + 1, "integer header line does not give its number of lines")
-    _ints, i = _fixed_width_values(src, k + 1, nl_int, nint, fmt_int, "integer header")
+    ints, i = _fixed_width_values(src, k + 1, nl_int, nint, fmt_int, "integer header")
     nreal, nl_real, fmt_real = block_line(i, "real header")
     if "real-header" not in lines[i].lower() or nl_real is None:
         raise src.err(i + 1, "expected 'Real-header values follow on N lines'")
@@ -426,6 +517,9 @@ def _read_cosmos(src: _Src, units: str | None, dt_arg: float | None) -> GroundMo
     um = re.search(r"units\s*=\s*([^\s(,]+)", data_hdr, re.IGNORECASE)
     if um is None:
         raise src.err(i + 1, "data header does not declare units")
+    if um.group(1).lower().startswith("count"):
+        raise src.err(i + 1, "raw counts (COSMOS V0): murus needs acceleration, read the V1 "
+                             "or V2 file of this record")
     uname = _check_units(src, normalize_units(um.group(1), f"{src.name} line {i + 1}"), units,
                          i + 1)
     if len(reals) < 62:
@@ -456,15 +550,34 @@ def _read_cosmos(src: _Src, units: str | None, dt_arg: float | None) -> GroundMo
         raise src.err(max(stop, j), f"data header declares {npts} points but has {len(vals)}")
     if npts < 2:
         raise src.err(i + 1, "a record needs at least 2 points")
+    th = lines[text0:k]
+    level = {0: "V0", 1: "V1", 2: "V2", 3: "V3"}.get(int(ints[0]), "") if len(ints) else ""
+    az = None
+    vert = False
+    if len(ints) > 53 and ints[53] != -999:
+        if int(ints[53]) in (500, 600):
+            vert = True
+        elif 0 <= ints[53] <= 360:
+            az = float(ints[53]) % 360.0
     meta = {
         "format": "cosmos",
+        "level": level,
         "source_file": str(src.path),
         "units_in": uname,
-        "title": lines[0].strip(),
-        "event": lines[1].strip() if len(lines) > 1 else "",
-        "station": lines[4][28:34].strip() if len(lines) > 4 else "",
+        "title": th[0].strip() if th else "",
+        "event": th[1].strip() if len(th) > 1 else "",
+        "station": th[4][28:34].strip() if len(th) > 4 else "",
+        "channel": position,
+        "component": (f"{int(ints[53])}" if len(ints) > 53 and ints[53] != -999 else ""),
+        "azimuth_deg": az,
+        "vertical": vert,
     }
-    return _make(src, np.asarray(vals) * UNITS[uname], dt, meta)
+    if position > 1:
+        meta["name"] = f"{src.path.stem}_ch{position}"
+    nxt = stop
+    while nxt < len(lines) and "end-of-data" in lines[nxt].lower():
+        nxt += 1
+    return _make(src, np.asarray(vals) * UNITS[uname], dt, meta), nxt
 
 
 _CSV_HDR = re.compile(r"^#\s*([A-Za-z_][A-Za-z0-9_ ]*?)\s*[:=]\s*(.*?)\s*$")
@@ -602,34 +715,20 @@ def _make(src: _Src, acc, dt, meta, acc_v=None) -> GroundMotion:
 _READERS = {"at2": _read_at2, "esm": _read_esm, "cosmos": _read_cosmos, "csv": _read_csv}
 
 
-def read(path, units: str | None = None, dt: float | None = None, scale: float = 1.0,
-         format: str | None = None) -> GroundMotion:
-    """Read an acceleration record into a :class:`GroundMotion` (m/s²).
-
-    Parameters
-    ----------
-    path : str or Path
-        Record file (AT2, ESM ASCII, COSMOS V2, CSV/text; see the module docstring).
-    units : {"g", "m/s2", "cm/s2"}, optional
-        Units of a CSV/text file that does not declare them; for the other formats, a check
-        against the declared units.
-    dt : float, optional
-        Time step [s] of a one-column file; for the other formats a check against the file.
-    scale : float
-        Factor applied after conversion to m/s².
-    format : {"at2", "esm", "cosmos", "csv"}, optional
-        Skip detection.
-
-    Raises
-    ------
-    MotionFormatError
-        One-line message naming the file and line.
-    """
+def _read_channels(path, units, dt, format) -> tuple[list[GroundMotion], str]:
     path = Path(path)
+    fmt_bin = _binary_format(path, format)
+    if fmt_bin is not None:
+        from murus.motion.seismo import read_obspy
+
+        if units is not None:
+            normalize_units(units, path.name)
+        return read_obspy(path, fmt_bin, units, None if dt is None else float(dt)), fmt_bin
     text = _read_text(path)
-    fmt = detect_format(path, text) if format is None else format.lower()
-    if fmt not in _READERS:
-        raise MotionFormatError(f"{path.name}: unknown format '{format}' (use {FORMATS})")
+    fmt = detect_format(path, text) if format is None else str(format).lower()
+    if fmt not in FORMATS:
+        raise MotionFormatError(f"{path.name}: unknown format '{format}' (use "
+                                f"{', '.join(FORMATS)})")
     if dt is not None:
         dt = float(dt)
         if not (math.isfinite(dt) and dt > 0):
@@ -638,10 +737,160 @@ def read(path, units: str | None = None, dt: float | None = None, scale: float =
     if units is not None:
         normalize_units(units, path.name)
     src = _Src(path, text)
+    if fmt in ("dmg", "knet"):
+        from murus.motion import networks
+
+        reader = networks.read_dmg if fmt == "dmg" else networks.read_knet
+        return reader(src, units, dt), fmt
+    if fmt == "cosmos":
+        return _read_cosmos_all(src, units, dt), fmt
     gm = _READERS[fmt](src, units, dt)
+    gm.meta.setdefault("channel", 1)
+    return [gm], fmt
+
+
+def _binary_format(path: Path, format) -> str | None:
+    """'sac' or 'mseed' for a binary seismological file (or when asked for), else None."""
+    if format is not None:
+        f = str(format).lower()
+        return f if f in ("sac", "mseed") else None
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(1024)
+        size = path.stat().st_size
+    except OSError:
+        return None  # _read_text gives the message
+    from murus.motion.seismo import sniff_binary
+
+    return sniff_binary(head, size)
+
+
+def _label(gm: GroundMotion) -> str:
+    comp = gm.meta.get("component", "")
+    return f"{gm.meta.get('channel', '?')} ({comp})" if comp else str(gm.meta.get("channel", "?"))
+
+
+def select_channel(channels: list[GroundMotion], channel=None, where: str = "") -> GroundMotion:
+    """One channel of a multi-channel record.
+
+    Parameters
+    ----------
+    channels : list of GroundMotion
+        As returned by :func:`read_all`.
+    channel : int or str, optional
+        An int is the channel number written in the file ("Chan  2" of a CSMIP/DMG file; the
+        position from 1 for formats without numbers). A str is matched, ignoring case and
+        blanks, against the component as written ("360 Deg", "Up", "E-W"), the azimuth in
+        degrees ("90", "360" = "0"), or "N", "E", "Z"/"up"/"vertical". ``None``: the first
+        horizontal channel (the first channel if none is horizontal).
+    where : str
+        File name for messages.
+
+    Returns
+    -------
+    GroundMotion
+
+    Raises
+    ------
+    MotionFormatError
+        No channel or more than one matches.
+    """
+    labels = ", ".join(_label(g) for g in channels)
+    if channel is None:
+        return next((g for g in channels if not g.meta.get("vertical")), channels[0])
+    if isinstance(channel, (int, np.integer)) and not isinstance(channel, bool):
+        hits = [g for g in channels if g.meta.get("channel") == int(channel)]
+    else:
+        key = str(channel).strip().lower().replace(" ", "")
+        if key.isdigit() and not any(
+                str(g.meta.get("component", "")).lower().replace(" ", "") == key
+                for g in channels):
+            # a bare number: an azimuth if one matches, else the channel number
+            az = float(key) % 360.0
+            hits = [g for g in channels if g.meta.get("azimuth_deg") is not None
+                    and math.isclose(g.meta["azimuth_deg"], az, abs_tol=1e-9)]
+            if not hits:
+                hits = [g for g in channels if g.meta.get("channel") == int(key)]
+        elif key in ("z", "up", "u", "vertical", "v", "u-d", "ud"):
+            hits = [g for g in channels if g.meta.get("vertical")]
+        elif key in ("n", "north", "n-s", "ns"):
+            hits = [g for g in channels if g.meta.get("azimuth_deg") is not None
+                    and math.isclose(g.meta["azimuth_deg"], 0.0, abs_tol=1e-9)]
+        elif key in ("e", "east", "e-w", "ew"):
+            hits = [g for g in channels if g.meta.get("azimuth_deg") is not None
+                    and math.isclose(g.meta["azimuth_deg"], 90.0, abs_tol=1e-9)]
+        else:
+            hits = [g for g in channels
+                    if str(g.meta.get("component", "")).lower().replace(" ", "") == key]
+    prefix = f"{where}: " if where else ""
+    if len(hits) != 1:
+        what = "no channel" if not hits else f"{len(hits)} channels"
+        raise MotionFormatError(f"{prefix}{what} matches channel {_short(str(channel))} "
+                                f"(channels: {labels})")
+    return hits[0]
+
+
+def read(path, units: str | None = None, dt: float | None = None, scale: float = 1.0,
+         format: str | None = None, channel=None) -> GroundMotion:
+    """Read an acceleration record into a :class:`GroundMotion` (m/s²).
+
+    Parameters
+    ----------
+    path : str or Path
+        Record file: PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII,
+        CSV/text (see the module docstring and :mod:`murus.motion.networks`).
+    units : {"g", "m/s2", "cm/s2"}, optional
+        Units of a CSV/text file that does not declare them; for the other formats, a check
+        against the declared units.
+    dt : float, optional
+        Time step [s] of a one-column file; for the other formats a check against the file.
+    scale : float
+        Factor applied after conversion to m/s².
+    format : {"at2", "esm", "cosmos", "dmg", "knet", "csv", "sac", "mseed"}, optional
+        Skip detection.
+    channel : int or str, optional
+        Channel of a multi-channel file (see :func:`select_channel`); default the first
+        horizontal channel. ``meta["channel"]`` and ``meta["component"]`` say which was read.
+
+    Returns
+    -------
+    GroundMotion
+
+    Raises
+    ------
+    MotionFormatError
+        One-line message naming the file and line.
+    """
+    channels, _fmt = _read_channels(path, units, dt, format)
+    gm = select_channel(channels, channel, Path(path).name)
     if scale != 1.0:
         gm = gm.scaled(scale)
     return gm
+
+
+def read_all(path, units: str | None = None, dt: float | None = None,
+             format: str | None = None) -> list[GroundMotion]:
+    """Every acceleration channel of a record file, in file order (one item for single-channel
+    formats).
+
+    Parameters
+    ----------
+    path : str or Path
+        Record file (see :func:`read`).
+    units : {"g", "m/s2", "cm/s2"}, optional
+        As :func:`read`.
+    dt : float, optional
+        As :func:`read` [s].
+    format : str, optional
+        Skip detection.
+
+    Returns
+    -------
+    list of GroundMotion
+        Acceleration in m/s²; ``meta`` holds ``channel``, ``component``, ``azimuth_deg`` and
+        ``vertical`` where the format declares them.
+    """
+    return _read_channels(path, units, dt, format)[0]
 
 
 # ----------------------------------------------------------------------------------- writers
