@@ -1,0 +1,434 @@
+"""Collapse load factor of a rigid-block assembly: the static (equilibrium) linear programme of
+Livesley (1978), with associative or non-associative (Gilbert et al. 2006) Coulomb friction.
+
+Unknowns per interface (see :mod:`murus.limit.model`): the normal forces ``n1``, ``n2`` [N] at
+its two end points (compression positive) and the shear force ``s`` [N] along its tangent, all
+acting on block ``b`` (their opposites on block ``a``); and the load factor ``lambda``. For every
+block that is not a support, three equilibrium equations (forces along x and y, moment about the
+centroid)::
+
+    B q + lambda f_L = -f_D
+
+with the dead load ``f_D`` (the weights, ``-m g`` along y) and the live load ``f_L``:
+
+- ``load="horizontal"``: ``f_L = direction m g`` along x (a horizontal body force proportional
+  to the weights; ``lambda`` is the horizontal acceleration in units of g);
+- ``load="tilt"``: the base tilts by ``theta``: ``f_D = -m g cos(theta)`` along y,
+  ``f_L = m g`` along x and the critical tilt solves ``lambda(theta) = sin(theta)``. The result
+  gives ``angle_deg`` = theta and ``load_factor = tan(theta)`` (equal to the horizontal load
+  factor when no joint has cohesion or tension).
+
+Yield conditions per interface of length ``L`` and area ``A = L x thickness`` [m²], with the
+joint's friction coefficient ``mu``, cohesion ``c`` and tensile strength ``t`` [Pa]:
+
+- no tension beyond ``t``: ``n1, n2 >= -t A / 2`` (a dry joint: ``n1, n2 >= 0``), which keeps
+  the resultant inside the interface (the moment condition ``|m| <= N L / 2``);
+- Coulomb friction: ``|s| <= mu (n1 + n2) + c A``.
+
+``lambda`` is maximised with :func:`scipy.optimize.linprog` (HiGHS). The mechanism (virtual
+velocities ``u``, ``v`` [m/s] and ``omega`` [rad/s] of the blocks, normalised so that the largest
+velocity component of a block is 1 and the live load does positive work) is the vector of the
+duals (marginals) of the equilibrium equations.
+
+**Associative friction** (``friction="associative"``) is the LP above: by normality the
+mechanism dilates (a sliding joint opens by ``tan(phi)`` per unit slip), which overestimates the
+strength of dry joints. **Non-associative friction** (the default) follows the iterative scheme
+of Gilbert et al. (2006): the Coulomb condition of each interface is replaced by a shear
+capacity fixed by the normal force ``N_prev`` of the previous iteration,
+``|s| <= mu N_prev + c A`` (a normal-force-dependent cohesion: a yield line parallel to the
+normal-force axis, whose flow rule slides without dilatancy), starting from the associative
+solution; the LP is solved again with the updated capacities (relaxed,
+``N_prev <- N_prev + relax (N - N_prev)``) until the load factor and the normal forces
+converge. At convergence the forces satisfy the Coulomb condition with their own normal forces
+and the mechanism does not dilate. The paper's scheme is reconstructed from its description
+(Gilbert et al. (2006), abstract and section 3: successive LP sub-problems with a modified
+Mohr-Coulomb surface at each interface updated at each iteration); the relaxation is ours. The
+solution of a non-associative problem need not be unique: the scheme gives one admissible
+solution (a lower estimate of the load factor of a dry assembly among those it tries).
+
+References
+----------
+Livesley, R. K. (1978). Limit analysis of structures formed from rigid blocks. International
+Journal for Numerical Methods in Engineering 12(12), 1853-1871. doi:10.1002/nme.1620121207
+
+Gilbert, M., Casapulla, C., Ahmed, H. M. (2006). Limit analysis of masonry block structures
+with non-associative frictional joints using linear programming. Computers & Structures
+84(13-14), 873-887. doi:10.1016/j.compstruc.2006.02.005
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from murus.limit.model import Assembly, Interfaces, LimitModelError, check, find_interfaces
+
+__all__ = ["LimitResult", "LimitError", "analyse", "PointLoad"]
+
+LOADS = ("horizontal", "tilt")
+FRICTIONS = ("non-associative", "associative")
+
+
+class LimitError(LimitModelError):
+    """The LP has no solution: unbounded load factor, or no equilibrium for any load factor."""
+
+
+@dataclass
+class PointLoad:
+    """A force on a block, applied at a point (e.g. a backfill thrust).
+
+    Attributes
+    ----------
+    block : int
+        The block.
+    force : tuple of float
+        ``(Fx, Fy)`` [N] (per out-of-plane thickness of the assembly).
+    point : tuple of float
+        Point of application ``(x, y)`` [m].
+    live : bool
+        False: part of the dead load; True: multiplied by the load factor.
+    """
+
+    block: int
+    force: tuple
+    point: tuple
+    live: bool = False
+
+
+@dataclass
+class LimitResult:
+    """Collapse of a rigid-block assembly, made by :func:`analyse`.
+
+    Attributes
+    ----------
+    load_factor : float
+        Collapse load factor lambda [-] (horizontal: the horizontal acceleration in g; tilt:
+        ``tan(theta)``).
+    load : str
+        ``"horizontal"`` or ``"tilt"``.
+    direction : int
+        +1 (load along +x) or -1.
+    friction : str
+        ``"non-associative"`` or ``"associative"``.
+    angle_deg : float
+        Critical tilt angle [deg] (``load="tilt"``; NaN otherwise).
+    mechanism : numpy.ndarray
+        ``(nblock, 3)``: virtual velocities ``u``, ``v`` [m/s] and ``omega`` [rad/s] of the
+        blocks' centroids (supports 0), normalised (module docstring).
+    interfaces : Interfaces
+        The interfaces.
+    n1, n2, shear : numpy.ndarray
+        Normal forces at the end points and shear force [N] of each interface at collapse.
+    iterations : int
+        LP solutions of the non-associative scheme (1 for associative).
+    converged : bool
+        The non-associative scheme converged (always True for associative).
+    assembly : Assembly
+        The blocks.
+    """
+
+    load_factor: float
+    load: str
+    direction: int
+    friction: str
+    angle_deg: float
+    mechanism: np.ndarray
+    interfaces: Interfaces
+    n1: np.ndarray
+    n2: np.ndarray
+    shear: np.ndarray
+    iterations: int
+    converged: bool
+    assembly: Assembly = field(repr=False)
+    history: list = field(default_factory=list, repr=False)
+
+    @property
+    def normal(self) -> np.ndarray:
+        """Normal force N = n1 + n2 [N] per interface (compression positive)."""
+        return self.n1 + self.n2
+
+    @property
+    def eccentricity(self) -> np.ndarray:
+        """Position [m] of the normal resultant along the tangent from the interface's mid
+        point (NaN where N = 0)."""
+        N = self.normal
+        L = self.interfaces.length
+        with np.errstate(invalid="ignore", divide="ignore"):
+            e = 0.5 * L * (self.n2 - self.n1) / N
+        return np.where(np.abs(N) > 1e-12 * max(1.0, np.abs(N).max(initial=0.0)), e, np.nan)
+
+    def summary(self) -> dict:
+        """Load factor, tilt angle, friction, sizes and the mechanism (per block
+        ``{"block", "u", "v", "omega"}``)."""
+        asm = self.assembly
+        mech = [{"block": int(i), "name": asm.names[i], "u": float(m[0]), "v": float(m[1]),
+                 "omega": float(m[2])} for i, m in enumerate(self.mechanism)
+                if not asm.support[i]]
+        return {"load_factor": float(self.load_factor), "load": self.load,
+                "direction": int(self.direction), "friction": self.friction,
+                "angle_deg": float(self.angle_deg), "blocks": int(asm.nblock),
+                "interfaces": int(len(self.interfaces)), "iterations": int(self.iterations),
+                "converged": bool(self.converged),
+                "units": {"load_factor": "-", "angle_deg": "deg", "u": "m/s", "v": "m/s",
+                          "omega": "rad/s"},
+                "mechanism": mech}
+
+    def joints_csv(self) -> str:
+        """One line per interface: blocks, end points [m], N, n1, n2, S [N], eccentricity
+        [m], length [m]."""
+        itf = self.interfaces
+        head = ("a,b,x1_m,y1_m,x2_m,y2_m,length_m,N_N,n1_N,n2_N,S_N,eccentricity_m")
+        cols = np.column_stack([itf.a, itf.b, itf.p1, itf.p2, itf.length, self.normal,
+                                self.n1, self.n2, self.shear, self.eccentricity])
+        lines = [head]
+        for r in cols:
+            lines.append(",".join([str(int(r[0])), str(int(r[1]))]
+                                  + [f"{x:.10g}" for x in r[2:]]))
+        return "\n".join(lines) + "\n"
+
+
+# ---------------------------------------------------------------------- assembly of the LP
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def equilibrium_matrix(asm: Assembly, itf: Interfaces):
+    """The equilibrium matrix ``B`` (scipy.sparse CSR, ``3 nfree x 3 k``) of the free blocks
+    (rows ``3 r``, ``3 r + 1``, ``3 r + 2``: Fx, Fy, moment about the centroid of the r-th free
+    block) and the row of each block (-1 for a support). Columns: ``n1`` (k), ``n2`` (k),
+    ``s`` (k)."""
+    from scipy.sparse import csr_matrix
+
+    k = len(itf)
+    row = -np.ones(asm.nblock, dtype=int)
+    free = np.nonzero(~asm.support)[0]
+    row[free] = np.arange(len(free))
+    nrm, tan = itf.normal, itf.tangent
+    pm = itf.midpoint
+    ii, jj, vv = [], [], []
+    idx = np.arange(k)
+    for blk, sgn in ((itf.b, 1.0), (itf.a, -1.0)):
+        r = row[blk]
+        on = r >= 0
+        r, c = r[on], asm.centroid[blk[on]]
+        i1, i2, i3 = idx[on], idx[on] + k, idx[on] + 2 * k
+        n, t = nrm[on], tan[on]
+        for comp in (0, 1):
+            ii += [3 * r + comp] * 3
+            jj += [i1, i2, i3]
+            vv += [sgn * n[:, comp], sgn * n[:, comp], sgn * t[:, comp]]
+        ii += [3 * r + 2] * 3
+        jj += [i1, i2, i3]
+        vv += [sgn * _cross(itf.p1[on] - c, n), sgn * _cross(itf.p2[on] - c, n),
+               sgn * _cross(pm[on] - c, t)]
+    B = csr_matrix((np.concatenate(vv), (np.concatenate(ii), np.concatenate(jj))),
+                   shape=(3 * len(free), 3 * k))
+    return B, row
+
+
+def _loads(asm: Assembly, row: np.ndarray, dead_y: float, live_x: float, point_loads):
+    """Dead and live load vectors over the equilibrium rows."""
+    nf = int((row >= 0).sum())
+    fD = np.zeros(3 * nf)
+    fL = np.zeros(3 * nf)
+    free = np.nonzero(row >= 0)[0]
+    W = asm.mass[free] * asm.gravity
+    fD[3 * row[free] + 1] = dead_y * W
+    fL[3 * row[free]] = live_x * W
+    for p in point_loads or ():
+        r = row[p.block]
+        if r < 0:
+            continue
+        F = np.asarray(p.force, float)
+        arm = np.asarray(p.point, float) - asm.centroid[p.block]
+        vec = fL if p.live else fD
+        vec[3 * r:3 * r + 2] += F
+        vec[3 * r + 2] += arm[0] * F[1] - arm[1] * F[0]
+    return fD, fL
+
+
+def _solve_lp(B, fD, fL, itf, A, friction_cap):
+    """One LP: maximise lambda. ``friction_cap`` None: associative Coulomb rows; else the
+    fixed shear capacities ``|s| <= cap`` [N]. Returns (lambda, n1, n2, s, duals) or raises."""
+    from scipy.optimize import linprog
+    from scipy.sparse import csr_matrix, hstack, vstack
+    from scipy.sparse import eye as speye
+
+    k = len(itf)
+    Aeq = hstack([B, csr_matrix(fL.reshape(-1, 1))], format="csr")
+    c = np.zeros(3 * k + 1)
+    c[-1] = -1.0
+    lo_n = -0.5 * itf.tensile * A
+    bounds = np.empty((3 * k + 1, 2))
+    bounds[:2 * k, 0] = np.concatenate([lo_n, lo_n])
+    bounds[:2 * k, 1] = np.inf
+    bounds[-1] = (-np.inf, np.inf)
+    Aub = bub = None
+    if friction_cap is None:
+        bounds[2 * k:3 * k] = (-np.inf, np.inf)
+        I = speye(k, format="csr")
+        mu = _diag(itf.friction)
+        Aub = vstack([hstack([-mu, -mu, I, csr_matrix((k, 1))]),
+                      hstack([-mu, -mu, -I, csr_matrix((k, 1))])], format="csr")
+        bub = np.concatenate([itf.cohesion * A, itf.cohesion * A])
+    else:
+        cap = np.maximum(friction_cap, 0.0)
+        bounds[2 * k:3 * k, 0] = -cap
+        bounds[2 * k:3 * k, 1] = cap
+    res = linprog(c, A_ub=Aub, b_ub=bub, A_eq=Aeq, b_eq=-fD, bounds=bounds, method="highs")
+    if res.status == 3:
+        raise LimitError("the load factor is unbounded: no mechanism can form (joints with "
+                         "enough cohesion or tension, or blocks locked between supports)",
+                         key=("blocks",))
+    if res.status == 2:
+        raise LimitError("no equilibrium for any load factor: some block cannot carry its "
+                         "weight through its interfaces (check how the blocks rest on each "
+                         "other)", key=("blocks",))
+    if res.status != 0:
+        raise LimitError(f"the linear programme failed: {res.message}", key=("blocks",))
+    x = res.x
+    return x[-1], x[:k], x[k:2 * k], x[2 * k:3 * k], res.eqlin.marginals
+
+
+def _diag(v):
+    from scipy.sparse import diags
+
+    return diags(v, format="csr")
+
+
+def _mechanism(asm, row, duals, fL) -> np.ndarray:
+    mech = np.zeros((asm.nblock, 3))
+    free = np.nonzero(row >= 0)[0]
+    d = np.asarray(duals, float).reshape(-1, 3)
+    work = float(fL @ duals)
+    if work < 0:
+        d = -d
+    scale = np.abs(d[:, :2]).max(initial=0.0)
+    if scale <= 0:
+        scale = np.abs(d).max(initial=0.0)
+    if scale > 0:
+        d = d / scale
+    mech[free] = d
+    return mech
+
+
+def _collapse(asm, itf, B, row, fD, fL, friction, tol, max_iter, relax):
+    """Load factor at collapse for given dead and live loads, with the chosen friction."""
+    A = itf.length * asm.thickness
+    lam, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, None)
+    hist = [lam]
+    if friction == "associative":
+        return lam, n1, n2, s, du, 1, True, hist
+    Np = n1 + n2
+    converged = False
+    it = 1
+    for it in range(2, max_iter + 2):
+        cap = itf.friction * np.maximum(Np, 0.0) + itf.cohesion * A
+        lam_new, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, cap)
+        N = n1 + n2
+        hist.append(lam_new)
+        dN = np.abs(N - Np).max(initial=0.0)
+        Nref = max(np.abs(N).max(initial=0.0), 1e-300)
+        if abs(lam_new - lam) <= tol * max(1.0, abs(lam_new)) and dN <= 1e3 * tol * Nref:
+            lam = lam_new
+            converged = True
+            break
+        lam = lam_new
+        Np = Np + relax * (N - Np)
+    return lam, n1, n2, s, du, it, converged, hist
+
+
+def analyse(model, load: str = "horizontal", friction: str = "non-associative",
+            direction: int = 1, point_loads=None, tol: float = 1e-7, max_iter: int = 200,
+            relax: float = 0.5) -> LimitResult:
+    """Collapse load factor, mechanism and joint forces of a rigid-block assembly (module
+    docstring).
+
+    Parameters
+    ----------
+    model : Assembly or path-like
+        An :class:`~murus.limit.model.Assembly`, or a DEM case file (TOML,
+        :func:`murus.limit.model.from_case`).
+    load : {"horizontal", "tilt"}
+        A horizontal body force proportional to the weights, or the tilt of the base.
+    friction : {"non-associative", "associative"}
+        Coulomb friction without dilatancy (Gilbert et al. (2006), default) or with normality.
+    direction : {1, -1}
+        Sense of the load along x.
+    point_loads : list of PointLoad, optional
+        Extra forces [N] on the blocks (dead, or live: multiplied by the load factor).
+    tol : float
+        Relative convergence tolerance of the load factor in the non-associative scheme.
+    max_iter : int
+        Largest number of non-associative iterations.
+    relax : float
+        Relaxation of the normal forces between iterations (0 < relax <= 1).
+
+    Returns
+    -------
+    LimitResult
+
+    Raises
+    ------
+    LimitModelError
+        Bad model (overlapping blocks, no interface, a block without support), naming the
+        block; :class:`LimitError` when the LP is unbounded or infeasible.
+
+    References
+    ----------
+    Livesley (1978), doi:10.1002/nme.1620121207; Gilbert, Casapulla and Ahmed (2006),
+    doi:10.1016/j.compstruc.2006.02.005.
+    """
+    if load not in LOADS:
+        raise LimitModelError(f"load must be one of {', '.join(LOADS)}, got {load!r}",
+                              key=("load",))
+    if friction not in FRICTIONS:
+        raise LimitModelError(f"friction must be one of {', '.join(FRICTIONS)}, got "
+                              f"{friction!r}", key=("friction",))
+    if direction not in (1, -1):
+        raise LimitModelError(f"direction must be 1 or -1, got {direction!r}",
+                              key=("direction",))
+    if not 0 < relax <= 1:
+        raise LimitModelError(f"relax must be in (0, 1], got {relax!r}", key=("relax",))
+    if isinstance(model, Assembly):
+        asm = model
+    else:
+        from murus.limit.model import from_case
+
+        asm = from_case(Path(model))
+    itf = find_interfaces(asm)
+    check(asm, itf)
+    B, row = equilibrium_matrix(asm, itf)
+    src = asm.source
+
+    def solve(cos_t):
+        fD, fL = _loads(asm, row, -cos_t, float(direction), point_loads)
+        try:
+            return _collapse(asm, itf, B, row, fD, fL, friction, tol, max_iter, relax), fL
+        except LimitError as exc:
+            exc.source = src
+            raise
+
+    (lam, n1, n2, s, du, it, conv, hist), fL = solve(1.0)
+    angle = math.nan
+    if load == "tilt":
+        cohesive = bool((itf.cohesion > 0).any() or (itf.tensile > 0).any() or point_loads)
+        if not cohesive:
+            th = math.atan(lam)
+        else:
+            from scipy.optimize import brentq
+
+            def f(th):
+                return solve(math.cos(th))[0][0] - math.sin(th)
+
+            lo, hi = -0.5 * math.pi + 1e-9, 0.5 * math.pi - 1e-9
+            th = brentq(f, lo, hi, xtol=1e-12) if f(lo) * f(hi) < 0 else math.atan(lam)
+        (lam, n1, n2, s, du, it, conv, hist), fL = solve(math.cos(th))
+        angle = math.degrees(th)
+        lam = math.tan(th)
+    mech = _mechanism(asm, row, du, fL)
+    return LimitResult(float(lam), load, int(direction), friction, angle, mech, itf, n1, n2, s,
+                       int(it), bool(conv), asm, hist)
