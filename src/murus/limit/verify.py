@@ -225,7 +225,11 @@ def case_retaining(quick=False):
     its courses (monolithic slices between the bed joints, as "perfect stones" of the
     pseudo-static check), the Mononobe-Okabe thrust of the same ``kh`` applied on each slice's
     back face as a dead load, and ``A = kh g`` where the load factor equals ``kh``
-    (:func:`murus.limit.retaining.retaining_limit`)."""
+    (:func:`murus.limit.retaining.retaining_limit`). Both give 1.5884 m/s² (relative
+    difference about 1e-10): the governing mechanism is the same, the whole wall overturning
+    about its toe, and the two share the thrust model. The 1 % tolerance allows for the
+    bisection and for a multi-joint mechanism, which only the limit analysis sees, governing
+    another wall."""
     from murus.limit.retaining import retaining_limit
     from murus.retaining.collapse import pseudo_static_resistance
     from murus.retaining.geometry import preset
@@ -236,7 +240,7 @@ def case_retaining(quick=False):
     rows = [_row("DSRW1 A_pseudo [m/s2]: Coulomb wedge (murus.retaining) vs published 1.588",
                  1.588, ref, 0.005),
             _row("DSRW1 A [m/s2]: limit analysis of the courses vs Coulomb wedge", ref, la,
-                 0.05)]
+                 0.01)]
     return rows
 
 
