@@ -37,14 +37,25 @@ of Gilbert et al. (2006): the Coulomb condition of each interface is replaced by
 capacity fixed by the normal force ``N_prev`` of the previous iteration,
 ``|s| <= mu N_prev + c A`` (a normal-force-dependent cohesion: a yield line parallel to the
 normal-force axis, whose flow rule slides without dilatancy), starting from the associative
-solution; the LP is solved again with the updated capacities (relaxed,
-``N_prev <- N_prev + relax (N - N_prev)``) until the load factor and the normal forces
-converge. At convergence the forces satisfy the Coulomb condition with their own normal forces
-and the mechanism does not dilate. The paper's scheme is reconstructed from its description
+solution; the LP is solved again with the updated capacities (optionally relaxed,
+``N_prev <- N_prev + relax (N - N_prev)``, default ``relax = 1``) until the load factor is
+steady, the forces satisfy the Coulomb condition with their own normal forces, and every
+sliding interface (shear at its capacity) has the capacity of its own normal force: the
+mechanism then slides without dilatancy under forces that obey Coulomb's law. A statically
+indeterminate assembly has many LP optima with the same load factor and different normal
+forces, between which the capacities would jump from one iteration to the next; a tiny weight
+on the total normal force in the objective (:data:`REGULARISATION` per unit of the total live
+load)
+picks the optimum with the least normal forces, so that the iteration settles (the
+walls of the examples converge in 50-160 LP solutions). The final load factor, forces and
+mechanism are those of one more LP with the last capacities and without that weight.
+``LimitResult.converged`` is False when ``max_iter`` LP solutions did not settle (the last
+iterate is then returned). The paper's scheme is reconstructed from its description
 (Gilbert et al. (2006), abstract and section 3: successive LP sub-problems with a modified
-Mohr-Coulomb surface at each interface updated at each iteration); the relaxation is ours. The
-solution of a non-associative problem need not be unique: the scheme gives one admissible
-solution (a lower estimate of the load factor of a dry assembly among those it tries).
+Mohr-Coulomb surface at each interface, updated at each iteration until a converged solution
+is obtained); the convergence test and the regularisation are ours. The solution of a
+non-associative problem need not be unique: the scheme gives one solution, from the
+associative one as its start.
 
 References
 ----------
@@ -65,6 +76,10 @@ from pathlib import Path
 import numpy as np
 
 from murus.limit.model import Assembly, Interfaces, LimitModelError, check, find_interfaces
+
+#: Weight of the total normal force in the objective of the non-associative LPs, per unit of
+#: total weight of the free blocks (see :func:`analyse`).
+REGULARISATION = 1e-6
 
 __all__ = ["LimitResult", "LimitError", "analyse", "PointLoad"]
 
@@ -250,9 +265,11 @@ def _loads(asm: Assembly, row: np.ndarray, dead_y: float, live_x: float, point_l
     return fD, fL
 
 
-def _solve_lp(B, fD, fL, itf, A, friction_cap):
-    """One LP: maximise lambda. ``friction_cap`` None: associative Coulomb rows; else the
-    fixed shear capacities ``|s| <= cap`` [N]. Returns (lambda, n1, n2, s, duals) or raises."""
+def _solve_lp(B, fD, fL, itf, A, slope, const, reg=0.0):
+    """One LP: maximise lambda subject to equilibrium, ``n1, n2 >= -t A / 2`` and the shear
+    condition ``|s| <= slope (n1 + n2) + const`` (``slope`` [-], ``const`` [N] per interface;
+    bounds on ``s`` when every slope is 0). Returns (lambda, n1, n2, s, duals) or raises
+    :class:`LimitError`."""
     from scipy.optimize import linprog
     from scipy.sparse import csr_matrix, hstack, vstack
     from scipy.sparse import eye as speye
@@ -261,21 +278,22 @@ def _solve_lp(B, fD, fL, itf, A, friction_cap):
     Aeq = hstack([B, csr_matrix(fL.reshape(-1, 1))], format="csr")
     c = np.zeros(3 * k + 1)
     c[-1] = -1.0
+    c[:2 * k] = reg
     lo_n = -0.5 * itf.tensile * A
     bounds = np.empty((3 * k + 1, 2))
     bounds[:2 * k, 0] = np.concatenate([lo_n, lo_n])
     bounds[:2 * k, 1] = np.inf
     bounds[-1] = (-np.inf, np.inf)
     Aub = bub = None
-    if friction_cap is None:
+    if np.any(slope != 0):
         bounds[2 * k:3 * k] = (-np.inf, np.inf)
-        I = speye(k, format="csr")
-        mu = _diag(itf.friction)
-        Aub = vstack([hstack([-mu, -mu, I, csr_matrix((k, 1))]),
-                      hstack([-mu, -mu, -I, csr_matrix((k, 1))])], format="csr")
-        bub = np.concatenate([itf.cohesion * A, itf.cohesion * A])
+        eye = speye(k, format="csr")
+        mu = _diag(slope)
+        Aub = vstack([hstack([-mu, -mu, eye, csr_matrix((k, 1))]),
+                      hstack([-mu, -mu, -eye, csr_matrix((k, 1))])], format="csr")
+        bub = np.concatenate([const, const])
     else:
-        cap = np.maximum(friction_cap, 0.0)
+        cap = np.maximum(const, 0.0)  # a capacity below 0 (tension) is 0
         bounds[2 * k:3 * k, 0] = -cap
         bounds[2 * k:3 * k, 1] = cap
     res = linprog(c, A_ub=Aub, b_ub=bub, A_eq=Aeq, b_eq=-fD, bounds=bounds, method="highs")
@@ -316,34 +334,46 @@ def _mechanism(asm, row, duals, fL) -> np.ndarray:
 
 
 def _collapse(asm, itf, B, row, fD, fL, friction, tol, max_iter, relax):
-    """Load factor at collapse for given dead and live loads, with the chosen friction."""
+    """Load factor at collapse for given dead and live loads, with the chosen friction
+    (module docstring). Returns (lambda, n1, n2, s, duals, LP solutions, converged,
+    history of lambda)."""
     A = itf.length * asm.thickness
-    lam, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, None)
+    cA = itf.cohesion * A
+    lam, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, itf.friction, cA)
     hist = [lam]
     if friction == "associative":
         return lam, n1, n2, s, du, 1, True, hist
+    zero = np.zeros(len(itf))
+    scale = max(np.abs(fD).max(initial=0.0), np.abs(fL).max(initial=0.0), 1e-300)
+    eps = 10 * tol * scale
+    reg = REGULARISATION / max(np.abs(fL).sum(), 1e-300)
     Np = n1 + n2
     converged = False
     it = 1
     for it in range(2, max_iter + 2):
-        cap = itf.friction * np.maximum(Np, 0.0) + itf.cohesion * A
-        lam_new, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, cap)
+        cap = itf.friction * Np + cA
+        lam_new, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, zero, cap, reg)
         N = n1 + n2
         hist.append(lam_new)
-        dN = np.abs(N - Np).max(initial=0.0)
-        Nref = max(np.abs(N).max(initial=0.0), 1e-300)
-        if abs(lam_new - lam) <= tol * max(1.0, abs(lam_new)) and dN <= 1e3 * tol * Nref:
-            lam = lam_new
+        own = itf.friction * N + cA
+        sliding = np.abs(s) >= cap - eps
+        admissible = bool(np.all(np.abs(s) <= own + eps))
+        consistent = bool(np.all(np.abs(own - cap)[sliding] <= eps))
+        steady = abs(lam_new - lam) <= tol * max(1.0, abs(lam_new))
+        lam = lam_new
+        if admissible and consistent and steady:
             converged = True
             break
-        lam = lam_new
-        Np = Np + relax * (N - Np)
+        Np = np.maximum(Np + relax * (N - Np), -cA / np.maximum(itf.friction, 1e-300))
+    # the load factor of the last capacities without the regularisation
+    lam, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, zero, cap)
+    hist.append(lam)
     return lam, n1, n2, s, du, it, converged, hist
 
 
 def analyse(model, load: str = "horizontal", friction: str = "non-associative",
-            direction: int = 1, point_loads=None, tol: float = 1e-7, max_iter: int = 200,
-            relax: float = 0.5) -> LimitResult:
+            direction: int = 1, point_loads=None, tol: float = 1e-7, max_iter: int = 300,
+            relax: float = 1.0) -> LimitResult:
     """Collapse load factor, mechanism and joint forces of a rigid-block assembly (module
     docstring).
 
