@@ -47,8 +47,10 @@ forces, between which the capacities would jump from one iteration to the next; 
 on the total normal force in the objective (:data:`REGULARISATION` per unit of the total live
 load)
 picks the optimum with the least normal forces, so that the iteration settles (the
-walls of the examples converge in 50-160 LP solutions). The final load factor, forces and
-mechanism are those of one more LP with the last capacities and without that weight.
+walls of the examples converge in 50-80 LP solutions; the weight changes the load factor by
+less than 1e-9 there). The load factor and the mechanism returned are those of one more LP
+with the last capacities and without that weight; the joint forces are those of the last
+iterate (in equilibrium with a load factor within about ``REGULARISATION`` of it, relatively).
 ``LimitResult.converged`` is False when ``max_iter`` LP solutions did not settle (the last
 iterate is then returned). The paper's scheme is reconstructed from its description
 (Gilbert et al. (2006), abstract and section 3: successive LP sub-problems with a modified
@@ -341,7 +343,9 @@ def _collapse(asm, itf, B, row, fD, fL, friction, tol, max_iter, relax):
     cA = itf.cohesion * A
     lam, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, itf.friction, cA)
     hist = [lam]
-    if friction == "associative":
+    if friction == "associative" or not _slides(asm, itf, row, du):
+        # without sliding, normality does not matter: the associative solution is the
+        # non-associative one
         return lam, n1, n2, s, du, 1, True, hist
     zero = np.zeros(len(itf))
     scale = max(np.abs(fD).max(initial=0.0), np.abs(fL).max(initial=0.0), 1e-300)
@@ -350,7 +354,8 @@ def _collapse(asm, itf, B, row, fD, fL, friction, tol, max_iter, relax):
     Np = n1 + n2
     converged = False
     it = 1
-    for it in range(2, max_iter + 2):
+    for _ in range(max_iter):
+        it += 1
         cap = itf.friction * Np + cA
         lam_new, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, zero, cap, reg)
         N = n1 + n2
@@ -365,10 +370,30 @@ def _collapse(asm, itf, B, row, fD, fL, friction, tol, max_iter, relax):
             converged = True
             break
         Np = np.maximum(Np + relax * (N - Np), -cA / np.maximum(itf.friction, 1e-300))
-    # the load factor of the last capacities without the regularisation
-    lam, n1, n2, s, du = _solve_lp(B, fD, fL, itf, A, zero, cap)
+    # the load factor and mechanism of the last capacities without the regularisation (the
+    # forces stay those of the last iterate, which obey Coulomb with their own normal forces)
+    lam, _, _, _, du = _solve_lp(B, fD, fL, itf, A, zero, cap)
     hist.append(lam)
     return lam, n1, n2, s, du, it, converged, hist
+
+
+def _slides(asm, itf, row, duals) -> bool:
+    """True when the mechanism of ``duals`` slips along some interface (relative tangential
+    velocity at its mid point above 1e-9 of the largest block velocity)."""
+    d = np.zeros((asm.nblock, 3))
+    free = row >= 0
+    d[free] = np.asarray(duals, float).reshape(-1, 3)
+    pm = itf.midpoint
+    t = itf.tangent
+
+    def vel(blk):
+        r = pm - asm.centroid[blk]
+        v = d[blk]
+        return np.column_stack([v[:, 0] - v[:, 2] * r[:, 1], v[:, 1] + v[:, 2] * r[:, 0]])
+
+    slip = ((vel(itf.b) - vel(itf.a)) * t).sum(1)
+    size = max(np.abs(d[:, :2]).max(initial=0.0), 1e-300)
+    return bool(np.abs(slip).max(initial=0.0) > 1e-9 * size)
 
 
 def analyse(model, load: str = "horizontal", friction: str = "non-associative",
@@ -424,11 +449,21 @@ def analyse(model, load: str = "horizontal", friction: str = "non-associative",
     if not 0 < relax <= 1:
         raise LimitModelError(f"relax must be in (0, 1], got {relax!r}", key=("relax",))
     if isinstance(model, Assembly):
-        asm = model
-    else:
-        from murus.limit.model import from_case
+        return _analyse(model, load, friction, direction, point_loads, tol, max_iter, relax)
+    from murus.dem.case import fail_at
+    from murus.limit.model import from_case
 
-        asm = from_case(Path(model))
+    path = Path(model)
+    asm = from_case(path)
+    try:
+        return _analyse(asm, load, friction, direction, point_loads, tol, max_iter, relax)
+    except LimitModelError as exc:
+        if not exc.key:
+            raise
+        raise fail_at(path, path.read_text(encoding="utf-8"), exc.key, str(exc)) from None
+
+
+def _analyse(asm, load, friction, direction, point_loads, tol, max_iter, relax):
     itf = find_interfaces(asm)
     check(asm, itf)
     B, row = equilibrium_matrix(asm, itf)

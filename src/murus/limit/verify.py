@@ -89,8 +89,9 @@ def arch_polygons(t_over_R, n, R=1.0):
     polys = [_rect(-R - t - 0.5, -0.2, 2 * R + 2 * t + 1.0, 0.2)]
     for i in range(n):
         a0, a1 = math.pi * i / n, math.pi * (i + 1) / n
-        polys.append([(ro * math.cos(a0), ro * math.sin(a0)), (ro * math.cos(a1), ro * math.sin(a1)),
-                      (ri * math.cos(a1), ri * math.sin(a1)), (ri * math.cos(a0), ri * math.sin(a0))])
+        c0, s0, c1, s1 = math.cos(a0), math.sin(a0), math.cos(a1), math.sin(a1)
+        polys.append([(ro * c0, ro * s0), (ro * c1, ro * s1), (ri * c1, ri * s1),
+                      (ri * c0, ri * s0)])
     return polys
 
 
