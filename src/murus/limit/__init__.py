@@ -1,5 +1,6 @@
 """Rigid-block limit analysis (Livesley 1978; Gilbert, Casapulla and Ahmed 2006): the collapse
-load factor, mechanism and joint forces of an assembly of rigid blocks, e.g. of a DEM case file.
+load factor, mechanism and joint forces of an assembly of rigid blocks, e.g. of a DEM case file
+(:func:`analyse`, :func:`plot_mechanism`; ``murus limit CASE.toml`` on the command line).
 
 >>> from murus.limit import Assembly, analyse
 >>> base = [(-1, -0.2), (1, -0.2), (1, 0), (-1, 0)]
@@ -7,6 +8,8 @@ load factor, mechanism and joint forces of an assembly of rigid blocks, e.g. of 
 >>> r = analyse(Assembly.from_polygons([base, block], supports=[0], friction_deg=40))
 >>> round(r.load_factor, 6)
 0.25
+
+The names below are imported on first use (PEP 562), so that ``murus --help`` stays fast.
 
 References
 ----------
@@ -18,15 +21,23 @@ with non-associative frictional joints using linear programming. Computers & Str
 84(13-14), 873-887. doi:10.1016/j.compstruc.2006.02.005
 """
 
-from murus.limit.model import Assembly, Interfaces, LimitModelError, find_interfaces, from_case
-from murus.limit.solve import LimitError, LimitResult, PointLoad, analyse
+from murus._lazy import lazy_exports
 
-__all__ = ["Assembly", "Interfaces", "LimitError", "LimitModelError", "LimitResult", "PointLoad",
-           "analyse", "find_interfaces", "from_case", "plot_mechanism"]
+_EXPORTS = {
+    "Assembly": "model",
+    "Interfaces": "model",
+    "LimitModelError": "model",
+    "find_interfaces": "model",
+    "from_case": "model",
+    "LimitError": "solve",
+    "LimitResult": "solve",
+    "PointLoad": "solve",
+    "analyse": "solve",
+    "plot_mechanism": "plots",
+    "retaining_limit": "retaining",
+    "run_verification": "verify",
+}
 
+__all__ = sorted(_EXPORTS)
 
-def plot_mechanism(result, ax=None, scale=None):
-    """See :func:`murus.limit.plots.plot_mechanism` (imports matplotlib when called)."""
-    from murus.limit.plots import plot_mechanism as _plot
-
-    return _plot(result, ax=ax, scale=scale)
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

@@ -256,7 +256,18 @@ CASES = {
 
 
 def run_verification(quick: bool = False) -> list[dict]:
-    """Every row of every case."""
+    """Every row of every case.
+
+    Parameters
+    ----------
+    quick : bool
+        Fewer bisection steps for the arch (same tolerances).
+
+    Returns
+    -------
+    list of dict
+        Rows ``{case, expected, obtained, error, tolerance, passed}``.
+    """
     rows = []
     for fn in CASES.values():
         rows += fn(quick)
