@@ -49,7 +49,9 @@ iterate of the last window that comes closest to the Coulomb condition with its 
 forces (``LimitResult.coulomb_residual``: 0 when they obey it); the load factor and the
 mechanism are those of one more LP with that iterate's capacities and without the weight:
 the mechanism slides without dilatancy. ``LimitResult.converged`` is False when ``max_iter``
-LP solutions did not settle.
+LP solutions did not settle. When the associative mechanism slips at no interface, the
+associative solution already meets every condition of the non-associative problem (no slip,
+no dilatancy) and is returned after one LP.
 
 The paper's scheme is reconstructed from its description (Gilbert et al. (2006), abstract and
 section 3: successive LP sub-problems with a modified Mohr-Coulomb surface at each interface,
