@@ -156,14 +156,17 @@ def test_overlap_and_no_interface_and_no_support():
         analyse(asm)
 
 
-def test_unbounded_lp_is_an_error():
-    # a block glued to its base by tension and cohesion on a horizontal load: never collapses?
-    # No: it still topples at a finite load. A block locked in a slot between two supports is
-    # unbounded.
+def test_unbounded_and_infeasible_lp_name_the_block():
+    # a block locked in a slot between supports: no mechanism, the load factor is unbounded
     polys = [V._rect(-1, -0.2, 3, 0.2), V._rect(-1, 0, 1, 0.5), V._rect(0.5, 0, 1, 0.5),
              V._rect(0, 0, 0.5, 0.5), V._rect(-1, 0.5, 3, 0.2)]
     asm = Assembly.from_polygons(polys, supports=[0, 1, 2, 4], friction_deg=30.0)
-    with pytest.raises(LimitModelError, match="unbounded"):
+    with pytest.raises(LimitModelError, match="^block 3: the load factor is unbounded"):
+        analyse(asm)
+    # a block held only by a frictionless vertical face: no equilibrium for any load factor
+    asm = Assembly.from_polygons([V._rect(-1, -0.2, 1, 2), V._rect(0, 0.5, 0.3, 0.3)],
+                                 supports=[0], friction_deg=0.0)
+    with pytest.raises(LimitModelError, match="^block 1: no equilibrium for any load factor"):
         analyse(asm)
 
 

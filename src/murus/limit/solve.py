@@ -102,7 +102,25 @@ FRICTIONS = ("non-associative", "associative")
 
 
 class LimitError(LimitModelError):
-    """The LP has no solution: unbounded load factor, or no equilibrium for any load factor."""
+    """The LP has no solution: unbounded load factor, or no equilibrium for any load factor.
+
+    Attributes
+    ----------
+    row : int or None
+        The free block (its index among the free blocks) the trouble is found at, if known.
+    """
+
+    row = None
+
+
+def _lp_error(msg: str, row) -> LimitError:
+    exc = LimitError(msg, key=("blocks",))
+    exc.row = None if row is None else int(row)
+    return exc
+
+
+#: Bound on the load factor: an LP optimum at it is reported as unbounded [-].
+LAMBDA_MAX = 1e6
 
 
 @dataclass
@@ -325,7 +343,7 @@ def _lp(B, fD, fL, lo_n, slope, const, reg):
     bounds = np.empty((3 * k + 1, 2))
     bounds[:2 * k, 0] = np.concatenate([lo_n, lo_n])
     bounds[:2 * k, 1] = np.inf
-    bounds[-1] = (-np.inf, np.inf)
+    bounds[-1] = (-LAMBDA_MAX, LAMBDA_MAX)
     Aub = bub = None
     if np.any(slope != 0):
         bounds[2 * k:3 * k] = (-np.inf, np.inf)
@@ -340,18 +358,38 @@ def _lp(B, fD, fL, lo_n, slope, const, reg):
         bounds[2 * k:3 * k, 1] = cap
     method = "highs-ipm" if 3 * k + 1 > IPM_ABOVE else "highs"
     res = linprog(c, A_ub=Aub, b_ub=bub, A_eq=Aeq, b_eq=-fD, bounds=bounds, method=method)
-    if res.status == 3:
-        raise LimitError("the load factor is unbounded: no mechanism can form (joints with "
-                         "enough cohesion or tension, or blocks locked between supports)",
-                         key=("blocks",))
     if res.status == 2:
-        raise LimitError("no equilibrium for any load factor: some block cannot carry its "
-                         "weight through its interfaces (check how the blocks rest on each "
-                         "other)", key=("blocks",))
+        raise _lp_error("no equilibrium for any load factor: the block cannot carry its "
+                        "weight through its interfaces (check how it rests on the others)",
+                        _worst_row(Aeq, fD, Aub, bub, bounds))
     if res.status != 0:
-        raise LimitError(f"the linear programme failed: {res.message}", key=("blocks",))
+        raise _lp_error(f"the linear programme failed: {res.message}", None)
     x = res.x
+    if x[-1] >= LAMBDA_MAX * (1 - 1e-9):
+        y = np.abs(np.asarray(res.eqlin.marginals)).reshape(-1, 3)[:, :2].max(1)
+        raise _lp_error("the load factor is unbounded: the block can move without any "
+                        "resistance, or no mechanism can form (joints with enough cohesion or "
+                        "tension, blocks locked between supports)", int(np.argmax(y)))
     return x[-1], x[:k], x[k:2 * k], x[2 * k:3 * k], res.eqlin.marginals
+
+
+def _worst_row(Aeq, fD, Aub, bub, bounds) -> int | None:
+    """The free block whose equilibrium is furthest from reachable: the largest residual of a
+    phase-1 LP (minimise the sum of the residuals of the equilibrium equations)."""
+    from scipy.optimize import linprog
+    from scipy.sparse import csr_matrix, eye, hstack
+
+    m, nv = Aeq.shape
+    A = hstack([Aeq, eye(m), -eye(m)], format="csr")
+    c = np.concatenate([np.zeros(nv), np.ones(2 * m)])
+    b = np.concatenate([bounds, np.column_stack([np.zeros(2 * m), np.full(2 * m, np.inf)])])
+    Aub2 = None if Aub is None else hstack([Aub, csr_matrix((Aub.shape[0], 2 * m))],
+                                           format="csr")
+    res = linprog(c, A_ub=Aub2, b_ub=bub, A_eq=A, b_eq=-fD, bounds=b, method="highs")
+    if res.status != 0:
+        return None
+    r = (res.x[nv:nv + m] + res.x[nv + m:]).reshape(-1, 3).sum(1)
+    return int(np.argmax(r))
 
 
 def _diag(v):
@@ -513,8 +551,11 @@ def _analyse(asm, load, friction, direction, point_loads, tol, max_iter, relax):
         try:
             return _collapse(asm, itf, B, row, fD, fL, friction, tol, max_iter, relax), fL
         except LimitError as exc:
-            exc.source = src
-            raise
+            if exc.row is None:
+                exc.source = src
+                raise
+            named = asm.error(int(np.nonzero(row >= 0)[0][exc.row]), str(exc))
+            raise LimitError(*named.args, key=named.key, source=named.source) from None
 
     (lam, n1, n2, s, du, it, conv, hist), fL = solve(1.0)
     angle = math.nan
