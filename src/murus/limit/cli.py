@@ -81,6 +81,9 @@ def limit(
     what = (f"critical tilt {s['angle_deg']:.4f} deg (tan = {s['load_factor']:.6g})"
             if load == "tilt" else f"load factor {s['load_factor']:.6g} (g)")
     note = "" if s["converged"] else " (the non-associative scheme did not converge)"
+    if s["friction"] == "non-associative" and s["coulomb_residual"] > 1e-3:
+        note += (f" (forces exceed Coulomb by up to {s['coulomb_residual']:.2g} of a block "
+                 "weight: an estimate, see docs/limit_analysis.md)")
     typer.echo(f"{case.name}: {what}, {s['friction']} friction, {s['blocks']} blocks, "
                f"{s['interfaces']} interfaces, {s['iterations']} LP solution(s){note}")
     if out is not None:
