@@ -93,10 +93,10 @@ def test_associative_exceeds_non_associative_on_a_confined_wall():
     ass = analyse(f, friction="associative")
     assert na.converged
     assert ass.load_factor >= na.load_factor
-    assert ass.load_factor > na.load_factor * 1.03  # 0.4857 vs 0.4559
+    assert ass.load_factor > na.load_factor * 1.03  # 0.4857 vs 0.4577
     assert na.load_factor == pytest.approx(0.457, rel=0.01)  # path-dependent within 0.5 %
     # the forces of the non-associative solution nearly obey Coulomb with their own normal
-    # forces (residual 0.025 of the largest block weight here: a known limit of the scheme)
+    # forces (residual 0.035 of the largest block weight here: a known limit of the scheme)
     assert na.coulomb_residual <= 0.05
     assert ass.coulomb_residual <= 1e-7
     assert np.all(na.n1 >= -1e-6) and np.all(na.n2 >= -1e-6)
