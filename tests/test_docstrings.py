@@ -21,7 +21,7 @@ PACKAGES = ["murus", "murus.motion", "murus.eurocode", "murus.rocking", "murus.d
             "murus.motion.processing", "murus.motion.synthetic", "murus.motion.artificial",
             "murus.continuum", "murus.continuum.mesh", "murus.continuum.closed_forms",
             "murus.continuum.vtk", "murus.continuum.plots", "murus.continuum.freefield",
-            "murus.continuum.interface", "murus.continuum.coupled"]
+            "murus.continuum.interface", "murus.continuum.coupled", "murus.limit"]
 
 #: Names whose docstrings are not converted yet, by module (empty: all converted, issue 16 item 5).
 PENDING = {}

@@ -14,6 +14,7 @@ from typer.core import TyperGroup
 
 from murus import cliutil
 from murus.identify.cli import app as lab_app
+from murus.limit.cli import limit as limit_cmd
 from murus.mechanisms.cli import mechanism
 from murus.motion.cli import app as motion_app
 from murus.retaining.cli import app as retaining_app
@@ -63,6 +64,7 @@ app.add_typer(retaining_app, name="retaining")
 app.add_typer(study_app, name="study")
 app.add_typer(lab_app, name="lab")
 app.command("mechanism")(mechanism)
+app.command("limit")(limit_cmd)
 # "studies" is accepted too (hidden), so that either spelling works
 app.add_typer(study_app, name="studies", hidden=True)
 
@@ -385,6 +387,23 @@ def verify_continuum(
     from murus.continuum.verify import CASES
 
     _verify_table("murus.continuum verification", CASES, case, quick, obtained="murus")
+
+
+@verify_app.command("limit")
+def verify_limit(
+    quick: bool = typer.Option(False, "--quick", help="Fewer bisection steps (same "
+                               "tolerances)."),
+    case: list[str] = typer.Option([], "--case", "-c",
+                                   help="Run only these cases (repeatable); default all."),
+) -> None:
+    """Run the rigid-block limit analysis verification cases (closed forms, the minimum
+    thickness of an arch, published and pseudo-static comparisons) and print expected,
+    obtained and tolerance.
+
+    Exits with code 1 when a case fails its tolerance."""
+    from murus.limit.verify import CASES
+
+    _verify_table("murus.limit verification", CASES, case, quick)
 
 
 def main() -> None:  # pragma: no cover - entry point
