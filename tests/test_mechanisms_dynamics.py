@@ -43,3 +43,21 @@ def test_uplift_of_a_facade_with_floors_is_its_activation_multiplier():
     # and at a finite rotation both follow tan(alpha - theta) for a rigid block on its toe
     th = 0.3 * body.alpha
     assert alpha(mech, th) == pytest.approx(math.tan(body.alpha - th), rel=1e-5)
+
+
+def test_the_facade_example_runs(capsys):
+    """examples/mechanisms/facade_code_vs_dynamics.py, as a user runs it: the code's limits and
+    the records' overturning intensities, printed."""
+    import runpy
+    from pathlib import Path
+
+    ex = Path(__file__).parents[1] / "examples" / "mechanisms" / "facade_code_vs_dynamics.py"
+    ns = runpy.run_path(str(ex), run_name="__main__")
+    out = capsys.readouterr().out
+    assert "SLV fails at agR" in out and "four of seven overturn it" in out
+    # the statics of the example: alpha0 = tan(alpha) of the rocking body plus the tie's
+    # moment T h1 over the overturning moment of the weights, m g z_G
+    b = ns["body"]
+    expected = math.tan(b.alpha) + ns["tie"] * ns["h1"] / (b.mass * G * b.z_G)
+    assert ns["base"].alpha0 == pytest.approx(expected, rel=1e-6)
+    assert ns["limits"]["nonlinear"] < ns["limits"]["linear"]
