@@ -36,7 +36,8 @@ def plot_spectrum(spec, ax=None, label=None, what="psa"):
     ax.plot(spec.period, getattr(spec, what), label=label or f"{spec.damping:.0%} damping")
     ax.set_xscale("log")
     ax.set_xlabel("period [s]")
-    ax.set_ylabel(f"{what.upper()} [m/s²]")
+    units = {"sd": "m", "sv": "m/s", "psv": "m/s"}.get(what, "m/s²")
+    ax.set_ylabel(f"{what.upper()} [{units}] ({spec.damping:.0%} damping)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     return ax

@@ -628,5 +628,10 @@ def plot_fragility(ds, ax=None, *, limit_state=None, config=None, progress=None)
     ax.set_title(f"Fragility ({ds.attrs.get('fragility_method', 'msa').upper()}, "
                  f"{100 * float(conf):g} % bands: {ds.attrs.get('fragility_ci', '')})",
                  fontsize=9)
-    ax.legend(fontsize=6, ncol=2, loc="lower right")
+    # the bands are not in the legend: say what they are once
+    ax.fill_between([], [], [], color="0.5", alpha=0.25,
+                    label=f"{100 * float(conf):g} % confidence band")
+    ax.plot([], [], "o", color="0.3", ms=3, label="observed fraction")
+    n = len(ax.get_legend_handles_labels()[0])
+    ax.legend(fontsize=8, ncol=2 if n > 6 else 1, loc="lower right", framealpha=0.9)
     return ax

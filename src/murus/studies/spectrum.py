@@ -297,7 +297,8 @@ def plot_rocking_spectrum(ds, ax=None, *, record=None, x=None, limit_states=LIMI
         ax.plot(xs, np.minimum(med, top), lw=1.6, color="C0", label=f"median of {y.shape[0]}")
     if ov.any():
         xi, yi = np.nonzero(ov.T)
-        ax.plot(xs[xi], np.full(xi.size, top), "x", color="C3", ms=5, label="overturned")
+        ax.plot(xs[xi], np.full(xi.size, top), "x", color="C3", ms=5,
+                label="overturned (drawn at the top; π/(2α) in the data)")
     for i, (name, v) in enumerate(limit_states.items()):
         ax.axhline(v, ls="--", lw=0.9, color=("C2", "C1", "C4")[i % 3],
                    label=f"{name} rocking ({v:g})")
@@ -310,13 +311,13 @@ def plot_rocking_spectrum(ds, ax=None, *, record=None, x=None, limit_states=LIMI
         elif math.isfinite(f0):  # the free-standing wall overturns: no reference line
             ax.plot([], [], ls=":", color="k", label="free-standing: overturns")
     ax.set_xlabel(_label(ds, x))
-    ax.set_ylabel(r"$\theta_{max}/\alpha$")
+    ax.set_ylabel(r"$\theta_{max}/\alpha$ [-] (peak rotation / slenderness)")
     ax.set_xlim(xs.min(), xs.max())
     ax.set_ylim(0.0, top * 1.08 if ymax is None else ymax)
     name = ds.attrs.get("body") or ds.attrs.get("title", "").removeprefix("murus study ")
     rec = "" if record is None else f", {record}"
     ax.set_title(f"Rocking spectrum: {name}{rec}", fontsize=9)
-    ax.legend(fontsize=7, ncol=2, loc="upper right")
+    ax.legend(fontsize=8, ncol=2, loc="upper right", framealpha=0.9)
     return ax
 
 
