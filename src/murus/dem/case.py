@@ -403,6 +403,21 @@ def _shape_list(case: DemCase):
     return out
 
 
+def default_joint(case, path, text) -> str:
+    """The material of the joints not listed in ``[[joints]]``: ``[dem] joint``, or the only
+    material; a one-line :class:`CaseError` when several are defined without it or it is
+    unknown."""
+    d = case.dem
+    if d.joint is None and len(case.materials) > 1:
+        raise fail_at(path, text, ("dem", "joint"), "several materials are defined: name the "
+                      f"default joint material ({', '.join(case.materials)})")
+    default = d.joint or next(iter(case.materials))
+    if default not in case.materials:
+        raise fail_at(path, text, ("dem", "joint"), f"unknown material '{default}' (defined: "
+                      f"{', '.join(case.materials)})")
+    return default
+
+
 def _material(case: DemCase, name: str | None, where: tuple, path, text) -> str:
     if name is None:
         if len(case.materials) == 1:
@@ -544,13 +559,7 @@ def build(case: DemCase, path: Path, text: str) -> Built:
 
     d = case.dem
     # materials: the default joint and the pairs
-    if d.joint is None and len(case.materials) > 1:
-        raise fail_at(path, text, ("dem", "joint"), "several materials are defined: name the "
-                      f"default joint material ({', '.join(case.materials)})")
-    default = d.joint or next(iter(case.materials))
-    if default not in case.materials:
-        raise fail_at(path, text, ("dem", "joint"), f"unknown material '{default}' (defined: "
-                      f"{', '.join(case.materials)})")
+    default = default_joint(case, path, text)
     joints = {}
     for name, mat in case.materials.items():
         try:

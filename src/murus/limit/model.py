@@ -346,17 +346,18 @@ def from_case(path) -> Assembly:
         Bad input, one line naming file, line and key (discs are refused: limit analysis
         takes polygon blocks).
     """
-    from murus.dem.case import _convex_parts, _material, _shape_list, fail_at, load_case
+    from murus.dem.case import (
+        _convex_parts,
+        _material,
+        _shape_list,
+        default_joint,
+        fail_at,
+        load_case,
+    )
 
     case, path, text = load_case(path)
     d = case.dem
-    if d.joint is None and len(case.materials) > 1:
-        raise fail_at(path, text, ("dem", "joint"), "several materials are defined: name the "
-                      f"default joint material ({', '.join(case.materials)})")
-    default = d.joint or next(iter(case.materials))
-    if default not in case.materials:
-        raise fail_at(path, text, ("dem", "joint"), f"unknown material '{default}' (defined: "
-                      f"{', '.join(case.materials)})")
+    default = default_joint(case, path, text)
     pair = {}
     for i, j in enumerate(case.joints):
         if j.material not in case.materials:
