@@ -290,7 +290,7 @@ def _cosmos_text(level=1, azimuth=90, units="cm/sec2 (04)", values=None):
 
 def test_cosmos_v1_and_multichannel(tmp_path):
     p = tmp_path / "two.V1"
-    p.write_text(_cosmos_text(1, 90) + _cosmos_text(1, 500))
+    p.write_text(_cosmos_text(1, 90) + _cosmos_text(1, 400))
     assert detect_format(p) == "cosmos"
     chans = read_all(p)
     assert len(chans) == 2
@@ -349,7 +349,7 @@ def _fuzz_sources(tmp_path):
         "CICLC_trim.v1": CLC.read_text(),
         "s.V2": _dmg_v2_text(_v2_chans()),
         "k.EW": _knet_text(_counts()),
-        "two.V1": _cosmos_text(1, 90) + _cosmos_text(1, 500),
+        "two.V1": _cosmos_text(1, 90) + _cosmos_text(1, 400),
     }
 
 
@@ -431,7 +431,7 @@ def test_cut_files_are_refused(tmp_path):
     with pytest.raises(MotionFormatError, match=r"cut.V2 line \d+: file ends before the end "
                                                 "of channel 1"):
         read_all(q)
-    two = (_cosmos_text(1, 90) + _cosmos_text(1, 500)).splitlines()
+    two = (_cosmos_text(1, 90) + _cosmos_text(1, 400)).splitlines()
     r = tmp_path / "cut.V1"
     r.write_text("\n".join(two[:55]) + "\n")  # inside the text header of channel 2
     with pytest.raises(MotionFormatError, match="cut.V1 line 50: text after channel 1 is not a "

@@ -435,8 +435,9 @@ def _fixed_width_values(src: _Src, start: int, nlines: int, count: int, fmt: str
 
 
 def _is_text_line(line: str) -> bool:
-    """True for a line with letters other than exponent markers (end of a numeric block)."""
-    return re.search(r"[a-ce-zA-CE-Z]", line) is not None
+    """True for a line with letters other than the exponent markers E and D (end of a numeric
+    block); "3.437285e-04" (COSMOS Format=(1E15.6)) is a number, not text."""
+    return re.search(r"[a-cf-zA-CF-Z]", line) is not None
 
 
 _COSMOS_COUNT = re.compile(r"^\s*(\d+)\s+(.*)$")
@@ -552,13 +553,29 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
         raise src.err(i + 1, "a record needs at least 2 points")
     th = lines[text0:k]
     level = {0: "V0", 1: "V1", 2: "V2", 3: "V3"}.get(int(ints[0]), "") if len(ints) else ""
+    # orientation code (integer header 54): 1-360 azimuth from north (360 = north), 400 up,
+    # 401 down, 402 vertical; 500/501 radial/transverse, 600/601 longitudinal/tangential,
+    # 700/701 H1/H2 and 2000 "other" give no azimuth; 0 or -999 is unknown, and then a
+    # "|<SCNL>STA.CHN.NET.LOC" comment (USGS files) tells a vertical channel by its Z.
     az = None
     vert = False
-    if len(ints) > 53 and ints[53] != -999:
-        if int(ints[53]) in (500, 600):
-            vert = True
-        elif 0 <= ints[53] <= 360:
-            az = float(ints[53]) % 360.0
+    code = int(ints[53]) if len(ints) > 53 else -999
+    comp = ""
+    if 1 <= code <= 360:
+        az = float(code) % 360.0
+        comp = f"{code}"
+    elif code in (400, 401, 402):
+        vert = True
+        comp = f"{code}"
+    elif code not in (0, -999):
+        comp = f"{code}"
+    else:
+        scnl = next((ln.strip()[7:] for ln in lines[i - ncom:i]
+                     if ln.strip().upper().startswith("|<SCNL>")), "")
+        parts = scnl.split()[0].split(".") if scnl.split() else []
+        if len(parts) > 1 and len(parts[1]) == 3:
+            comp = parts[1].upper()
+            vert = comp.endswith("Z")
     meta = {
         "format": "cosmos",
         "level": level,
@@ -568,7 +585,7 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
         "event": th[1].strip() if len(th) > 1 else "",
         "station": th[4][28:34].strip() if len(th) > 4 else "",
         "channel": position,
-        "component": (f"{int(ints[53])}" if len(ints) > 53 and ints[53] != -999 else ""),
+        "component": comp,
         "azimuth_deg": az,
         "vertical": vert,
     }
@@ -577,7 +594,18 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
     nxt = stop
     while nxt < len(lines) and "end-of-data" in lines[nxt].lower():
         nxt += 1
-    return _make(src, np.asarray(vals) * UNITS[uname], dt, meta), nxt
+    acc = np.asarray(vals) * UNITS[uname]
+    # real header 64: maximum of the series, in its units (-999 when not given): warn if the
+    # data disagree beyond rounding (the data are authoritative)
+    if len(reals) > 63 and reals[63] != -999:
+        declared = abs(float(reals[63])) * UNITS[uname]
+        meta["pga_declared"] = declared
+        actual = float(np.max(np.abs(acc)))
+        if not math.isclose(declared, actual, rel_tol=1e-3, abs_tol=1e-9):
+            warnings.warn(f"{src.name} line {i + 1}: declared maximum {reals[63]:g} (real "
+                          f"header 64) differs from the data ({actual / UNITS[uname]:.6g})",
+                          stacklevel=3)
+    return _make(src, acc, dt, meta), nxt
 
 
 _CSV_HDR = re.compile(r"^#\s*([A-Za-z_][A-Za-z0-9_ ]*?)\s*[:=]\s*(.*?)\s*$")
