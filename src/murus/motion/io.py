@@ -555,11 +555,20 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
     level = {0: "V0", 1: "V1", 2: "V2", 3: "V3"}.get(int(ints[0]), "") if len(ints) else ""
     # orientation code (integer header 54): 1-360 azimuth from north (360 = north), 400 up,
     # 401 down, 402 vertical; 500/501 radial/transverse, 600/601 longitudinal/tangential,
-    # 700/701 H1/H2 and 2000 "other" give no azimuth; 0 or -999 is unknown, and then a
+    # 700/701 H1/H2 and 2000 "other" give no azimuth. When it is unknown (0 or -999), integer
+    # header 55 gives the orientation relative to the structure's reference azimuth (integer
+    # header 20 or 21), as gmprocess reads it (USGS NSMP building channels); failing that, a
     # "|<SCNL>STA.CHN.NET.LOC" comment (USGS files) tells a vertical channel by its Z.
     az = None
     vert = False
     code = int(ints[53]) if len(ints) > 53 else -999
+    if code in (0, -999) and len(ints) > 54 and int(ints[54]) not in (0, -999):
+        rel = int(ints[54])
+        ref = next((int(v) for v in ints[19:21] if int(v) != -999), None)
+        if rel in (400, 401, 402):
+            code = rel
+        elif 1 <= rel <= 360 and ref is not None:
+            code = (ref + rel - 1) % 360 + 1
     comp = ""
     if 1 <= code <= 360:
         az = float(code) % 360.0
