@@ -19,6 +19,7 @@ CLC = DATA / "records" / "CICLC_trim.v1"
 WLT = DATA / "records" / "CIWLT_trim.V2"
 AKBMR = DATA / "records" / "AKBMR_trim.V2c"
 NP8040 = DATA / "records" / "NP8040_HNZ_trim.V1c"
+CE23837 = DATA / "records" / "CE23837_trim.V1C"
 COSMOS_V2 = DATA / "motion" / "sample_cosmos.V2"
 
 
@@ -388,6 +389,35 @@ def test_cosmos_real_files_header_values(path, level, station, comp, peak, print
     assert abs(c.acc[i] * 100 - printed) <= 0.0005 + 1e-9  # "Max = ..." with 3 decimals
     assert i * c.dt == pytest.approx(0.5)  # "... at 0.500 sec" after trimming
     assert c.meta["pga_declared"] == pytest.approx(abs(peak) * 0.01)
+
+
+def test_cosmos_v1_real_cgs_three_channels():
+    """Trimmed CGS COSMOS V1 file of station CE.23837 (Pomona), 29 Aug 2018: three channels,
+    units "g." with a period, Format=(8f9.6), CRLF line ends (tests/data/records/README.md)."""
+    assert detect_format(CE23837) == "cosmos"
+    chans = read_all(CE23837)
+    assert [c.meta["channel"] for c in chans] == [1, 2, 3]
+    assert [c.meta["component"] for c in chans] == ["360", "400", "90"]
+    assert [c.meta["azimuth_deg"] for c in chans] == [0.0, None, 90.0]
+    assert [c.meta["vertical"] for c in chans] == [False, True, False]
+    lines = CE23837.read_text().splitlines()
+    heads = [k for k, ln in enumerate(lines) if "acceleration pts" in ln]
+    # "Max = -.105 g at 1.575 sec" (.049 at .085, -.059 at 2.075) and real-header value 64
+    # (-.105433, .048757, -.059022 g), which the data hold exactly (8f9.6, g)
+    for c, k, peak, printed, t in zip(chans, heads, (-0.105433, 0.048757, -0.059022),
+                                      (-0.105, 0.049, -0.059), (1.575, 0.085, 2.075),
+                                      strict=True):
+        assert c.meta["level"] == "V1" and c.meta["station"] == "23837"
+        assert c.meta["units_in"] == "g" and c.dt == 0.005 and c.npts == 440
+        vals = [float(ln[q:q + 9]) for ln in lines[k + 1:k + 56] for q in range(0, 72, 9)]
+        assert np.array_equal(c.acc, np.array(vals) * G)
+        i = int(np.argmax(np.abs(c.acc)))
+        assert c.acc[i] / G == pytest.approx(peak, abs=1e-12)
+        assert abs(c.acc[i] / G - printed) <= 0.0005 + 1e-12
+        assert i * c.dt == pytest.approx(t)
+        assert c.meta["pga_declared"] == pytest.approx(abs(peak) * G)
+    assert read(CE23837).meta["channel"] == 1 and read(CE23837, channel="Z").meta["channel"] == 2
+    assert read(CE23837, channel="E").meta["channel"] == 3
 
 
 def test_cosmos_declared_maximum_checked(tmp_path):

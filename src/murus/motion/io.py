@@ -521,8 +521,9 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
     if um.group(1).lower().startswith("count"):
         raise src.err(i + 1, "raw counts (COSMOS V0): murus needs acceleration, read the V1 "
                              "or V2 file of this record")
-    uname = _check_units(src, normalize_units(um.group(1), f"{src.name} line {i + 1}"), units,
-                         i + 1)
+    # CGS writes "units=g.     (02)": the period ends the word, it is not part of the unit
+    utok = um.group(1).rstrip(".")
+    uname = _check_units(src, normalize_units(utok, f"{src.name} line {i + 1}"), units, i + 1)
     if len(reals) < 62:
         raise src.err(k + 1, "real header has fewer than 62 values (no sampling interval)")
     dt_ms = float(reals[61])
