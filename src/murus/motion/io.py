@@ -16,7 +16,9 @@ Formats, chosen by content (then extension) unless ``format`` is given:
     comment lines and a data block "N acceleration pts, approx T secs, units=cm/sec2 (04),
     Format=(...)". V0 files in raw counts are refused (they need the instrument response).
     Files holding several channels one after the other are read channel by channel;
-    integer-header value 54 is the channel azimuth (500 = up, 600 = down).
+    integer-header value 54 is the orientation code (1-360 azimuth from north, 400-402
+    vertical, other codes no azimuth; when unknown, value 55 relative to the structure or the
+    USGS ``<SCNL>`` comment); real-header value 64, the declared maximum, is checked.
 ``dmg``, ``knet``
     CSMIP/DMG V1 and V2 (California Geological Survey) and K-NET/KiK-net ASCII (NIED): see
     :mod:`murus.motion.networks`.
