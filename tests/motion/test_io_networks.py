@@ -1,6 +1,6 @@
-"""Network formats: CSMIP/DMG V1 (a trimmed real file) and V2, K-NET/KiK-net ASCII, COSMOS
-V0/V1 and multi-channel files, channel selection, the unrecognised-format message, fuzzing
-and round trips through the writers."""
+"""Network formats: CSMIP/DMG V1 and V2 and COSMOS V1/V2 (trimmed real files), K-NET/KiK-net
+ASCII, COSMOS V0/V1 and multi-channel files written by the tests, channel selection, the
+unrecognised-format message, fuzzing and round trips through the writers."""
 
 import math
 from pathlib import Path
@@ -16,6 +16,10 @@ from murus.motion.io import detect_format, read_all
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 CLC = DATA / "records" / "CICLC_trim.v1"
+WLT = DATA / "records" / "CIWLT_trim.V2"
+AKBMR = DATA / "records" / "AKBMR_trim.V2c"
+NP8040 = DATA / "records" / "NP8040_HNZ_trim.V1c"
+CE23837 = DATA / "records" / "CE23837_trim.V1C"
 COSMOS_V2 = DATA / "motion" / "sample_cosmos.V2"
 
 
@@ -179,6 +183,62 @@ def test_dmg_v2(tmp_path):
         read(p)
 
 
+def _v2_block(path, what):
+    """The values of every '<what> data' block (accel, veloc, displ) of a CSMIP V2 file, read
+    independently of murus (8 fields of 10 characters)."""
+    lines = path.read_text().splitlines()
+    out = []
+    for k, ln in enumerate(lines):
+        if f"points of {what} data" in ln:
+            n = int(ln.split()[0])
+            vals = []
+            for row in lines[k + 1:]:
+                if len(vals) == n:
+                    break
+                vals += [float(row[q:q + 10]) for q in range(0, len(row), 10)
+                         if row[q:q + 10].strip()]
+            assert len(vals) == n
+            out.append(np.array(vals))
+    return out
+
+
+def test_dmg_v2_real_file_header_values():
+    """Trimmed CGS V2 file of station WLT, La Habra 2014 (tests/data/records/README.md): what
+    murus reads against the header of each channel."""
+    assert detect_format(WLT) == "dmg"
+    chans = read_all(WLT)
+    assert [c.meta["channel"] for c in chans] == [1, 2, 3]
+    assert [c.meta["component"] for c in chans] == ["90 Deg", "360 Deg", "Up"]
+    assert [c.meta["azimuth_deg"] for c in chans] == [90.0, 0.0, None]
+    assert [c.meta["vertical"] for c in chans] == [False, False, True]
+    assert [c.npts for c in chans] == [184, 184, 440]
+    for c, acc in zip(chans, _v2_block(WLT, "accel"), strict=True):
+        assert c.meta["format"] == "dmg" and c.meta["level"] == "V2"
+        assert c.meta["station"] == "WLT" and c.meta["units_in"] == "cm/s2"
+        assert c.meta["record_id"] == "15481673.CI.WLT.--.HN"
+        assert c.meta["event"].startswith("Rcrd of Fri Mar 28, 2014 21:09:34.0 PDT")
+        assert c.dt == 0.02  # "equally spaced at .020 sec"
+        assert np.allclose(c.acc, acc * 0.01, rtol=1e-15, atol=0)
+    # "Peak acceleration = 82.584 cm/sec/sec at .440 sec" (-115.845 at .120, 69.662 at .060)
+    # and real-header value 66, the unrounded peak (82.584260, -115.84550, 69.662250)
+    for c, peak, printed, t in zip(chans, (82.58426, -115.8455, 69.66225),
+                                   (82.584, 115.845, 69.662), (0.44, 0.12, 0.06), strict=True):
+        i = int(np.argmax(np.abs(c.acc)))
+        assert c.acc[i] == pytest.approx(peak * 0.01, rel=1e-12)
+        assert abs(c.pga * 100 - printed) <= 0.0005 + 1e-9  # printed with 3 decimals
+        assert i * c.dt == pytest.approx(t)
+        assert c.meta["pga_declared"] == pytest.approx(printed * 0.01)
+    assert read(WLT).meta["channel"] == 1 and read(WLT, channel="Z").meta["channel"] == 3
+    # murus skips the velocity and displacement blocks; the stored file keeps them whole:
+    # their peaks are those of the headers (-6.863 cm/s at .280 s, -.836 cm at 3.180 s, ...)
+    for what, peaks, times in (("veloc", (-6.863001, -8.141052, -5.84483), (0.28, 0.22, 8.46)),
+                               ("displ", (-0.8361315, -0.8323321, -0.9898853),
+                                (3.18, 2.76, 8.70))):
+        for x, peak, t in zip(_v2_block(WLT, what), peaks, times, strict=True):
+            i = int(np.argmax(np.abs(x)))
+            assert x[i] == pytest.approx(peak, abs=1e-7) and i * 0.02 == pytest.approx(t)
+
+
 # ----------------------------------------------------------------------------- K-NET/KiK-net
 
 
@@ -288,9 +348,89 @@ def _cosmos_text(level=1, azimuth=90, units="cm/sec2 (04)", values=None):
     return "\n".join(lines) + "\n"
 
 
+def _cosmos_values(path):
+    """The data of a one-channel COSMOS file with Format=(1E15.6), read independently."""
+    lines = path.read_text().splitlines()
+    k = next(i for i, ln in enumerate(lines) if "acceleration pts" in ln)
+    n = int(lines[k].split()[0])
+    vals = [float(ln) for ln in lines[k + 1:k + 1 + n]]
+    assert lines[k + 1 + n].startswith("End-of-data")
+    return np.array(vals)
+
+
+@pytest.mark.parametrize(
+    "path, level, station, comp, peak, printed",
+    [  # real-header value 64 (6 decimals) and the text line "Max = -6.852 cm/sec2 at ..."
+        (AKBMR, "V2", "BMR", "BNZ", -6.851512, -6.852),
+        (NP8040, "V1", "8040", "400", -221.811408, -221.811),
+    ])
+def test_cosmos_real_files_header_values(path, level, station, comp, peak, printed):
+    """Trimmed USGS COSMOS files of the 2018 Anchorage earthquake (tests/data/records/
+    README.md): E-format data, vertical channels given by the SCNL comment (AK.BMR.BNZ, the
+    orientation code is 0) or by integer header 55 (NP.8040, code 400 = up)."""
+    import warnings
+
+    assert detect_format(path) == "cosmos"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        chans = read_all(path)
+    assert len(chans) == 1
+    c = chans[0]
+    assert c.meta["format"] == "cosmos" and c.meta["level"] == level
+    assert c.meta["station"] == station and c.meta["component"] == comp
+    assert c.meta["vertical"] and c.meta["azimuth_deg"] is None
+    assert c.meta["units_in"] == "cm/s2" and c.meta["channel"] == 1
+    assert c.meta["event"] == ("Record of Point MacKenzie Earthquake of Fri Nov 30, 2018 "
+                               "17:29 UTC")
+    assert c.dt == 0.005 and c.npts == 200  # real header 62: 5 ms; trimmed to 200 points
+    assert np.allclose(c.acc, _cosmos_values(path) * 0.01, rtol=1e-15, atol=0)
+    i = int(np.argmax(np.abs(c.acc)))
+    assert c.acc[i] == pytest.approx(peak * 0.01, rel=5e-7)  # the data: 7 significant digits
+    assert abs(c.acc[i] * 100 - printed) <= 0.0005 + 1e-9  # "Max = ..." with 3 decimals
+    assert i * c.dt == pytest.approx(0.5)  # "... at 0.500 sec" after trimming
+    assert c.meta["pga_declared"] == pytest.approx(abs(peak) * 0.01)
+
+
+def test_cosmos_v1_real_cgs_three_channels():
+    """Trimmed CGS COSMOS V1 file of station CE.23837 (Pomona), 29 Aug 2018: three channels,
+    units "g." with a period, Format=(8f9.6), CRLF line ends (tests/data/records/README.md)."""
+    assert detect_format(CE23837) == "cosmos"
+    chans = read_all(CE23837)
+    assert [c.meta["channel"] for c in chans] == [1, 2, 3]
+    assert [c.meta["component"] for c in chans] == ["360", "400", "90"]
+    assert [c.meta["azimuth_deg"] for c in chans] == [0.0, None, 90.0]
+    assert [c.meta["vertical"] for c in chans] == [False, True, False]
+    lines = CE23837.read_text().splitlines()
+    heads = [k for k, ln in enumerate(lines) if "acceleration pts" in ln]
+    # "Max = -.105 g at 1.575 sec" (.049 at .085, -.059 at 2.075) and real-header value 64
+    # (-.105433, .048757, -.059022 g), which the data hold exactly (8f9.6, g)
+    for c, k, peak, printed, t in zip(chans, heads, (-0.105433, 0.048757, -0.059022),
+                                      (-0.105, 0.049, -0.059), (1.575, 0.085, 2.075),
+                                      strict=True):
+        assert c.meta["level"] == "V1" and c.meta["station"] == "23837"
+        assert c.meta["units_in"] == "g" and c.dt == 0.005 and c.npts == 440
+        vals = [float(ln[q:q + 9]) for ln in lines[k + 1:k + 56] for q in range(0, 72, 9)]
+        assert np.array_equal(c.acc, np.array(vals) * G)
+        i = int(np.argmax(np.abs(c.acc)))
+        assert c.acc[i] / G == pytest.approx(peak, abs=1e-12)
+        assert abs(c.acc[i] / G - printed) <= 0.0005 + 1e-12
+        assert i * c.dt == pytest.approx(t)
+        assert c.meta["pga_declared"] == pytest.approx(abs(peak) * G)
+    assert read(CE23837).meta["channel"] == 1 and read(CE23837, channel="Z").meta["channel"] == 2
+    assert read(CE23837, channel="E").meta["channel"] == 3
+
+
+def test_cosmos_declared_maximum_checked(tmp_path):
+    p = tmp_path / "m.V2c"
+    p.write_text(AKBMR.read_text().replace("     -6.851512 ", "     -7.851512 ", 1))
+    with pytest.warns(UserWarning, match=r"m.V2c line 53: declared maximum -7.85151 \(real "
+                                         r"header 64\) differs from the data \(6.85151\)"):
+        read(p)
+
+
 def test_cosmos_v1_and_multichannel(tmp_path):
     p = tmp_path / "two.V1"
-    p.write_text(_cosmos_text(1, 90) + _cosmos_text(1, 500))
+    p.write_text(_cosmos_text(1, 90) + _cosmos_text(1, 400))
     assert detect_format(p) == "cosmos"
     chans = read_all(p)
     assert len(chans) == 2
@@ -349,7 +489,7 @@ def _fuzz_sources(tmp_path):
         "CICLC_trim.v1": CLC.read_text(),
         "s.V2": _dmg_v2_text(_v2_chans()),
         "k.EW": _knet_text(_counts()),
-        "two.V1": _cosmos_text(1, 90) + _cosmos_text(1, 500),
+        "two.V1": _cosmos_text(1, 90) + _cosmos_text(1, 400),
     }
 
 
@@ -431,7 +571,7 @@ def test_cut_files_are_refused(tmp_path):
     with pytest.raises(MotionFormatError, match=r"cut.V2 line \d+: file ends before the end "
                                                 "of channel 1"):
         read_all(q)
-    two = (_cosmos_text(1, 90) + _cosmos_text(1, 500)).splitlines()
+    two = (_cosmos_text(1, 90) + _cosmos_text(1, 400)).splitlines()
     r = tmp_path / "cut.V1"
     r.write_text("\n".join(two[:55]) + "\n")  # inside the text header of channel 2
     with pytest.raises(MotionFormatError, match="cut.V1 line 50: text after channel 1 is not a "

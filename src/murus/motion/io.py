@@ -16,7 +16,9 @@ Formats, chosen by content (then extension) unless ``format`` is given:
     comment lines and a data block "N acceleration pts, approx T secs, units=cm/sec2 (04),
     Format=(...)". V0 files in raw counts are refused (they need the instrument response).
     Files holding several channels one after the other are read channel by channel;
-    integer-header value 54 is the channel azimuth (500 = up, 600 = down).
+    integer-header value 54 is the orientation code (1-360 azimuth from north, 400-402
+    vertical, other codes no azimuth; when unknown, value 55 relative to the structure or the
+    USGS ``<SCNL>`` comment); real-header value 64, the declared maximum, is checked.
 ``dmg``, ``knet``
     CSMIP/DMG V1 and V2 (California Geological Survey) and K-NET/KiK-net ASCII (NIED): see
     :mod:`murus.motion.networks`.
@@ -435,8 +437,9 @@ def _fixed_width_values(src: _Src, start: int, nlines: int, count: int, fmt: str
 
 
 def _is_text_line(line: str) -> bool:
-    """True for a line with letters other than exponent markers (end of a numeric block)."""
-    return re.search(r"[a-ce-zA-CE-Z]", line) is not None
+    """True for a line with letters other than the exponent markers E and D (end of a numeric
+    block); "3.437285e-04" (COSMOS Format=(1E15.6)) is a number, not text."""
+    return re.search(r"[a-cf-zA-CF-Z]", line) is not None
 
 
 _COSMOS_COUNT = re.compile(r"^\s*(\d+)\s+(.*)$")
@@ -520,8 +523,9 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
     if um.group(1).lower().startswith("count"):
         raise src.err(i + 1, "raw counts (COSMOS V0): murus needs acceleration, read the V1 "
                              "or V2 file of this record")
-    uname = _check_units(src, normalize_units(um.group(1), f"{src.name} line {i + 1}"), units,
-                         i + 1)
+    # CGS writes "units=g.     (02)": the period ends the word, it is not part of the unit
+    utok = um.group(1).rstrip(".")
+    uname = _check_units(src, normalize_units(utok, f"{src.name} line {i + 1}"), units, i + 1)
     if len(reals) < 62:
         raise src.err(k + 1, "real header has fewer than 62 values (no sampling interval)")
     dt_ms = float(reals[61])
@@ -552,13 +556,38 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
         raise src.err(i + 1, "a record needs at least 2 points")
     th = lines[text0:k]
     level = {0: "V0", 1: "V1", 2: "V2", 3: "V3"}.get(int(ints[0]), "") if len(ints) else ""
+    # orientation code (integer header 54): 1-360 azimuth from north (360 = north), 400 up,
+    # 401 down, 402 vertical; 500/501 radial/transverse, 600/601 longitudinal/tangential,
+    # 700/701 H1/H2 and 2000 "other" give no azimuth. When it is unknown (0 or -999), integer
+    # header 55 gives the orientation relative to the structure's reference azimuth (integer
+    # header 20 or 21), as gmprocess reads it (USGS NSMP building channels); failing that, a
+    # "|<SCNL>STA.CHN.NET.LOC" comment (USGS files) tells a vertical channel by its Z.
     az = None
     vert = False
-    if len(ints) > 53 and ints[53] != -999:
-        if int(ints[53]) in (500, 600):
-            vert = True
-        elif 0 <= ints[53] <= 360:
-            az = float(ints[53]) % 360.0
+    code = int(ints[53]) if len(ints) > 53 else -999
+    if code in (0, -999) and len(ints) > 54 and int(ints[54]) not in (0, -999):
+        rel = int(ints[54])
+        ref = next((int(v) for v in ints[19:21] if int(v) != -999), None)
+        if rel in (400, 401, 402):
+            code = rel
+        elif 1 <= rel <= 360 and ref is not None:
+            code = (ref + rel - 1) % 360 + 1
+    comp = ""
+    if 1 <= code <= 360:
+        az = float(code) % 360.0
+        comp = f"{code}"
+    elif code in (400, 401, 402):
+        vert = True
+        comp = f"{code}"
+    elif code not in (0, -999):
+        comp = f"{code}"
+    else:
+        scnl = next((ln.strip()[7:] for ln in lines[i - ncom:i]
+                     if ln.strip().upper().startswith("|<SCNL>")), "")
+        parts = scnl.split()[0].split(".") if scnl.split() else []
+        if len(parts) > 1 and len(parts[1]) == 3:
+            comp = parts[1].upper()
+            vert = comp.endswith("Z")
     meta = {
         "format": "cosmos",
         "level": level,
@@ -568,7 +597,7 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
         "event": th[1].strip() if len(th) > 1 else "",
         "station": th[4][28:34].strip() if len(th) > 4 else "",
         "channel": position,
-        "component": (f"{int(ints[53])}" if len(ints) > 53 and ints[53] != -999 else ""),
+        "component": comp,
         "azimuth_deg": az,
         "vertical": vert,
     }
@@ -577,7 +606,18 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
     nxt = stop
     while nxt < len(lines) and "end-of-data" in lines[nxt].lower():
         nxt += 1
-    return _make(src, np.asarray(vals) * UNITS[uname], dt, meta), nxt
+    acc = np.asarray(vals) * UNITS[uname]
+    # real header 64: maximum of the series, in its units (-999 when not given): warn if the
+    # data disagree beyond rounding (the data are authoritative)
+    if len(reals) > 63 and reals[63] != -999:
+        declared = abs(float(reals[63])) * UNITS[uname]
+        meta["pga_declared"] = declared
+        actual = float(np.max(np.abs(acc)))
+        if not math.isclose(declared, actual, rel_tol=1e-3, abs_tol=1e-9):
+            warnings.warn(f"{src.name} line {i + 1}: declared maximum {reals[63]:g} (real "
+                          f"header 64) differs from the data ({actual / UNITS[uname]:.6g})",
+                          stacklevel=3)
+    return _make(src, acc, dt, meta), nxt
 
 
 _CSV_HDR = re.compile(r"^#\s*([A-Za-z_][A-Za-z0-9_ ]*?)\s*[:=]\s*(.*?)\s*$")

@@ -246,10 +246,15 @@ def read_dmg(src: _Src, units: str | None, dt_arg: float | None) -> list[GroundM
         vals, j = _fixed_block(src, k + 1, npts, width, "acceleration")
         acc = np.asarray(vals) * UNITS[uname]
         az, vert = _orientation(comp)
+        # a V2 channel repeats the V1 text header one line down, under its own title line
+        # ("Corrected accelerogram ..."): event on line 3, record id on line 5 (V1: 2 and 4)
+        off = 1 if hdr and hdr[0].strip().upper().startswith("CORRECTED") else 0
         meta = {
             "format": "dmg", "level": level, "source_file": str(src.path), "units_in": uname,
-            "title": title, "event": hdr[1].strip() if len(hdr) > 1 else "",
-            "record_id": hdr[3].split()[0] if len(hdr) > 3 and hdr[3].split() else "",
+            "title": hdr[0].strip() if hdr else title,
+            "event": hdr[1 + off].strip() if len(hdr) > 1 + off else "",
+            "record_id": (hdr[3 + off].split()[0]
+                          if len(hdr) > 3 + off and hdr[3 + off].split() else ""),
             "station": station, "channel": chan_no, "component": comp.strip(),
             "azimuth_deg": az, "vertical": vert,
             "name": f"{src.path.stem}_ch{chan_no}",
