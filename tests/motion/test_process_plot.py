@@ -220,3 +220,27 @@ def test_plot_command_writes_the_figure_and_the_measures(tmp_path):
                             "--damping", "1.5"])
     assert r.exit_code == 2 and "--damping" in r.output
     assert not (tmp_path / "p2").exists()
+
+
+def test_rotd_command_closed_forms(tmp_path):
+    """Two identical perpendicular components (a sine): the resultant along 45° is sqrt(2)
+    times each, so RotD100 = sqrt(2) PSA, and RotD50 = PSA (the median over 0-179° of
+    |cos t + sin t| PSA); the columns of the components are their own spectra."""
+    a = write_sine(tmp_path / "a.csv", T=6.0)
+    b = write_sine(tmp_path / "b.csv", T=6.0)
+    out = tmp_path / "rotd"
+    r = runner.invoke(app, ["motion", "rotd", str(a), str(b), "--out", str(out),
+                            "--n-periods", "12"])
+    assert r.exit_code == 0, r.output
+    rows = np.loadtxt(out / "rotd.csv", delimiter=",", skiprows=1)
+    head = (out / "rotd.csv").read_text().splitlines()[0]
+    assert head == "period_s,rotd50_m_s2,rotd100_m_s2,angle_rotd100_deg,psa_a_m_s2,psa_b_m_s2"
+    T, d50, d100, ang, pa, pb = rows.T
+    assert np.allclose(pa, pb, rtol=1e-12)
+    assert np.allclose(d100, math.sqrt(2) * pa, rtol=2e-4)
+    assert np.allclose(d50, pa, rtol=2e-4)
+    assert np.all(np.abs(ang - 45.0) <= 1.0)
+    assert (out / "rotd.png").stat().st_size > 0
+    r = runner.invoke(app, ["motion", "rotd", str(a), "--out", str(tmp_path / "r2")])
+    assert r.exit_code == 2 and "horizontal channels" in r.output
+    assert not (tmp_path / "r2").exists()

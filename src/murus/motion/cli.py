@@ -408,3 +408,70 @@ def plot(
         table.add_row(MEASURES[k][0], f"{v:.4g}", MEASURES[k][1])
     Console().print(table)
     typer.echo(f"wrote {', '.join(_PLOT_NAMES)} to {out}/")
+
+
+_ROTD_NAMES = ["rotd.csv", "rotd.png"]
+
+
+@app.command()
+def rotd(
+    file: Path = typer.Argument(..., help="A three-component file (its two horizontal "
+                                "channels), or the first horizontal component."),
+    file_b: Path = typer.Argument(None, help="The second horizontal component (perpendicular "
+                                  "to the first), when the first file holds one."),
+    out: Path = typer.Option(Path("rotd"), help="Output directory."),
+    damping: float = typer.Option(0.05, help="Damping ratio (fraction of critical)."),
+    n_periods: int = typer.Option(100, help="Number of log-spaced periods 0.01-10 s."),
+    units: str = typer.Option(None, help=UNITS_HELP),
+    dt: float = typer.Option(None, help="Time step [s] of one-column files."),
+) -> None:
+    """RotD50 and RotD100 spectra of a horizontal pair (Boore 2010): DIR/rotd.csv (period,
+    RotD50, RotD100, the angle of RotD100 from the first component, and the PSA of each
+    component) and DIR/rotd.png."""
+    with _guard():
+        if not 0 <= damping < 1:
+            raise ValueError(f"--damping {damping} must be in [0, 1)")
+        if n_periods < 2:
+            raise ValueError("--n-periods must be >= 2")
+        check_dir(out, _ROTD_NAMES)
+        from murus.motion.components import horizontal_pair, rotd_spectrum
+        from murus.motion.io import read_all
+        from murus.motion.spectra import default_periods, pseudo_spectrum
+
+        if file_b is None:
+            a, b = horizontal_pair(read_all(file, units=units, dt=dt))
+        else:
+            ca, cb = read_all(file, units=units, dt=dt), read_all(file_b, units=units, dt=dt)
+            if len(ca) != 1 or len(cb) != 1:
+                raise ValueError("with two files, each must hold one channel (give a "
+                                 "three-component file alone)")
+            a, b = horizontal_pair([ca[0].with_meta(vertical=False),
+                                    cb[0].with_meta(vertical=False)])
+        T = default_periods(n_periods)
+        sp = rotd_spectrum(a, b, T, damping)
+        sa, sb = pseudo_spectrum(a, T, damping), pseudo_spectrum(b, T, damping)
+        with _staged_dir(out, _ROTD_NAMES) as tmp:
+            lines = ["period_s,rotd50_m_s2,rotd100_m_s2,angle_rotd100_deg,psa_a_m_s2,psa_b_m_s2"]
+            for i, t in enumerate(T):
+                lines.append(",".join(f"{x:.10g}" for x in (
+                    t, sp[50][i], sp[100][i], sp.angle_max_deg[i], sa[i], sb[i])))
+            (tmp / "rotd.csv").write_text("\n".join(lines) + "\n")
+            import matplotlib.pyplot as plt
+
+            from murus.motion.plots import _ax
+
+            ax = _ax(None)
+            ax.plot(T, sa, lw=0.7, color="0.6", label=f"component a ({a.name})")
+            ax.plot(T, sb, lw=0.7, color="0.6", ls="--", label=f"component b ({b.name})")
+            ax.plot(T, sp[50], lw=1.4, color="C0", label="RotD50")
+            ax.plot(T, sp[100], lw=1.4, color="C3", label="RotD100")
+            ax.set_xscale("log")
+            ax.set_xlabel("period [s]")
+            ax.set_ylabel(f"PSA [m/s²] ({damping:.0%} damping)")
+            ax.set_title("RotDnn spectra (Boore 2010)")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=8)
+            ax.figure.savefig(tmp / "rotd.png", dpi=120)
+            plt.close(ax.figure)
+    typer.echo(f"wrote {out}/rotd.csv and {out}/rotd.png (PGA-period RotD50 "
+               f"{sp[50][0]:.4g} m/s², RotD100 {sp[100][0]:.4g} m/s²)")
