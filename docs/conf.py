@@ -1,0 +1,100 @@
+"""Sphinx configuration of the murus documentation site (``make docs``).
+
+The build is offline: intersphinx reads only the inventories shipped under ``_intersphinx/``
+(see ``_intersphinx/README.md`` to refresh them), the theme bundles its assets, the API reference
+is generated from the installed package by ``_ext/apigen.py`` and the gallery scripts run locally.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(HERE / "_ext"))
+
+# gallery scripts and autodoc must not open windows or use the numba threads others need
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+import murus  # noqa: E402
+
+project = "murus"
+author = "the murus contributors"
+copyright = "the murus contributors, BSD-3-Clause"
+release = murus.__version__
+version = release
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.intersphinx",
+    "sphinx.ext.mathjax",
+    "sphinx-mathjax-offline",  # MathJax served from _static: the pages work offline
+    "sphinx.ext.viewcode",
+    "numpydoc",
+    "myst_parser",
+    "apigen",
+    "docstrings",
+]
+
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+root_doc = "index"
+exclude_patterns = [
+    "_build", "_intersphinx", "_ext", "**.ipynb_checkpoints",
+    # pages of the repository included into site pages, not pages of their own
+    "retaining_backfills.md",
+    "gallery/*.py", "gallery/*.ipynb", "gallery/*.md5", "gallery/*.zip", "gallery/*.json",
+]
+
+# --- MyST --------------------------------------------------------------------------------------
+myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist"]
+myst_heading_anchors = 3
+
+# --- autodoc / numpydoc ------------------------------------------------------------------------
+autodoc_default_options = {"member-order": "bysource"}
+autodoc_inherit_docstrings = False
+autodoc_typehints = "none"          # numpydoc's Parameters sections carry the types
+autodoc_mock_imports: list[str] = []
+autosummary_generate = False
+numpydoc_show_class_members = False
+numpydoc_class_members_toctree = False
+numpydoc_validation_checks: set[str] = set()
+numpydoc_xref_param_type = False
+nitpicky = False
+suppress_warnings = [
+    # a public name documented in its module and re-exported by its package
+    "autodoc.import_object",
+    "ref.python",
+    "myst.header",
+    "myst.xref_missing",
+]
+
+# --- intersphinx: local inventories only, never the network -----------------------------------
+_INV = HERE / "_intersphinx"
+_TARGETS = {
+    "python": "https://docs.python.org/3/",
+    "numpy": "https://numpy.org/doc/stable/",
+    "scipy": "https://docs.scipy.org/doc/scipy/",
+    "xarray": "https://docs.xarray.dev/en/stable/",
+    "matplotlib": "https://matplotlib.org/stable/",
+}
+intersphinx_mapping = {
+    name: (url, str(_INV / f"{name}.inv"))
+    for name, url in _TARGETS.items() if (_INV / f"{name}.inv").is_file()
+}
+intersphinx_timeout = 1
+intersphinx_cache_limit = -1
+
+# --- HTML --------------------------------------------------------------------------------------
+html_theme = "pydata_sphinx_theme"
+html_title = f"murus {release}"
+html_theme_options = {
+    "navigation_with_keys": False,
+    "show_toc_level": 2,
+    "header_links_before_dropdown": 7,
+    "navbar_end": ["theme-switcher", "navbar-icon-links"],
+}
+html_static_path: list[str] = []
+html_show_sourcelink = False
