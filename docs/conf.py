@@ -1,7 +1,7 @@
 """Sphinx configuration of the murus documentation site (``make docs``).
 
 The build is offline: intersphinx reads only the inventories shipped under ``_intersphinx/``
-(see ``_intersphinx/README.md`` to refresh them), the theme bundles its assets, the API reference
+(``_intersphinx/make_inventories.py`` writes and refreshes them), the theme bundles its assets, the API reference
 is generated from the installed package by ``_ext/apigen.py`` and the gallery scripts run locally.
 """
 
@@ -37,12 +37,13 @@ extensions = [
     "myst_parser",
     "apigen",
     "docstrings",
+    "repofiles",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 exclude_patterns = [
-    "_build", "_intersphinx", "_ext", "**.ipynb_checkpoints",
+    "_build", "_intersphinx", "_ext", "_generated", "**.ipynb_checkpoints",
     # pages of the repository included into site pages, not pages of their own
     "retaining_backfills.md",
     "gallery/*.py", "gallery/*.ipynb", "gallery/*.md5", "gallery/*.zip", "gallery/*.json",
@@ -68,7 +69,6 @@ suppress_warnings = [
     "autodoc.import_object",
     "ref.python",
     "myst.header",
-    "myst.xref_missing",
 ]
 
 # --- intersphinx: local inventories only, never the network -----------------------------------
