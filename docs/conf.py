@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import sys
+import warnings
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -19,6 +20,10 @@ sys.path.insert(0, str(HERE / "_ext"))
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 import murus  # noqa: E402
+
+# myst-parser uses an attribute Sphinx 9 deprecates: a Python warning of the theme's
+# dependencies, not a warning of this documentation
+warnings.filterwarnings("ignore", message=r".*\.app' is deprecated", module=r"myst_parser\..*")
 
 project = "murus"
 author = "the murus contributors"
@@ -35,6 +40,7 @@ extensions = [
     "sphinx.ext.viewcode",
     "numpydoc",
     "myst_parser",
+    "sphinx_gallery.gen_gallery",
     "apigen",
     "docstrings",
     "repofiles",
@@ -86,6 +92,24 @@ intersphinx_mapping = {
 }
 intersphinx_timeout = 1
 intersphinx_cache_limit = -1
+
+# --- gallery: examples/gallery/plot_*.py, executed at build time ----------------------------------
+sphinx_gallery_conf = {
+    "examples_dirs": str(ROOT / "examples" / "gallery"),
+    "gallery_dirs": "gallery",
+    "filename_pattern": r"/plot_",
+    "within_subsection_order": "FileNameSortKey",
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "abort_on_example_error": True,
+    "reference_url": {"murus": None},      # links to the API reference of this site
+    "doc_module": ("murus",),
+    "backreferences_dir": None,
+    "matplotlib_animations": False,
+    "image_scrapers": ("matplotlib",),
+    "show_memory": False,
+    "min_reported_time": 1,
+}
 
 # --- HTML --------------------------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
