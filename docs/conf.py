@@ -1,8 +1,9 @@
 """Sphinx configuration of the murus documentation site (``make docs``).
 
 The build is offline: intersphinx reads only the inventories shipped under ``_intersphinx/``
-(``_intersphinx/make_inventories.py`` writes and refreshes them), the theme bundles its assets, the API reference
-is generated from the installed package by ``_ext/apigen.py`` and the gallery scripts run locally.
+(``_intersphinx/make_inventories.py`` writes and refreshes them), the theme bundles its assets,
+the API reference is generated from the installed package by ``_ext/apigen.py`` and the
+gallery scripts run locally.
 """
 
 from __future__ import annotations

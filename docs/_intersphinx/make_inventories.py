@@ -113,7 +113,8 @@ def matplotlib_rows():
     page = lambda q: f"api/_as_gen/{q}.html#{q}"  # noqa: E731
     modpage = lambda m: f"api/{m.partition('.')[2]}_api.html#module-{m}"  # noqa: E731
     rows = [("matplotlib", "py:module", "api/matplotlib_configuration_api.html#module-matplotlib")]
-    rows += _module_rows("matplotlib.pyplot", page, lambda m: "api/pyplot_summary.html#module-matplotlib.pyplot")
+    rows += _module_rows("matplotlib.pyplot", page,
+                         lambda m: "api/pyplot_summary.html#module-matplotlib.pyplot")
     import matplotlib.axes
     import matplotlib.figure
     rows.append(("matplotlib.axes", "py:module", "api/axes_api.html#module-matplotlib.axes"))

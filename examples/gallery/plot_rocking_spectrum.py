@@ -6,7 +6,8 @@ The peak rotation of block2 of EURODYN (2020) against the stiffness of its tie (
 with ``K_d`` of eq. 12), free-standing and restrained, under ground motions. The paper uses
 the 44 FEMA P695 far-field components (``records="farfield"``, with
 ``pip install murus[records]``); this short version uses a two-cycle sine pulse of 0.3 g at
-three times the frequency parameter ``p`` of the wall, so that it runs in seconds, serially. A larger study runs on a process pool or a Dask cluster by changing
+three times the frequency parameter ``p`` of the wall, so that it runs in
+seconds, serially. A larger study runs on a process pool or a Dask cluster by changing
 ``executor`` (``"process"``, ``"dask"``).
 """
 
