@@ -46,4 +46,5 @@ docs: $(DSTAMP)
 	$(BIN)/python -m sphinx -W --keep-going -b html $(SPHINXOPTS) docs docs/_build/html
 
 clean:
-	rm -rf $(VENV) out .pytest_cache docs/_build docs/api docs/gallery
+	rm -rf $(VENV) out .pytest_cache docs/_build docs/api docs/gallery docs/_generated \
+		docs/sg_execution_times.rst

@@ -57,8 +57,17 @@ def _canonical(package: str, name: str) -> str | None:
 def package_page(name: str, modules: list[str]) -> str:
     mod = importlib.import_module(name)
     children = [m for m in modules if m.rpartition(".")[0] == name]
-    lines = [_title(name), f".. automodule:: {name}\n   :no-members:\n"]
     exported = list(getattr(mod, "__all__", []) or [])
+    # the package's own objects: those of __all__ defined in its __init__, or, without __all__,
+    # every public object defined there (e.g. ``murus.G``)
+    own = [item for item in exported if _canonical(name, item) == f"{name}.{item}"]
+    if own:
+        members = f"   :members: {', '.join(own)}\n"
+    elif not exported:
+        members = "   :members:\n"
+    else:
+        members = "   :no-members:\n"
+    lines = [_title(name), f".. automodule:: {name}\n{members}"]
     if exported:
         lines.append("Public names\n------------\n")
         lines.append(".. list-table::\n   :widths: 40 60\n   :header-rows: 1\n")
