@@ -71,12 +71,7 @@ numpydoc_class_members_toctree = False
 numpydoc_validation_checks: set[str] = set()
 numpydoc_xref_param_type = False
 nitpicky = False
-suppress_warnings = [
-    # a public name documented in its module and re-exported by its package
-    "autodoc.import_object",
-    "ref.python",
-    "myst.header",
-]
+suppress_warnings: list[str] = []   # none needed: every warning is an error (-W)
 
 # --- intersphinx: local inventories only, never the network -----------------------------------
 _INV = HERE / "_intersphinx"
