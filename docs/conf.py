@@ -69,7 +69,18 @@ autosummary_generate = False
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_validation_checks: set[str] = set()
-numpydoc_xref_param_type = False
+numpydoc_xref_param_type = True    # types in Parameters/Returns link to numpy, xarray, ...
+numpydoc_xref_aliases = {
+    "ndarray": "numpy.ndarray",
+    "Generator": "numpy.random.Generator",
+    "Dataset": "xarray.Dataset",
+    "DataArray": "xarray.DataArray",
+    "Axes": "matplotlib.axes.Axes",
+    "Figure": "matplotlib.figure.Figure",
+    "Path": "pathlib.Path",
+    "Executor": "concurrent.futures.Executor",
+}
+numpydoc_xref_ignore = "all"         # link only the aliases and dotted names, never plain words
 nitpicky = False
 suppress_warnings: list[str] = []   # none needed: every warning is an error (-W)
 

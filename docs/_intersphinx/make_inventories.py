@@ -90,6 +90,11 @@ def numpy_rows():
                         classes_members=("ndarray", "dtype"))
     for sub in ("numpy.random", "numpy.fft", "numpy.linalg", "numpy.polynomial"):
         rows += _module_rows(sub, page, modpage, classes_members=("Generator",))
+    # the glossary term and label that numpydoc's default type aliases point to
+    rows.append(("array_like", "std:term", "glossary.html#term-array_like"))
+    rows.append(("arrays.scalars", "std:label", "reference/arrays.scalars.html#$", "Scalars"))
+    for const in ("inf", "nan", "pi", "e", "newaxis"):
+        rows.append((f"numpy.{const}", "py:data", f"reference/constants.html#numpy.{const}"))
     return rows
 
 
@@ -142,11 +147,20 @@ def python_rows():
         elif callable(value):
             rows.append((name, "py:function", f"library/functions.html#{name}"))
     rows.append(("None", "py:data", "library/constants.html#None"))
+    for const in ("True", "False", "Ellipsis", "NotImplemented"):
+        rows.append((const, "py:data", f"library/constants.html#{const}"))
+    # the labels and glossary terms that numpydoc's default type aliases point to
+    rows.append(("bltin-boolean-values", "std:label", "library/stdtypes.html#$",
+                 "Boolean Values"))
+    for term in ("function", "iterable", "sequence", "generator", "mapping", "callable",
+                 "path-like object", "file object"):
+        rows.append((term, "std:term", f"glossary.html#term-{term.replace(' ', '-')}"))
     page_of = {}
     for modname in ("os", "os.path", "pathlib", "json", "functools", "dataclasses", "typing",
                     "concurrent.futures", "multiprocessing", "signal", "tempfile", "shutil",
                     "hashlib", "warnings", "collections", "collections.abc", "itertools", "math",
-                    "enum", "io", "logging", "subprocess", "threading", "time", "datetime"):
+                    "enum", "io", "logging", "subprocess", "threading", "time", "datetime",
+                    "contextlib"):
         page_of[modname] = f"library/{modname}.html"
         rows += _module_rows(
             modname, lambda q, m=modname: f"library/{m}.html#{q}",
@@ -158,13 +172,14 @@ def python_rows():
 def write(project: str, version: str, rows) -> Path:
     seen = set()
     lines = []
-    for name, role, uri in rows:
+    for name, role, uri, *disp in rows:
         if (name, role) in seen:
             continue
         seen.add((name, role))
         if uri.endswith("#" + name):
             uri = uri[: -len(name)] + "$"
-        lines.append(f"{name} {role} 1 {uri} -")
+        prio = -1 if role.startswith("std:") else 1
+        lines.append(f"{name} {role} {prio} {uri} {disp[0] if disp else '-'}")
     header = (f"# Sphinx inventory version 2\n# Project: {project}\n# Version: {version}\n"
               "# The remainder of this file is compressed using zlib.\n").encode()
     path = HERE / f"{project}.inv"
