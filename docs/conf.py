@@ -80,7 +80,11 @@ numpydoc_xref_aliases = {
     "Path": "pathlib.Path",
     "Executor": "concurrent.futures.Executor",
 }
-numpydoc_xref_ignore = "all"         # link only the aliases and dotted names, never plain words
+# words of type descriptions that are not objects (unresolved names render as plain code: nitpicky
+# is off)
+numpydoc_xref_ignore = {"of", "or", "and", "optional", "default", "shape", "the", "a", "an",
+                        "with", "in", "to", "for", "each", "per", "if", "one", "two", "n",
+                        "same", "as", "like", "any", "keyword", "only", "length", "pair", "list-like"}
 nitpicky = False
 suppress_warnings: list[str] = []   # none needed: every warning is an error (-W)
 
