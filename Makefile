@@ -3,10 +3,11 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 TSTAMP := $(VENV)/.installed-test
+DSTAMP := $(VENV)/.installed-docs
 # pytest-xdist workers for `make test` (0: one process)
 TEST_WORKERS ?= 2
 
-.PHONY: demo test validate bench lint clean
+.PHONY: demo test validate bench lint docs clean
 
 $(BIN)/python:
 	$(PY) -m venv $(VENV)
@@ -34,5 +35,16 @@ bench: $(TSTAMP)
 	$(BIN)/python -m pip install -q -e ".[bench]"
 	$(BIN)/python benchmarks/run.py
 
+$(DSTAMP): $(STAMP) pyproject.toml
+	$(BIN)/python -m pip install -q -e ".[docs]"
+	touch $@
+
+# the documentation site, into docs/_build/html/ (offline; warnings are errors). The gallery runs
+# its scripts; `make docs SPHINXOPTS="-D plot_gallery=0"` skips running them.
+SPHINXOPTS ?=
+docs: $(DSTAMP)
+	$(BIN)/python -m sphinx -W --keep-going -b html $(SPHINXOPTS) docs docs/_build/html
+
 clean:
-	rm -rf $(VENV) out .pytest_cache
+	rm -rf $(VENV) out .pytest_cache docs/_build docs/api docs/gallery docs/_generated \
+		docs/sg_execution_times.rst

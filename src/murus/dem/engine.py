@@ -748,26 +748,35 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
     """Dynamic run up to ``t_end`` (or ``duration`` from now) [s].
 
     xi, freq : mass-proportional damping, fraction of critical at frequency [Hz];
+
     local_damping : Cundall local damping coefficient (0: none);
+
     damping_frame : the velocities that both dampings act on: ``"base"`` (default) relative to
         the base motion, so that damping does not brake a body that moves with the ground nor
         a collapse; ``"absolute"`` the velocities in the fixed frame, as UDEC's Rayleigh
         damping of a model shaken by a velocity boundary (it then also resists the rigid
         motion of the whole model with the base);
+
     probes : dict name -> :class:`Probe` or callable(model) -> float, sampled every ``every``
         steps (default ``sample_dt`` [s]); the histories are kept in ``model.history`` (they
         survive a checkpoint);
+
     stop : callable(model) -> bool (or a list), checked at each sample;
+
     max_steps : stop after that many steps of this call (status ``max_steps``);
+
     progress : False (nothing), True (a :func:`murus.progress.progress` block: a bar in a
         terminal, a line every 10 s on stderr otherwise) or a callable ``progress(done,
         total)`` called after each chunk with the steps done and the steps of the call;
+
     external : callable(model) updating ``model.bext`` (external forces and moments) in place,
         called before the first step and every ``external_every`` steps (default: at each
         sample) of the model's step count;
+
     threads : numba threads (default: chosen per chunk of steps by :mod:`murus.threads`: one
         thread while other processes hold the cores, else ``numba.get_num_threads()``; an
         explicit ``NUMBA_NUM_THREADS`` or ``MURUS_THREADS`` fixes it too).
+
     max_overlap : the run stops with status ``"interpenetration"`` when two bodies overlap by
         more than this fraction of the thinner one's thickness along the contact normal
         (checked after each chunk of steps, :func:`overlap_fraction`; None: no check).

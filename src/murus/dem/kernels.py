@@ -56,7 +56,7 @@ force on b is ``Fn n + Fs t``. Discs carry a rolling moment ``Mr <- Mr - kr dthe
 with ``kr = ks A r_eff²`` limited by ``mu_r r_eff Fn`` (elastic-plastic rolling resistance).
 
 Integration (Savalle et al. (2022), eq. 2; central differences / leapfrog)
--------------------------------------------------------------------------
+--------------------------------------------------------------------------
 ``v(t + dt/2) = v(t - dt/2) + a(t) dt``, ``x(t + dt) = x(t) + v(t + dt/2) dt`` for the two
 translations and the rotation. Damping: Cundall's local non-viscous damping, a force
 ``-alpha |F| sign(v)`` per degree of freedom; mass-proportional (Rayleigh) damping

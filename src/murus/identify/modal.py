@@ -35,8 +35,7 @@ Peak picking
     estimate slightly biased (its peak is at ``f_n (sqrt(1 + 8 zeta^2) - 1)^(1/2) / (2 zeta)``,
     0.25 % below ``f_n`` for 5 %); the fitted values are the reported ones.
 
-Reliability (Mordant et al. (SERIES), §2.1 reports damping ratios "as high as 100 %",
-"questionable")
+Reliability (Mordant et al. (SERIES), §2.1: damping ratios "as high as 100 %": "questionable")
     Each mode carries the list ``warnings``; it is ``reliable`` when the list is empty:
     coherence at the peak below ``min_coherence_reliable`` (0.8); a half-power point not found
     before the neighbouring minimum; damping above ``max_damping`` (20 %); the half-power and the

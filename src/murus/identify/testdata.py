@@ -59,7 +59,7 @@ HDF5 is not supported: CSV is readable by every laboratory tool and the test fil
 (tens of thousands of lines); :func:`write_test` writes the same format back.
 
 Test sequence (Mordant et al. (SERIES), Table 1)
---------------------------------
+------------------------------------------------
 A sequence is a folder of test files. The order and the nominal PGA come from a
 ``sequence.toml`` in the folder when there is one::
 

@@ -288,11 +288,6 @@ def corrected_peaks(motion: GroundMotion) -> dict:
     ----------
     motion : GroundMotion
         The record (acceleration in m/s²).
-
-    Returns
-    -------
-    dict
-        ``pgv`` [m/s] and ``pgd`` [m].
     """
     from murus.motion.processing import end_correction
 

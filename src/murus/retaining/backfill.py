@@ -8,7 +8,7 @@ is a disc assembly in :mod:`murus.dem`, behind the stones of
 :func:`murus.retaining.dem_wall.build_wall` (built with ``backstop=False``).
 
 When to use it, against the equivalent thrust (:class:`~murus.retaining.dem_wall.EquivalentThrust`)
-------------------------------------------------------------------------------------------------
+---------------------------------------------------------------------------------------------------
 - The equivalent thrust is one EN 1998-5 Annex E force updated from the instantaneous base
   acceleration: cheap (the wall alone, about a hundred bodies, a DSRW1 S2 run in about a
   minute), but it has no memory: when the wall rocks or slides out of the slope and comes back,
