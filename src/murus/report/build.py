@@ -151,7 +151,7 @@ def _rocking_verdicts(f: Folder) -> list:
                     f"at t = {_num(t)} s" if s["overturned"] and t is not None else
                     f"theta_max/alpha = {_num(s.get('theta_max_over_alpha'))}"))
     for name, reached in (s.get("limit_states") or {}).items():
-        out.append((f"limit state {name}", not reached,
+        out.append((f"limit state {name}", "warn" if reached else True,
                     "reached" if reached else "not reached"))
     if s.get("status") not in (None, "ok", 0):
         out.append(("integration", False, f"status {s.get('status')}"))
@@ -180,7 +180,7 @@ def _mechanism_verdicts(f: Folder) -> list:
 
 def _limit_verdicts(f: Folder) -> list:
     s = _s(f)
-    out = [("load factor", True, f"{_num(s.get('load_factor'))} "
+    out = [("load factor", "info", f"{_num(s.get('load_factor'))} "
             f"({s.get('load', '')} load, {s.get('friction', '')} friction)")]
     if "converged" in s:
         out.append(("solver", bool(s["converged"]),
@@ -198,10 +198,17 @@ def _dem_verdicts(f: Folder) -> list:
     return [("run", bool(ok), f"{s.get('status', '')} {s.get('message', '')}".strip())]
 
 
-_RETAINING_UNITS = {"A_col": "m/s2", "A_pseudo": "m/s2", "A_peak": "m/s2", "t_col": "s",
-                    "r": "1", "frequency": "Hz", "H": "m", "B": "m", "d_top": "m",
-                    "threshold": "1", "t_max": "s", "run_time_s": "s", "wall_time_s": "s",
-                    "stiffness_scale": "1", "xi": "1", "width": "m", "stone_height": "m"}
+_RETAINING_UNITS = {"A_col": "m/s2", "A_pseudo": "m/s2", "A_peak": "m/s2", "a_peak": "m/s2",
+                    "A_rate": "m/s3", "t_col": "s", "r": "1", "frequency": "Hz", "H": "m",
+                    "B": "m", "height": "m", "d_top": "m", "threshold": "m", "t_max": "s",
+                    "t_end": "s", "t_pseudo": "s", "run_time_s": "s", "wall_time": "s",
+                    "wall_time_s": "s", "dt": "s", "steps": "1", "stiffness_scale": "1",
+                    "xi": "1", "width": "m", "stone_height": "m", "stone_length": "m",
+                    "kn": "Pa/m", "ks": "Pa/m", "foundation_depth": "m",
+                    "foundation_front": "m", "update_dt": "s", "sample_dt": "s",
+                    "motion_dt": "s", "threshold_fraction": "1", "vertical_ratio": "1",
+                    "thrust_scale": "1", "settle_steps": "1",
+                    "d_top_max": "m"}
 
 
 def _retaining_verdicts(f: Folder) -> list:
@@ -331,11 +338,18 @@ def _flatten(d: dict, prefix: str = "") -> tuple[list, list]:
         elif isinstance(v, list) and v and all(isinstance(x, dict) for x in v):
             tables.append((key, v))
         elif isinstance(v, list):
-            text = json.dumps(v)
-            rows.append((key, text if len(text) < 200 else text[:200] + " ..."))
+            rows.append((key, _list_text(v)))
         else:
             rows.append((key, v))
     return rows, tables
+
+
+def _list_text(v: list) -> str:
+    nums = [x for x in v if isinstance(x, (int, float)) and not isinstance(x, bool)]
+    if len(v) > 6 and len(nums) == len(v):
+        return f"{len(v)} values, {_num(min(nums))} .. {_num(max(nums))}"
+    text = json.dumps(v)
+    return text if len(text) < 160 else text[:160] + " ..."
 
 
 def _kv_table(rows: list, units: dict) -> str:
@@ -349,10 +363,12 @@ def _kv_table(rows: list, units: dict) -> str:
 
 def _records_table(name: str, recs: list, units: dict) -> str:
     cols: list[str] = []
-    flat = []
-    for r in recs[:_MAX_ROWS]:
-        rows, _ = _flatten(r)
+    flat, nested = [], []
+    for i, r in enumerate(recs[:_MAX_ROWS]):
+        rows, tables = _flatten(r)
         flat.append(dict(rows))
+        label = r.get("name", r.get("label", i)) if isinstance(r, dict) else i
+        nested += [(f"{name}: {label}: {k}", v) for k, v in tables]
         for k, _v in rows:
             if k not in cols:
                 cols.append(k)
@@ -363,7 +379,8 @@ def _records_table(name: str, recs: list, units: dict) -> str:
     more = (f"<p class=note>{len(recs) - _MAX_ROWS} more rows in the JSON file.</p>"
             if len(recs) > _MAX_ROWS else "")
     return (f"<h3>{_e(name)}</h3><div class=wide><table><thead><tr>{head}</tr></thead>"
-            f"<tbody>{body}</tbody></table></div>{more}")
+            f"<tbody>{body}</tbody></table></div>{more}"
+            + "".join(_records_table(k, v, units) for k, v in nested[:_MAX_ROWS]))
 
 
 def _json_section(title: str, data, units: dict) -> str:
@@ -467,6 +484,8 @@ pre{background:#f6f6f6;border:1px solid #ddd;padding:8px;font-size:11px;
 .v{border-radius:4px;padding:6px 10px;border:1px solid}
 .v b{margin-right:6px}.pass{background:#e6f4ea;border-color:#2e7d32;color:#1b5e20}
 .fail{background:#fdecea;border-color:#c62828;color:#8e0000}
+.warn{background:#fff4e0;border-color:#e65100;color:#8a3b00}
+.info{background:#eef3fb;border-color:#1f5fa8;color:#123c6b}
 figure{margin:10px 0;text-align:center}figure img{max-width:100%;height:auto}
 figcaption{color:#555;font-size:11px}.note{color:#666;font-size:11px}
 .wide{overflow-x:auto}ol.refs li{margin-bottom:4px}
@@ -547,6 +566,15 @@ def _netcdf_section(p: Path, rel: str, units: dict) -> str:
         return f"<h3>{_e(rel)}</h3><p class=note>not readable here: {_e(exc)}</p>"
 
 
+#: CSS class and label of a verdict: passed, failed, a limit state reached, information.
+_STATUS = {"pass": ("pass", "PASS"), "fail": ("fail", "FAIL"), "warn": ("warn", "REACHED"),
+           "info": ("info", "RESULT")}
+
+
+def _status(ok) -> str:
+    return ok if isinstance(ok, str) else ("pass" if ok else "fail")
+
+
 def build_report(folder) -> str:
     """The one-page HTML report of the murus output folder ``folder``.
 
@@ -577,7 +605,7 @@ def build_report(folder) -> str:
     verdicts = kind.verdicts(f)
     if verdicts:
         items = "".join(
-            f"<div class=\"v {'pass' if ok else 'fail'}\"><b>{'PASS' if ok else 'FAIL'}</b>"
+            f"<div class=\"v {_STATUS[_status(ok)][0]}\"><b>{_STATUS[_status(ok)][1]}</b>"
             f"{_e(label)}: {_e(text)}</div>" for label, ok, text in verdicts)
         parts.append(f"<h2>Verdicts</h2><div class=verdicts>{items}</div>")
     parts.append(_input_section(f))
