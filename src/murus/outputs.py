@@ -726,6 +726,15 @@ def add_to_folder(folder, rel: str, text: str) -> Path:
     or to its :data:`FILES` list when the folder has no manifest (a study folder). A file of
     that name that murus did not write is an :class:`OutputError` (nothing written).
 
+    Parameters
+    ----------
+    folder : path-like
+        An existing output folder.
+    rel : str
+        File name inside ``folder``.
+    text : str
+        Content (written as UTF-8).
+
     Returns
     -------
     Path

@@ -289,7 +289,20 @@ KINDS: tuple[Kind, ...] = (
 
 
 def detect(folder) -> str:
-    """Name of the kind of the output folder ``folder`` (``"folder"``: no known kind)."""
+    """Name of the kind of the output folder ``folder`` (one of :data:`KINDS`).
+
+    Parameters
+    ----------
+    folder : path-like
+        An output folder of murus.
+
+    Returns
+    -------
+    str
+        ``"rocking"``, ``"mechanism"``, ``"limit"``, ``"retaining-collapse"``,
+        ``"retaining-behaviour-factor"``, ``"rocking-study"``, ``"lab-sequence"``, ``"dem"``,
+        or ``"folder"`` (no known kind: the generic report).
+    """
     f = _folder(folder)
     return _kind(f).name
 
@@ -669,6 +682,11 @@ def write_report(folder) -> Path:
     own: in the folder's manifest, or in its list of murus files when it has none).
 
     A ``report.html`` that murus did not write is never overwritten.
+
+    Parameters
+    ----------
+    folder : path-like
+        An output folder of murus.
 
     Returns
     -------
