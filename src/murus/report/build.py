@@ -55,6 +55,17 @@ REFERENCES = {
     "structure. Analytical and Computational Methods in Engineering Rock Mechanics, 129-163.",
     "fema_p695": "Federal Emergency Management Agency (2009). Quantification of Building "
     "Seismic Performance Factors. FEMA P695, Washington, DC.",
+    "nigam_jennings1969": "Nigam, N. C. and Jennings, P. C. (1969). Calculation of response "
+    "spectra from strong-motion earthquake records. Bulletin of the Seismological Society of "
+    "America 59(2), 909-922. doi:10.1785/BSSA0590020909",
+    "arias1970": "Arias, A. (1970). A measure of earthquake intensity. Seismic Design for "
+    "Nuclear Power Plants, 438-483.",
+    "trifunac_brady1975": "Trifunac, M. D. and Brady, A. G. (1975). A study on the duration "
+    "of strong earthquake ground motion. Bulletin of the Seismological Society of America "
+    "65(3), 581-626. doi:10.1785/BSSA0650030581",
+    "rathje1998": "Rathje, E. M., Abrahamson, N. A. and Bray, J. D. (1998). Simplified "
+    "frequency content estimates of earthquake ground motions. Journal of Geotechnical and "
+    "Geoenvironmental Engineering 124(2), 150-159.",
     "baker2015": "Baker, J. W. (2015). Efficient analytical fragility function fitting using "
     "dynamic structural analysis. Earthquake Spectra 31(1), 579-599. "
     "doi:10.1193/021113EQS025M",
@@ -117,7 +128,7 @@ class Kind:
     name: str
     title: str
     match: Callable[[Folder], bool]
-    references: tuple[str, ...] = ()
+    references: tuple[str, ...] | Callable[[Folder], tuple] = ()
     units: Callable[[Folder], dict] = lambda f: {}
     verdicts: Callable[[Folder], list] = lambda f: []
 
@@ -233,6 +244,30 @@ def _study_kind(f: Folder) -> str:
     return "fragility" if "fragility" in text or '"im"' in text else "spectrum"
 
 
+def _bf_verdicts(f: Folder) -> list:
+    try:
+        with open(f.path / "behaviour_factor.csv", newline="", encoding="utf-8") as fh:
+            rows = list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
+    except OSError:
+        return []
+    out = []
+    for r in rows:
+        label = f"{r.get('wall', '')} {r.get('frequency_Hz', '')} Hz".strip()
+        if r.get("r"):
+            out.append((f"{label}: behaviour factor", "info",
+                        f"r = A_peak/A_pseudo = {r['r']}, A_col = {r.get('A_col_m_s2', '-')} "
+                        "m/s2"))
+        for k, v in r.items():
+            if k and k.startswith("S1_") and v:
+                out.append((f"{label}: {k}", v.strip().lower() == "stable", v))
+    return out
+
+
+def _study_refs(f: Folder) -> tuple:
+    base = ("housner1963", "eurodyn2020", "fema_p695")
+    return (*base, "baker2015") if _study_kind(f) == "fragility" else base
+
+
 def _study_verdicts(f: Folder) -> list:
     try:
         import xarray as xr
@@ -251,7 +286,20 @@ def _study_verdicts(f: Folder) -> list:
 
 
 def _lab_verdicts(f: Folder) -> list:
-    return []
+    s = _s(f)
+    out = []
+    evo = [e for e in s.get("evolution") or [] if isinstance(e, dict) and "f1_hz" in e]
+    if len(evo) >= 2:
+        f0, f1 = evo[0]["f1_hz"], evo[-1]["f1_hz"]
+        drop = f" ({100 * (1 - f1 / f0):.0f} % drop)" if f0 else ""
+        out.append(("first frequency", "info", f"{_num(f0)} Hz ({evo[0].get('test', '')}) "
+                    f"-> {_num(f1)} Hz ({evo[-1].get('test', '')}){drop}"))
+    classes = [c for c in s.get("classification") or [] if isinstance(c, dict)]
+    if classes:
+        last = classes[-1]
+        out.append(("response", "info", f"{last.get('class', '-')} at the last test "
+                    f"({last.get('test', '')})"))
+    return out
 
 
 KINDS: tuple[Kind, ...] = (
@@ -271,16 +319,20 @@ KINDS: tuple[Kind, ...] = (
          _retaining_verdicts),
     Kind("retaining-behaviour-factor", "Behaviour factor of dry-stone retaining walls",
          lambda f: (f.study or {}).get("kind") == "retaining.behaviour_factor",
-         ("savalle2022", "en1998_5", "cundall1987"), lambda f: dict(_RETAINING_UNITS)),
+         ("savalle2022", "en1998_5", "cundall1987"), lambda f: dict(_RETAINING_UNITS),
+         _bf_verdicts),
     Kind("rocking-study", "Rocking spectrum or fragility study",
          lambda f: f.study is not None and (f.path / "result.nc").is_file(),
-         ("housner1963", "eurodyn2020", "fema_p695", "baker2015"), _rocking_units,
+         _study_refs, _rocking_units,
          _study_verdicts),
     Kind("lab-sequence", "Shaking-table test sequence",
          lambda f: (f.path / "report.md").is_file() and _cmd_has(f, "lab")
          or (f.path / "report.md").is_file() and "frequency.png" in
          {p.name for p in f.path.iterdir()},
          ("mordant_series",), lambda f: {}, _lab_verdicts),
+    Kind("motion-record", "Ground motion record",
+         lambda f: (f.path / "measures.json").is_file() and (f.path / "record.png").is_file(),
+         ("nigam_jennings1969", "arias1970", "trifunac_brady1975", "rathje1998")),
     Kind("dem", "Distinct-element run",
          lambda f: "steps" in _s(f) and ("bodies" in _s(f) or "zones" in _s(f)),
          ("cundall_strack1979", "cundall1987"), lambda f: dict(_DEM_UNITS), _dem_verdicts),
@@ -330,12 +382,22 @@ def _num(x) -> str:
     return str(x)
 
 
+#: Units named by the suffix of a key (``f1_hz``, ``t_min_s``, ``pga_nominal_g``): the
+#: convention of the CSV columns and JSON keys of murus (README "Conventions").
+_SUFFIX_UNITS = {"hz": "Hz", "g": "g", "rad": "rad", "mm": "mm", "m": "m", "s": "s",
+                 "pa": "Pa", "kg": "kg", "percent": "%", "deg": "deg", "kn": "kN", "n": "N",
+                 "m_s2": "m/s2", "m_s": "m/s", "rad_s": "rad/s", "j": "J"}
+
+
 def _unit(units: dict, key: str) -> str:
     last = key.split(".")[-1]
     for k in (key, last, re.sub(r"\[\d+\]", "", key)):
         if k in units:
             u = units[k]
             return "-" if u in ("1", "") else u
+    for suffix in sorted(_SUFFIX_UNITS, key=len, reverse=True):
+        if last.endswith("_" + suffix) and len(last) > len(suffix) + 1:
+            return _SUFFIX_UNITS[suffix]
     return ""
 
 
@@ -632,9 +694,13 @@ def build_report(folder) -> str:
         data = f.summary if rel == "summary.json" else _read_json(p)
         if data is None:
             continue
-        if isinstance(data, dict) and rel == "summary.json":
-            data = {k: v for k, v in data.items() if k not in ("input", "units")}
-        parts.append(_json_section(rel, data, units))
+        own = units
+        if isinstance(data, dict):  # units a file declares itself (a "units" mapping)
+            if isinstance(data.get("units"), dict):
+                own = {**units, **{str(k): str(v) for k, v in data["units"].items()}}
+            data = {k: v for k, v in data.items()
+                    if k != "units" and not (rel == "summary.json" and k == "input")}
+        parts.append(_json_section(rel, data, own))
     for p in f.files(".nc"):
         parts.append(_netcdf_section(p, p.relative_to(f.path).as_posix(), units))
     for p in f.files(".md"):
@@ -659,7 +725,8 @@ def build_report(folder) -> str:
             parts.append(f"<p class=note>{len(pngs) - _MAX_FIGURES} more figures in the "
                          "folder.</p>")
 
-    refs = [REFERENCES[k] for k in kind.references]
+    keys = kind.references(f) if callable(kind.references) else kind.references
+    refs = [REFERENCES[k] for k in keys]
     parts.append("<h2>References</h2>")
     if refs:
         parts.append("<ol class=refs>" + "".join(f"<li>{_e(r)}</li>" for r in refs)
