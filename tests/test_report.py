@@ -192,3 +192,28 @@ def test_report_renders_in_headless_chromium(tmp_path):
     assert img.shape[:2] == (1600, 1200)
     assert img.std() > 0.05  # not a blank page
     assert (img < 0.5).mean() > 0.002  # text and figure drawn, not all white
+
+
+def test_fragility_study_report(tmp_path):
+    """A study folder (no manifest): the Dataset's variables with units, the verdicts and the
+    lognormal fragility fitted on the stripes; references by kind (Baker 2015)."""
+    import numpy as np
+    import xarray as xr
+
+    out = tmp_path / "f1"
+    out.mkdir()
+    (out / "study.json").write_text(json.dumps({"name": "frag", "spec": {"im": [0.2, 0.8]}}))
+    over = np.array([[0.0, 0.0, 0.0, 1.0], [1.0, 1.0, 0.0, 1.0]])
+    ds = xr.Dataset(
+        {"overturned": (("im", "record"), over, {"units": "1"}),
+         "theta_max_over_alpha": (("im", "record"), 0.3 + over, {"units": "1"}),
+         "theta_max": (("im", "record"), 0.03 + over / 10, {"units": "rad",
+                                                             "long_name": "largest rotation"})},
+        coords={"im": ("im", [0.2, 0.8], {"units": "g"}), "record": ["a", "b", "c", "d"]})
+    ds.to_netcdf(out / "result.nc")
+    assert detect(out) == "rocking-study"
+    page = build_report(out)
+    _self_contained(page)
+    assert "<th>theta_max</th><td>im, record</td><td>rad</td>" in page
+    assert "4 of 8 histories" in page
+    assert re.search(r"median \[g\]", page) and "Baker" in page

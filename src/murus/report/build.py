@@ -277,7 +277,7 @@ def _study_verdicts(f: Folder) -> list:
             if "overturned" in ds:
                 v = ds["overturned"].values
                 n = int((v == 1).sum())
-                out.append(("overturned cases", n == 0, f"{n} of {v.size} histories"))
+                out.append(("overturned", "info", f"{n} of {v.size} histories"))
             nf = int(ds.attrs.get("n_failed_chunks", 0) or 0)
             out.append(("study", nf == 0, "complete" if nf == 0 else f"{nf} failed chunks"))
             return out
@@ -650,6 +650,35 @@ def _status(ok) -> str:
     return ok if isinstance(ok, str) else ("pass" if ok else "fail")
 
 
+def _fragility_section(p: Path) -> str:
+    """The lognormal fragilities of a study with an intensity dimension ``im`` (maximum
+    likelihood over the stripes, :func:`murus.studies.fragility.fit_fragility`, no confidence
+    intervals: they take seconds; ``murus study plot`` draws them)."""
+    try:
+        import xarray as xr
+
+        from murus.studies.fragility import fit_fragility
+
+        with xr.open_dataset(p) as ds:
+            if "im" not in ds.dims or "overturned" not in ds:
+                return ""
+            fit = fit_fragility(ds.load(), ci="none")
+        unit = fit["fragility_median"].attrs.get("units", "")
+        df = fit[["fragility_median", "fragility_beta", "fragility_status"]].to_dataframe()
+    except Exception as exc:  # noqa: BLE001 - a report never fails on a fit
+        return f"<p class=note>fragility fit not available here: {_e(exc)}</p>"
+    names = list(df.index.names)
+    head = "".join(f"<th>{_e(n)}</th>" for n in names)
+    body = "".join(
+        "<tr>" + "".join(f"<td>{_e(v)}</td>" for v in (i if isinstance(i, tuple) else (i,)))
+        + f"<td class=num>{_e(_num(float(r.fragility_median)))}</td>"
+        f"<td class=num>{_e(_num(float(r.fragility_beta)))}</td>"
+        f"<td>{_e(r.fragility_status)}</td></tr>" for i, r in df.iterrows())
+    return ("<h3>fragility (lognormal, maximum likelihood over the stripes; Baker 2015)</h3>"
+            f"<table><thead><tr>{head}<th>median [{_e(unit)}]</th><th>beta [-]</th>"
+            f"<th>status</th></tr></thead><tbody>{body}</tbody></table>")
+
+
 def build_report(folder) -> str:
     """The one-page HTML report of the murus output folder ``folder``.
 
@@ -703,6 +732,8 @@ def build_report(folder) -> str:
         parts.append(_json_section(rel, data, own))
     for p in f.files(".nc"):
         parts.append(_netcdf_section(p, p.relative_to(f.path).as_posix(), units))
+        if kind.name == "rocking-study":
+            parts.append(_fragility_section(p))
     for p in f.files(".md"):
         rel = p.relative_to(f.path).as_posix()
         if "/" in rel:
