@@ -111,6 +111,13 @@ def test_rocking_report(tmp_path):
     assert re.search(r"<th>energy_dissipated</th><td class=num>47.9</td><td>J</td>", page)
     assert "not overturned" in page and "REACHED" in page
     assert "Housner" in page and "EURODYN" in page
+    assert "modified after the run" not in page
+    import os
+    import time
+
+    later = time.time() + 60
+    os.utime(tmp_path / "block.toml", (later, later))
+    assert "modified after the run" in build_report(out)
 
 
 def test_dem_report(tmp_path):

@@ -563,7 +563,7 @@ pre{background:#f6f6f6;border:1px solid #ddd;padding:8px;font-size:11px;
 .info{background:#eef3fb;border-color:#1f5fa8;color:#123c6b}
 figure{margin:10px 0;text-align:center}figure img{max-width:100%;height:auto}
 figcaption{color:#555;font-size:11px}.note{color:#666;font-size:11px}
-.wide{overflow-x:auto}ol.refs li{margin-bottom:4px}
+.wide{overflow-x:auto}.warnline{color:#8a3b00}ol.refs li{margin-bottom:4px}
 @media print{@page{size:A4;margin:15mm}body{margin:0;max-width:none;font-size:10.5px}
  figure,table,pre,.v,tr{break-inside:avoid;page-break-inside:avoid}
  h2,h3{break-after:avoid;page-break-after:avoid}.wide{overflow:visible}
@@ -585,6 +585,18 @@ def _case_files(f: Folder) -> list[Path]:
     return out
 
 
+def _changed_after_run(p: Path, when) -> bool:
+    """True when ``p`` was modified after the manifest's time (UTC, to the second)."""
+    import calendar
+    import time
+
+    try:
+        t = calendar.timegm(time.strptime(str(when), "%Y-%m-%dT%H:%M:%SZ"))
+        return p.stat().st_mtime > t + 1
+    except (ValueError, OSError):
+        return False
+
+
 def _input_section(f: Folder) -> str:
     parts = []
     if f.command:
@@ -596,7 +608,11 @@ def _input_section(f: Folder) -> str:
             text = p.read_text(encoding="utf-8", errors="replace")
         except OSError:
             continue
-        parts.append(f"<h3>{_e(p.name)}</h3><pre>{_e(text[:_MAX_TEXT])}</pre>")
+        note = ""
+        if _changed_after_run(p, f.manifest.get("time")):
+            note = ("<p class=\"note warnline\">This file was modified after the run: it may "
+                    "not be the input of these results.</p>")
+        parts.append(f"<h3>{_e(p.name)}</h3>{note}<pre>{_e(text[:_MAX_TEXT])}</pre>")
     s = f.summary or {}
     if not _case_files(f) and isinstance(s.get("input"), dict):
         parts.append("<h3>input (recorded in summary.json)</h3>"
