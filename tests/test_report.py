@@ -224,3 +224,22 @@ def test_fragility_study_report(tmp_path):
     assert "<th>theta_max</th><td>im, record</td><td>rad</td>" in page
     assert "4 of 8 histories" in page
     assert re.search(r"median \[g\]", page) and "Baker" in page
+
+
+def test_folder_of_runs(tmp_path):
+    """``murus demo``: one rocking run per sub-folder; their units, verdicts, references."""
+    out = tmp_path / "demo"
+
+    def write(tmp: Path) -> None:
+        for name, over in (("a", False), ("b", True)):
+            (tmp / name).mkdir()
+            (tmp / name / "summary.json").write_text(json.dumps(
+                {"theta_max": 0.2, "overturned": over, "t_overturn": 3.5 if over else None}))
+        (tmp / "demo_summary.csv").write_text("case,overturned\na,0\nb,1\n")
+
+    write_dir(out, write, command=f"murus demo --out {out}")
+    assert detect(out) == "folder"
+    page = build_report(out)
+    assert re.search(r"<th>theta_max</th><td class=num>0.2</td><td>rad</td>", page)
+    assert "b: overturned: at t = 3.5 s" in page and "a: not overturned" in page
+    assert "Housner" in page and "demo_summary.csv" in page

@@ -723,6 +723,17 @@ def build_report(folder) -> str:
              f"<code>{_e(kind.name)}</code>; units SI unless stated (\"-\": dimensionless)"
              "</p>"]
     verdicts = kind.verdicts(f)
+    # runs in sub-folders (``murus demo``: one folder per case): their kinds' units,
+    # verdicts and references
+    subs = {}
+    if kind.name == "folder":
+        for p in sorted(f.path.glob("*/summary.json")):
+            sub = _folder(p.parent)
+            k = _kind(sub)
+            if k.name != "folder":
+                subs[p.parent.name] = (sub, k)
+                verdicts += [(f"{p.parent.name}: {label}", ok, text)
+                             for label, ok, text in k.verdicts(sub)]
     if verdicts:
         items = "".join(
             f"<div class=\"v {_STATUS[_status(ok)][0]}\"><b>{_STATUS[_status(ok)][1]}</b>"
@@ -740,11 +751,14 @@ def build_report(folder) -> str:
         if data is None:
             continue
         own = units
+        if rel.count("/") == 1 and rel.split("/")[0] in subs:
+            sub, k = subs[rel.split("/")[0]]
+            own = k.units(sub)
         if isinstance(data, dict):  # units a file declares itself (a "units" mapping)
             if isinstance(data.get("units"), dict):
                 own = {**units, **{str(k): str(v) for k, v in data["units"].items()}}
             data = {k: v for k, v in data.items()
-                    if k != "units" and not (rel == "summary.json" and k == "input")}
+                    if k != "units" and not (p.name == "summary.json" and k == "input")}
         parts.append(_json_section(rel, data, own))
     for p in f.files(".nc"):
         parts.append(_netcdf_section(p, p.relative_to(f.path).as_posix(), units))
@@ -772,7 +786,11 @@ def build_report(folder) -> str:
             parts.append(f"<p class=note>{len(pngs) - _MAX_FIGURES} more figures in the "
                          "folder.</p>")
 
-    keys = kind.references(f) if callable(kind.references) else kind.references
+    keys = []
+    for k, fo in [(kind, f), *((k, sub) for sub, k in subs.values())]:
+        for key in k.references(fo) if callable(k.references) else k.references:
+            if key not in keys:
+                keys.append(key)
     refs = [REFERENCES[k] for k in keys]
     parts.append("<h2>References</h2>")
     if refs:
