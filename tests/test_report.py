@@ -209,7 +209,8 @@ def test_fragility_study_report(tmp_path):
 
     out = tmp_path / "f1"
     out.mkdir()
-    (out / "study.json").write_text(json.dumps({"name": "frag", "spec": {"im": [0.2, 0.8]}}))
+    (out / "study.json").write_text(json.dumps({"name": "frag", "spec": {
+        "im": "PGA", "sweep": {"im": [0.2, 0.8]}}}))
     over = np.array([[0.0, 0.0, 0.0, 1.0], [1.0, 1.0, 0.0, 1.0]])
     ds = xr.Dataset(
         {"overturned": (("im", "record"), over, {"units": "1"}),
@@ -224,6 +225,9 @@ def test_fragility_study_report(tmp_path):
     assert "<th>theta_max</th><td>im, record</td><td>rad</td>" in page
     assert "4 of 8 histories" in page
     assert re.search(r"median \[g\]", page) and "Baker" in page
+    (out / "study.json").write_text(json.dumps({"name": "spectrum", "spec": {
+        "im": None, "sweep": {"K_over_Kd": [0.0, 1.0]}}}))
+    assert "Baker" not in build_report(out)  # a spectrum: no fragility reference
 
 
 def test_folder_of_runs(tmp_path):

@@ -239,9 +239,9 @@ def _retaining_verdicts(f: Folder) -> list:
 
 
 def _study_kind(f: Folder) -> str:
-    st = f.study or {}
-    text = json.dumps(st.get("spec", {})).lower() + " " + str(st.get("name", "")).lower()
-    return "fragility" if "fragility" in text or '"im"' in text else "spectrum"
+    spec = (f.study or {}).get("spec") or {}
+    sweep = spec.get("sweep") if isinstance(spec.get("sweep"), dict) else {}
+    return "fragility" if spec.get("im") or "im" in sweep else "spectrum"
 
 
 def _bf_verdicts(f: Folder) -> list:
@@ -321,7 +321,7 @@ KINDS: tuple[Kind, ...] = (
          lambda f: (f.study or {}).get("kind") == "retaining.behaviour_factor",
          ("savalle2022", "en1998_5", "cundall1987"), lambda f: dict(_RETAINING_UNITS),
          _bf_verdicts),
-    Kind("rocking-study", "Rocking spectrum or fragility study",
+    Kind("rocking-study", "Rocking study (spectrum or fragility)",
          lambda f: f.study is not None and (f.path / "result.nc").is_file(),
          _study_refs, _rocking_units,
          _study_verdicts),
