@@ -762,7 +762,7 @@ def build_report(folder) -> str:
         parts.append(_json_section(rel, data, own))
     for p in f.files(".nc"):
         parts.append(_netcdf_section(p, p.relative_to(f.path).as_posix(), units))
-        if kind.name == "rocking-study":
+        if kind.name == "rocking-study" and _study_kind(f) == "fragility":
             parts.append(_fragility_section(p))
     for p in f.files(".md"):
         rel = p.relative_to(f.path).as_posix()
