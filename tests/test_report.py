@@ -247,3 +247,36 @@ def test_folder_of_runs(tmp_path):
     assert re.search(r"<th>theta_max</th><td class=num>0.2</td><td>rad</td>", page)
     assert "b: overturned: at t = 3.5 s" in page and "a: not overturned" in page
     assert "Housner" in page and "demo_summary.csv" in page
+
+
+@pytest.mark.parametrize("kind, files, ref", [
+    ("limit", {"summary.json": {"load_factor": 0.46, "converged": True,
+                                "units": {"load_factor": "-"}}}, "Livesley"),
+    ("retaining-collapse", {"summary.json": {"wall": "DSRW1", "collapsed": True, "t_col": 4.2,
+                                             "A_col": 6.1}}, "Savalle"),
+    ("continuum", {"summary.json": {"status": "completed", "ok": True, "zones": 40,
+                                    "gridpoints": 55, "steps": 10, "dt": 1e-4}}, "Marti"),
+    ("motion-record", {"measures.json": {"pga": 1.2, "units": {"pga": "m/s2"}},
+                       "record.png": None}, "Arias"),
+    ("lab-sequence", {"summary.json": {"evolution": [{"test": "WN01", "f1_hz": 8.0},
+                                                     {"test": "WN02", "f1_hz": 6.0}]},
+                      "report.md": "# Sequence\n\n| a | b |\n|---|---|\n| 1 | 2 |\n",
+                      "frequency.png": None}, "Mordant"),
+])
+def test_kinds(tmp_path, kind, files, ref):
+    out = tmp_path / kind
+
+    def write(tmp: Path) -> None:
+        for name, content in files.items():
+            if content is None:
+                _png(tmp / name)
+            elif isinstance(content, str):
+                (tmp / name).write_text(content, encoding="utf-8")
+            else:
+                (tmp / name).write_text(json.dumps(content), encoding="utf-8")
+
+    write_dir(out, write, command=f"murus {kind} --out {out}")
+    assert detect(out) == kind
+    page = build_report(out)
+    _self_contained(page)
+    assert ref in page and "<h2>Verdicts</h2>" in page

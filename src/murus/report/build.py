@@ -53,6 +53,15 @@ REFERENCES = {
     "model for granular assemblies. Géotechnique 29(1), 47-65. doi:10.1680/geot.1979.29.1.47",
     "cundall1987": "Cundall, P. A. (1987). Distinct element models of rock and soil "
     "structure. Analytical and Computational Methods in Engineering Rock Mechanics, 129-163.",
+    "marti_cundall1982": "Marti, J. and Cundall, P. A. (1982). Mixed discretization procedure "
+    "for accurate modelling of plastic collapse. International Journal for Numerical and "
+    "Analytical Methods in Geomechanics 6(1), 129-139. doi:10.1002/nag.1610060109",
+    "itasca_flac": "Itasca Consulting Group. FLAC, Fast Lagrangian Analysis of Continua: "
+    "Theory and Background; Constitutive Models (Mohr-Coulomb model); Dynamic Analysis. "
+    "Itasca, Minneapolis.",
+    "lysmer_kuhlemeyer1969": "Lysmer, J. and Kuhlemeyer, R. L. (1969). Finite dynamic model "
+    "for infinite media. Journal of the Engineering Mechanics Division (ASCE) 95(EM4), "
+    "859-877.",
     "fema_p695": "Federal Emergency Management Agency (2009). Quantification of Building "
     "Seismic Performance Factors. FEMA P695, Washington, DC.",
     "nigam_jennings1969": "Nigam, N. C. and Jennings, P. C. (1969). Calculation of response "
@@ -200,7 +209,8 @@ def _limit_verdicts(f: Folder) -> list:
 
 
 _DEM_UNITS = {"t_end": "s", "dt": "s", "wall_time_s": "s", "height": "m", "steps": "1",
-              "bodies": "1", "energy_error": "1", "ratio": "1", "zones": "1"}
+              "bodies": "1", "energy_error": "1", "ratio": "1", "zones": "1",
+              "gridpoints": "1", "plastic_zones": "1", "ever_plastic_zones": "1"}
 
 
 def _dem_verdicts(f: Folder) -> list:
@@ -285,6 +295,15 @@ def _study_verdicts(f: Folder) -> list:
         return []
 
 
+def _motion_verdicts(f: Folder) -> list:
+    m = _read_json(f.path / "measures.json")
+    if not isinstance(m, dict):
+        return []
+    units = m.get("units") if isinstance(m.get("units"), dict) else {}
+    return [(key.upper().replace("_", "-"), "info", f"{_num(m[key])} {units.get(key, '')}")
+            for key in ("pga", "pgv", "d5_95") if isinstance(m.get(key), (int, float))]
+
+
 def _lab_verdicts(f: Folder) -> list:
     s = _s(f)
     out = []
@@ -332,9 +351,14 @@ KINDS: tuple[Kind, ...] = (
          ("mordant_series",), lambda f: {}, _lab_verdicts),
     Kind("motion-record", "Ground motion record",
          lambda f: (f.path / "measures.json").is_file() and (f.path / "record.png").is_file(),
-         ("nigam_jennings1969", "arias1970", "trifunac_brady1975", "rathje1998")),
+         ("nigam_jennings1969", "arias1970", "trifunac_brady1975", "rathje1998"),
+         lambda f: {}, _motion_verdicts),
+    Kind("continuum", "Continuum (zones) run",
+         lambda f: "zones" in _s(f) and "gridpoints" in _s(f),
+         ("marti_cundall1982", "itasca_flac", "lysmer_kuhlemeyer1969"),
+         lambda f: dict(_DEM_UNITS), _dem_verdicts),
     Kind("dem", "Distinct-element run",
-         lambda f: "steps" in _s(f) and ("bodies" in _s(f) or "zones" in _s(f)),
+         lambda f: "steps" in _s(f) and "bodies" in _s(f),
          ("cundall_strack1979", "cundall1987"), lambda f: dict(_DEM_UNITS), _dem_verdicts),
     Kind("folder", "murus output folder", lambda f: True),
 )
@@ -352,8 +376,9 @@ def detect(folder) -> str:
     -------
     str
         ``"rocking"``, ``"mechanism"``, ``"limit"``, ``"retaining-collapse"``,
-        ``"retaining-behaviour-factor"``, ``"rocking-study"``, ``"lab-sequence"``, ``"dem"``,
-        or ``"folder"`` (no known kind: the generic report).
+        ``"retaining-behaviour-factor"``, ``"rocking-study"``, ``"lab-sequence"``,
+        ``"motion-record"``, ``"continuum"``, ``"dem"``, or ``"folder"`` (no known kind: the
+        generic report).
     """
     f = _folder(folder)
     return _kind(f).name
