@@ -592,6 +592,7 @@ figcaption{color:#555;font-size:11px}.note{color:#666;font-size:11px}
 @media print{@page{size:A4;margin:15mm}body{margin:0;max-width:none;font-size:10.5px}
  figure,table,pre,.v,tr{break-inside:avoid;page-break-inside:avoid}
  h2,h3{break-after:avoid;page-break-after:avoid}.wide{overflow:visible}
+ table{font-size:9px;max-width:100%}td,th{word-break:break-word}
  figure img{max-height:230mm}}
 """
 
