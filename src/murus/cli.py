@@ -17,6 +17,7 @@ from murus.identify.cli import app as lab_app
 from murus.limit.cli import limit as limit_cmd
 from murus.mechanisms.cli import mechanism
 from murus.motion.cli import app as motion_app
+from murus.report.cli import report as report_cmd
 from murus.retaining.cli import app as retaining_app
 from murus.rocking.design_cli import app as design_app
 from murus.studies.cli import app as study_app
@@ -65,6 +66,7 @@ app.add_typer(study_app, name="study")
 app.add_typer(lab_app, name="lab")
 app.command("mechanism")(mechanism)
 app.command("limit")(limit_cmd)
+app.command("report")(report_cmd)
 # "studies" is accepted too (hidden), so that either spelling works
 app.add_typer(study_app, name="studies", hidden=True)
 

@@ -718,3 +718,52 @@ def command_line() -> str:
     if sys.argv and os.path.basename(sys.argv[0]).removesuffix(".exe") == "murus":
         return shlex.join(["murus", *sys.argv[1:]])
     return "murus"
+
+
+def add_to_folder(folder, rel: str, text: str) -> Path:
+    """Write one more file, ``folder/rel`` (text), into an existing output folder, atomically,
+    and record it as murus's own: added to the folder's manifest (its command and time kept),
+    or to its :data:`FILES` list when the folder has no manifest (a study folder). A file of
+    that name that murus did not write is an :class:`OutputError` (nothing written).
+
+    Parameters
+    ----------
+    folder : path-like
+        An existing output folder.
+    rel : str
+        File name inside ``folder``.
+    text : str
+        Content (written as UTF-8).
+
+    Returns
+    -------
+    Path
+        ``folder / rel``.
+    """
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise OutputError(f"{folder}: not a folder")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise OutputError(f"{folder}: folder is not writable")
+    out = folder / rel
+    if out.is_dir():
+        raise OutputError(f"{out}: a folder is in the way; move it away")
+    listed = read_manifest(folder)
+    if (out.exists() or out.is_symlink()) and rel not in listed and rel not in \
+            _recorded(folder):
+        raise OutputError(f"{out}: exists and was not written by murus; move it away")
+    data = text.encode("utf-8")
+    if (folder / MANIFEST).exists():
+        manifest = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))
+
+        def _update() -> None:
+            if rel not in listed:
+                manifest["files"] = sorted({*listed, rel})
+                blob = json.dumps(manifest, indent=2) + "\n"
+                atomic_write(folder / MANIFEST, lambda p: Path(p).write_text(
+                    blob, encoding="utf-8"))
+
+        atomic_write(out, lambda p: Path(p).write_bytes(data), on_replace=_update)
+    else:
+        atomic_write(out, lambda p: Path(p).write_bytes(data), on_replace=lambda: _record(out))
+    return out

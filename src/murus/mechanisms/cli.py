@@ -135,9 +135,9 @@ def mechanism(
         import matplotlib.pyplot as plt
 
         from murus.mechanisms.facade import plot_capacity
-        from murus.outputs import staged_dir
+        from murus.outputs import command_line, staged_dir
 
-        with guard(OutputError), staged_dir(out, names=names) as tmp:
+        with guard(OutputError), staged_dir(out, command_line(), names=names) as tmp:
             (tmp / "summary.json").write_text(dumps(summ), encoding="utf-8")
             for r, name in zip(run["results"], names[1:], strict=True):
                 ax = plot_capacity(r, seismic=run["seismic"])
