@@ -1,4 +1,4 @@
-"""Network formats: CSMIP/DMG V1 and V2 and COSMOS V1/V2 (trimmed real files), K-NET/KiK-net
+"""Network formats: CSMIP/DMG V1 and V2 and COSMOS V0/V1/V2 (trimmed real files), K-NET/KiK-net
 ASCII, COSMOS V0/V1 and multi-channel files written by the tests, channel selection, the
 unrecognised-format message, fuzzing and round trips through the writers."""
 
@@ -20,6 +20,7 @@ WLT = DATA / "records" / "CIWLT_trim.V2"
 AKBMR = DATA / "records" / "AKBMR_trim.V2c"
 NP8040 = DATA / "records" / "NP8040_HNZ_trim.V1c"
 CE23837 = DATA / "records" / "CE23837_trim.V1C"
+NP8040_V0 = DATA / "records" / "NP8040_HNE_trim.V0c"
 COSMOS_V2 = DATA / "motion" / "sample_cosmos.V2"
 
 
@@ -439,10 +440,71 @@ def test_cosmos_v1_and_multichannel(tmp_path):
     ref = read(COSMOS_V2)
     assert np.array_equal(chans[0].acc, ref.acc) and np.array_equal(chans[1].acc, ref.acc)
     assert read(p, channel="up").meta["channel"] == 2
+    # counts without the recorder LSB (real-header value 22: -999 in this file) are refused
     p0 = tmp_path / "raw.V0"
     p0.write_text(_cosmos_text(0, 90, units="counts (50)"))
-    with pytest.raises(MotionFormatError, match="raw.V0 line 46: raw counts \\(COSMOS V0\\)"):
+    with pytest.raises(MotionFormatError, match=r"raw.V0 line \d+: raw counts \(COSMOS V0\) "
+                                                r"need real-header value 22 \(recorder least"):
         read(p0)
+
+
+def test_cosmos_v0_real_file_counts_to_acceleration():
+    """Trimmed USGS COSMOS V0 file (raw counts) of NP.8040 HNE, 2018 Anchorage earthquake
+    (tests/data/records/README.md). Real header: LSB 0.298024 uV/count (value 22),
+    sensitivity 1.2553 V/g (value 42), gain 1.0 (value 47); maximum 1033406 counts (value 64)
+    at 45.580 s of the full record, 1.000 s of the trimmed one."""
+    import warnings
+
+    assert detect_format(NP8040_V0) == "cosmos"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        chans = read_all(NP8040_V0)
+    assert len(chans) == 1
+    c = chans[0]
+    factor = 0.298024 * 1e-6 / 1.0 / 1.2553 * G  # by hand from the header values
+    assert c.meta["level"] == "V0" and c.meta["units_in"] == "counts"
+    assert c.meta["conversion"] == pytest.approx(factor, rel=1e-15)
+    assert c.meta["conversion"] == pytest.approx(2.329017e-6, rel=1e-6)
+    assert (c.meta["lsb_uv"], c.meta["sensitivity_v_per_g"], c.meta["gain"]) == (
+        0.298024, 1.2553, 1.0)
+    assert c.meta["station"] == "8040" and c.meta["azimuth_deg"] == 90.0
+    assert c.dt == 0.005 and c.npts == 400
+    lines = NP8040_V0.read_text().splitlines()
+    k = next(i for i, ln in enumerate(lines) if "raw accel." in ln)
+    counts = np.array([int(ln) for ln in lines[k + 1:k + 401]])
+    assert lines[k + 401].startswith("End-of-data")
+    assert np.allclose(c.acc, counts * factor, rtol=1e-14, atol=0)  # no offset removed
+    i = int(np.argmax(np.abs(c.acc)))
+    assert counts[i] == -1033406 and i * c.dt == pytest.approx(1.0)  # "Max = 1033406 counts"
+    assert c.acc[i] == pytest.approx(-1033406 * factor, rel=1e-14)  # -2.40682 m/s2
+    assert c.meta["pga_declared"] == pytest.approx(1033406 * factor, rel=1e-14)
+    with pytest.raises(MotionFormatError, match="holds raw counts"):
+        read(NP8040_V0, units="g")
+
+
+@pytest.mark.parametrize("old,new,msg", [
+    ("       1.255300", "    -999.000000", r"line 34: raw counts \(COSMOS V0\) need real-header "
+                                           r"value 42 \(sensor sensitivity, volts/g\) to give "
+                                           r"acceleration, but it is -999"),
+    ("       0.298024", "       0.000000", r"line 30: .* value 22 \(recorder least significant "
+                                           r"bit, microvolts/count\) .* but it is 0$"),
+    ("    -999.000000       1.000000", "    -999.000000       0.000000",
+     r"line 35: .* value 47 \(gain\) .* but it is 0$"),
+])
+def test_cosmos_v0_missing_conversion_values(tmp_path, old, new, msg):
+    from typer.testing import CliRunner
+
+    from murus.cli import app
+
+    p = tmp_path / "raw.V0c"
+    text = NP8040_V0.read_text()
+    assert text.count(old) == 1
+    p.write_text(text.replace(old, new))
+    with pytest.raises(MotionFormatError, match="raw.V0c " + msg):
+        read(p)
+    r = CliRunner().invoke(app, ["motion", "info", str(p)])
+    assert r.exit_code == 2
+    assert len(r.stderr.strip().splitlines()) == 1 and "raw.V0c line" in r.stderr
 
 
 # --------------------------------------------------------------------- unrecognised formats

@@ -54,7 +54,7 @@ def _load(file: Path, units: str | None, dt: float | None, channel: str | None =
 
 
 UNITS_HELP = "Units of a CSV/text file without a '# units:' line: g, m/s2 or cm/s2."
-FORMATS_HELP = ("Record file: PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net "
+FORMATS_HELP = ("Record file: PEER AT2, ESM ASCII, COSMOS V0/V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net "
                 "ASCII, CSV/text (detected from the content).")
 CHANNEL_HELP = ("Channel of a multi-channel file: its number (2), orientation as written "
                 "('360 Deg', 'Up', 'E-W'), azimuth (90) or N, E, Z. Default: the first "

@@ -11,10 +11,15 @@ Formats, chosen by content (then extension) unless ``format`` is given:
     header lines (``SAMPLING_INTERVAL_S``, ``NDATA``, ``UNITS``, ``DATA_TYPE`` ...) followed by
     one value per line.
 ``cosmos``
-    COSMOS Strong-Motion Data Format (v1.20) V1 (uncorrected) or V2 (processed) file: 14 text
-    header lines, an integer header, a real header (value 62 is the sampling interval in ms),
-    comment lines and a data block "N acceleration pts, approx T secs, units=cm/sec2 (04),
-    Format=(...)". V0 files in raw counts are refused (they need the instrument response).
+    COSMOS Strong-Motion Data Format (v1.20) V0 (raw counts), V1 (uncorrected) or V2
+    (processed) file: 14 text header lines, an integer header, a real header (value 62 is the
+    sampling interval in ms), comment lines and a data block "N acceleration pts, approx T
+    secs, units=cm/sec2 (04), Format=(...)". V0 counts (units=counts(50)) are converted with
+    real-header values 22 (recorder LSB, µV/count), 42 (sensor sensitivity, V/g) and 47 (gain,
+    1 when unknown), as gmprocess does: a = counts x LSB x 1e-6 / gain / sensitivity x
+    ``murus.G`` (``meta["units_in"] = "counts"``, ``meta["conversion"]`` in m/s² per count);
+    no offset is subtracted (the recorder's DC offset stays in the series, as in gmprocess:
+    baseline-correct before use), and a missing (-999) or zero LSB or sensitivity is refused.
     Files holding several channels one after the other are read channel by channel;
     integer-header value 54 is the orientation code (1-360 azimuth from north, 400-402
     vertical, other codes no azimuth; when unknown, value 55 relative to the structure or the
@@ -231,7 +236,7 @@ def detect_format(path, text: str | None = None) -> str:
     )
 
 
-_FORMAT_NAMES = ("PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII, "
+_FORMAT_NAMES = ("PEER AT2, ESM ASCII, COSMOS V0/V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII, "
                  "CSV/text columns, and SAC and miniSEED with ObsPy")
 
 
@@ -446,6 +451,33 @@ _COSMOS_COUNT = re.compile(r"^\s*(\d+)\s+(.*)$")
 _COSMOS_BLOCK = re.compile(r"^\s*\d+\s+.*\bunits\s*=", re.IGNORECASE)
 
 
+def _cosmos_counts_factor(src: _Src, reals, k_real: int, nl_real: int) -> float:
+    """m/s² per count of a COSMOS V0 channel from its real header (COSMOS v1.20 numbering,
+    1-based; the same values gmprocess reads, gmprocess/io/cosmos/core.py): value 22 the
+    recorder's least significant bit [µV/count], value 42 the sensor sensitivity [V/g],
+    value 47 the gain (optional, 1 when unknown). a = counts x LSB x 1e-6 / gain /
+    sensitivity x murus.G. Nothing is subtracted (as in gmprocess): the recorder's DC offset
+    stays in the series (remove it, or baseline-correct, before use).
+    A missing (-999) or zero LSB or sensitivity, or a zero gain, is refused on its line."""
+    per_line = -(-len(reals) // max(nl_real, 1))
+
+    def value(idx: int, what: str, optional: bool = False) -> float:
+        line = k_real + 2 + idx // per_line if idx < len(reals) else k_real + 1
+        v = float(reals[idx]) if idx < len(reals) else -999.0
+        if optional and v == -999.0:
+            return 1.0
+        if v in (-999.0, 0.0) or not math.isfinite(v):
+            raise src.err(line, f"raw counts (COSMOS V0) need real-header value {idx + 1} "
+                                f"({what}) to give acceleration, but it is "
+                                f"{'missing' if idx >= len(reals) else _num(v)}")
+        return v
+
+    lsb = value(21, "recorder least significant bit, microvolts/count")
+    sens = value(41, "sensor sensitivity, volts/g")
+    gain = value(46, "gain", optional=True)
+    return lsb * 1e-6 / gain / sens * G
+
+
 def _read_cosmos(src: _Src, units: str | None, dt_arg: float | None) -> GroundMotion:
     return _cosmos_channel(src, units, dt_arg, 0)[0]
 
@@ -503,6 +535,7 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
         raise src.err(k + 1, "integer header line does not give its number of lines")
     ints, i = _fixed_width_values(src, k + 1, nl_int, nint, fmt_int, "integer header")
     nreal, nl_real, fmt_real = block_line(i, "real header")
+    k_real = i
     if "real-header" not in lines[i].lower() or nl_real is None:
         raise src.err(i + 1, "expected 'Real-header values follow on N lines'")
     reals, i = _fixed_width_values(src, i + 1, nl_real, nreal, fmt_real, "real header")
@@ -520,12 +553,21 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
     um = re.search(r"units\s*=\s*([^\s(,]+)", data_hdr, re.IGNORECASE)
     if um is None:
         raise src.err(i + 1, "data header does not declare units")
-    if um.group(1).lower().startswith("count"):
-        raise src.err(i + 1, "raw counts (COSMOS V0): murus needs acceleration, read the V1 "
-                             "or V2 file of this record")
-    # CGS writes "units=g.     (02)": the period ends the word, it is not part of the unit
-    utok = um.group(1).rstrip(".")
-    uname = _check_units(src, normalize_units(utok, f"{src.name} line {i + 1}"), units, i + 1)
+    counts = um.group(1).lower().startswith("count")
+    if counts:
+        # raw counts (COSMOS V0): converted with the recorder and sensor constants of the real
+        # header (see _cosmos_counts_factor); no unit can be imposed on them
+        if units is not None:
+            raise src.err(i + 1, f"the file holds raw counts (COSMOS V0), converted with its "
+                                 f"header constants, but units {units} were given")
+        uname = "counts"
+        scale = _cosmos_counts_factor(src, reals, k_real, nl_real)
+    else:
+        # CGS writes "units=g.     (02)": the period ends the word, it is not part of the unit
+        utok = um.group(1).rstrip(".")
+        uname = _check_units(src, normalize_units(utok, f"{src.name} line {i + 1}"), units,
+                             i + 1)
+        scale = UNITS[uname]
     if len(reals) < 62:
         raise src.err(k + 1, "real header has fewer than 62 values (no sampling interval)")
     dt_ms = float(reals[61])
@@ -606,16 +648,22 @@ def _cosmos_channel(src: _Src, units: str | None, dt_arg: float | None, start: i
     nxt = stop
     while nxt < len(lines) and "end-of-data" in lines[nxt].lower():
         nxt += 1
-    acc = np.asarray(vals) * UNITS[uname]
-    # real header 64: maximum of the series, in its units (-999 when not given): warn if the
+    if counts:
+        meta["conversion"] = scale  # m/s² per count
+        meta["lsb_uv"] = float(reals[21])
+        meta["sensitivity_v_per_g"] = float(reals[41])
+        meta["gain"] = float(reals[46]) if len(reals) > 46 and reals[46] != -999 else 1.0
+    acc = np.asarray(vals) * scale
+    # real header 64: maximum of the series, in its units (-999 when not given; counts in a V0
+    # file, where no offset is removed, so it compares with the raw counts): warn if the
     # data disagree beyond rounding (the data are authoritative)
     if len(reals) > 63 and reals[63] != -999:
-        declared = abs(float(reals[63])) * UNITS[uname]
+        declared = abs(float(reals[63])) * scale
         meta["pga_declared"] = declared
         actual = float(np.max(np.abs(acc)))
         if not math.isclose(declared, actual, rel_tol=1e-3, abs_tol=1e-9):
             warnings.warn(f"{src.name} line {i + 1}: declared maximum {reals[63]:g} (real "
-                          f"header 64) differs from the data ({actual / UNITS[uname]:.6g})",
+                          f"header 64) differs from the data ({actual / scale:.6g})",
                           stacklevel=3)
     return _make(src, acc, dt, meta), nxt
 
@@ -877,7 +925,7 @@ def read(path, units: str | None = None, dt: float | None = None, scale: float =
     Parameters
     ----------
     path : str or Path
-        Record file: PEER AT2, ESM ASCII, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII,
+        Record file: PEER AT2, ESM ASCII, COSMOS V0/V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII,
         CSV/text (see the module docstring and :mod:`murus.motion.networks`).
     units : {"g", "m/s2", "cm/s2"}, optional
         Units of a CSV/text file that does not declare them; for the other formats, a check
