@@ -52,7 +52,7 @@ root_doc = "index"
 exclude_patterns = [
     "_build", "_intersphinx", "_ext", "_generated", "**.ipynb_checkpoints",
     # pages of the repository included into site pages, not pages of their own
-    "retaining_backfills.md",
+    "retaining_backfills.md", "limit_analysis.md", "mechanisms.md",
     "gallery/*.py", "gallery/*.ipynb", "gallery/*.md5", "gallery/*.zip", "gallery/*.json",
 ]
 

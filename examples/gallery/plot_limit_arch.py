@@ -1,6 +1,6 @@
 """
 Minimum thickness of a semicircular arch by limit analysis (murus.limit)
-=======================================================================
+========================================================================
 
 A semicircular arch of voussoirs on its own weight stands only if its thickness exceeds a
 minimum: t/R = 0.1075 for the continuous arch (Milankovitch; Heyman's 0.106), approached from
