@@ -446,3 +446,51 @@ def test_continuum_backfill_options_reach_collapse_run():
     with pytest.raises(CaseError, match=r"size: not an option of the discrete"):
         behaviour_study(dict(base, numerics={"backfill": "discrete",
                                              "backfill_options": {"size": 0.01}}))
+
+
+@pytest.mark.parametrize("name", ["mockup_1.3", "mockup_1.7", "mockup_2.3", "mockup_2.7",
+                                  "mockup_3", "mockup_3.3", "mockup_2.7_phi50",
+                                  "mockup_2.7_phi55"])
+def test_table3_case_files_are_the_validated_runs(name):
+    """The case files of examples/retaining/savalle2022_table3/ (issue 18, item 7) resolve to
+    the nominal runs of the continuum validation (validation/retaining_continuum.py): the
+    same wall (preset, courses, backfill friction) and the same keywords of collapse_run."""
+    import sys
+
+    sys.path.insert(0, str(EXAMPLE.parents[2] / "validation"))
+    try:
+        import retaining_continuum as rc
+    finally:
+        sys.path.pop(0)
+    spec = rc.runs()
+    key = {"mockup_2.7_phi50": "mock_2.7_phi50_r0",
+           "mockup_2.7_phi55": "mock_2.7_phi55_r0"}.get(name, name.replace("mockup", "mock")
+                                                        + "_r0")
+    s = spec[key]
+    wall = rc._wall(s)
+    assert s["kw"] == {} and s["run"] == 0  # the nominal run: collapse_run's defaults, and
+    kw = {"A_rate": rc.A_MOCK, "t_max": rc.MOCK_TMAX}  # the mock-ups' slope and length
+    st = load_behaviour_study(EXAMPLE.parent / "savalle2022_table3" / f"{name}.toml")
+    assert st.wall.name == wall.name
+    assert st.wall.stone_height == pytest.approx(wall.stone_height, rel=1e-12)
+    assert st.wall.backfill_friction_deg == wall.backfill_friction_deg
+    assert st.check_ratios == [] and st.cases[0] == (s["f"], "none")
+    got = st.case_kwargs(st.tasks()[0])
+    for k in ("A_rate", "t_max"):
+        assert got[k] == pytest.approx(kw[k], rel=1e-12)
+    # the rest are collapse_run's defaults in both
+    assert got["backfill"] == "continuum" and got["xi"] == 0.05
+    assert set(got) - {"A_rate", "t_max", "backfill", "xi", "A_pseudo"} == set()
+
+
+def test_a_rate_option_reaches_collapse_run():
+    """--a-rate (command-line form) and [numerics] A_rate: the slope of the S2 envelope of
+    every S2 run; the S1 checks keep their parent's slope."""
+    from murus.retaining.cli import _options_case
+
+    data = _options_case("mockup-1.3", "5", None, "0.6", 0.011, None, None, None, None, None,
+                         a_rate=0.1307)
+    st = behaviour_study(data)
+    s2, s1 = st.tasks()[0], st.tasks()[1]
+    assert st.case_kwargs(s2)["A_rate"] == 0.1307
+    assert st.case_kwargs(s1, {"summary": {"A_col": 2.0, "A_rate": 0.5}})["A_rate"] == 0.5

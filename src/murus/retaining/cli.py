@@ -382,7 +382,8 @@ _BF_KEYS = {"wall.preset": "--preset", "wall.stone_height": "--stone-height",
             "wall.base": "--base", "cases.frequencies": "--frequencies",
             "cases.vertical": "--vertical", "cases.check_ratios": "--check-ratios",
             "numerics.stiffness_scale": "--stiffness-scale", "numerics.xi": "--xi",
-            "numerics.threshold": "--threshold", "numerics.t_max": "--t-max"}
+            "numerics.A_rate": "--a-rate", "numerics.threshold": "--threshold",
+            "numerics.t_max": "--t-max"}
 
 
 def _numbers(text: str, option: str) -> list[float]:
@@ -396,7 +397,7 @@ def _numbers(text: str, option: str) -> list[float]:
 
 
 def _options_case(preset_name, frequencies, vertical, check_ratios, stone_height,
-                  stiffness_scale, xi, threshold, t_max, base) -> dict:
+                  stiffness_scale, xi, threshold, t_max, base, a_rate=None) -> dict:
     """The case-file tables of the command-line form (defaults: 3, 5, 10 Hz, no vertical
     component, checks at 0.6 and 0.7 A_col, the numerics of collapse_run)."""
     freqs = _numbers(frequencies if frequencies is not None else "3,5,10", "--frequencies")
@@ -413,7 +414,8 @@ def _options_case(preset_name, frequencies, vertical, check_ratios, stone_height
     if check_ratios is not None:
         cases["check_ratios"] = _numbers(check_ratios, "--check-ratios")
     num = {k: v for k, v in (("stiffness_scale", stiffness_scale), ("xi", xi),
-                             ("threshold", threshold), ("t_max", t_max)) if v is not None}
+                             ("A_rate", a_rate), ("threshold", threshold), ("t_max", t_max))
+           if v is not None}
     return {"wall": wall, "cases": cases, "numerics": num}
 
 
@@ -449,9 +451,13 @@ def behaviour_factor_cmd(
                                               "file: course height [m] (mock-ups)."),
     stiffness_scale: float | None = typer.Option(None, "--stiffness-scale", help="Without a "
                                                  "case file: joint stiffness factor (default "
-                                                 "1e-3)."),
+                                                 "1e-2 on the continuum backfill, 1e-3 on the "
+                                                 "thrust and discs)."),
     xi: float | None = typer.Option(None, "--xi", help="Without a case file: damping ratio "
-                                    "(default 0.10)."),
+                                    "(default 0.05, the paper's effective 5 %)."),
+    a_rate: float | None = typer.Option(None, "--a-rate", help="Without a case file: slope A "
+                                        "of the S2 envelope [m/s³] (default A_pseudo / 2.5 "
+                                        "s; the mock-ups of Table 3: 0.1307)."),
     threshold: float | None = typer.Option(None, "--threshold", help="Without a case file: "
                                            "collapse threshold, fraction of H."),
     t_max: float | None = typer.Option(None, "--t-max", help="Without a case file: end of an "
@@ -471,8 +477,8 @@ def behaviour_factor_cmd(
 
     legacy = {"--preset": preset_name, "--frequencies": frequencies, "--vertical": vertical,
               "--check-ratios": check_ratios, "--stone-height": stone_height,
-              "--stiffness-scale": stiffness_scale, "--xi": xi, "--threshold": threshold,
-              "--t-max": t_max, "--base": base}
+              "--stiffness-scale": stiffness_scale, "--xi": xi, "--a-rate": a_rate,
+              "--threshold": threshold, "--t-max": t_max, "--base": base}
     given = [k for k, v in legacy.items() if v is not None]
     errors = (CaseError, StudyError, ImportError, OSError, *_collapse_errors())
     with guard(*errors, first_line=True):
@@ -487,7 +493,8 @@ def behaviour_factor_cmd(
             if out is None:
                 raise ValueError("--out is required without a case file")
             data = _options_case(preset_name, frequencies, vertical, check_ratios,
-                                 stone_height, stiffness_scale, xi, threshold, t_max, base)
+                                 stone_height, stiffness_scale, xi, threshold, t_max, base,
+                                 a_rate)
             try:
                 st = behaviour_study(data)
             except CaseError as exc:  # name the option, not the table key

@@ -220,6 +220,7 @@ class NumericsCfg(Strict):
 
     xi: float | None = Field(default=None, ge=0, lt=1, **_FLOAT)
     stiffness_scale: float | None = Field(default=None, gt=0, **_FLOAT)
+    A_rate: float | None = Field(default=None, gt=0, **_FLOAT)
     t_pseudo: float | None = Field(default=None, gt=0, **_FLOAT)
     t_max: float | None = Field(default=None, gt=0, **_FLOAT)
     tail: float | None = Field(default=None, ge=0, **_FLOAT)
