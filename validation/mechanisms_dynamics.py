@@ -50,7 +50,7 @@ def walls() -> list[dict]:
     and the storeys and floors of the code check."""
     from murus.rocking import restrained_wall_block
     from murus.rocking.body import RigidBlock
-    from murus.rocking.design import STEEL_E, tie_design
+    from murus.rocking.design import S275_FU, STEEL_E, tie_design
 
     out = []
     for k in range(1, 7):
@@ -67,7 +67,7 @@ def walls() -> list[dict]:
                       masses=((f["loads"][0] / G, h1), (f["loads"][1] / G, h1 + h2)),
                       name="two-storey façade")
     # the tie rod: a 10 m S275 rod whose design force is the tie's strength (EURODYN (2020) §3)
-    sigma_d = 0.7 * 430e6 / 1.05
+    sigma_d = 0.7 * S275_FU / 1.05  # EURODYN (2020), §3, as tie_design
     area = f["tie"] / sigma_d
     out.append(dict(name="two-storey façade", body=body, tie_height=h1, T=f["tie"],
                     K=STEEL_E * area / 10.0,

@@ -23,6 +23,7 @@ from murus.mechanisms.demand import Building, EC8Spectrum
 from murus.motion.artificial import generate_ec8
 from murus.rocking import RockingModel, SpringBed, Tie, simulate_batch
 from murus.rocking.body import RigidBlock
+from murus.rocking.design import S275_FU, STEEL_E
 
 h1, h2, s, rho = 3.5, 3.2, 0.5, 2000.0          # m, m, m, kg/m³
 loads, tie = (6000.0, 4500.0), 6000.0           # N per metre of wall
@@ -45,8 +46,8 @@ print(f"code: alpha0 = {base.alpha0:.3f}, e* = {base.e_star:.3f}, "
 # -- 2. the dynamics
 body = RigidBlock(width=s, height=h1 + h2, density=rho,
                   masses=((loads[0] / G, h1), (loads[1] / G, h1 + h2)))
-area = tie / (0.7 * 430e6 / 1.05)               # the rod whose design force is the tie's
-model = RockingModel(body, tie=Tie(210e9 * area / 10.0, h1, yield_force=tie),
+area = tie / (0.7 * S275_FU / 1.05)             # the S275 rod whose design force is the tie's
+model = RockingModel(body, tie=Tie(STEEL_E * area / 10.0, h1, yield_force=tie),
                      transverse_walls=SpringBed(4.5e8, body.height), motion_sides="one")
 records = generate_ec8(1.0, "B", 1, n=7, seed=1)  # compatible with agR = 1 m/s²
 levels = np.round(np.arange(0.025, 1.0001, 0.025), 4)  # agR [g]

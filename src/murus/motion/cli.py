@@ -458,20 +458,10 @@ def rotd(
             (tmp / "rotd.csv").write_text("\n".join(lines) + "\n")
             import matplotlib.pyplot as plt
 
-            from murus.motion.plots import _ax
+            from murus.motion.plots import plot_rotd
 
-            ax = _ax(None)
-            ax.plot(T, sa, lw=0.7, color="0.6", label=f"component a ({a.name})")
-            ax.plot(T, sb, lw=0.7, color="0.6", ls="--", label=f"component b ({b.name})")
-            ax.plot(T, sp[50], lw=1.4, color="C0", label="RotD50")
-            ax.plot(T, sp[100], lw=1.4, color="C3", label="RotD100")
-            ax.set_xscale("log")
-            ax.set_xlabel("period [s]")
-            ax.set_ylabel(f"PSA [m/s²] ({damping:.0%} damping)")
-            ax.set_title("RotDnn spectra (Boore 2010)")
-            ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=8)
+            ax = plot_rotd(sp, sa, sb, names=(a.name, b.name))
             ax.figure.savefig(tmp / "rotd.png", dpi=120)
             plt.close(ax.figure)
-    typer.echo(f"wrote {out}/rotd.csv and {out}/rotd.png (PGA-period RotD50 "
+    typer.echo(f"wrote {out}/rotd.csv and {out}/rotd.png (at T = {T[0]:g} s: RotD50 "
                f"{sp[50][0]:.4g} m/s², RotD100 {sp[100][0]:.4g} m/s²)")

@@ -105,8 +105,8 @@ def plot_husid(motion, ax=None):
     t = motion.time
     ax.plot(t, h, color="k", lw=1.0)
     t5 = float(np.interp(0.05, h, t))
-    ax.axvspan(t5, t5 + d5_95(motion), color="tab:blue", alpha=0.15,
-               label=f"D5-95 = {d5_95(motion):.2f} s")
+    d = d5_95(motion)
+    ax.axvspan(t5, t5 + d, color="tab:blue", alpha=0.15, label=f"D5-95 = {d:.2f} s")
     ax.axhline(0.05, color="0.6", lw=0.6, ls="--")
     ax.axhline(0.95, color="0.6", lw=0.6, ls="--")
     ax.set_xlabel("time [s]")
@@ -174,3 +174,23 @@ def plot_record(motion, spectra, measures: dict | None = None):
         title += "\n" + ",  ".join(parts[:half]) + "\n" + ",  ".join(parts[half:])
     fig.suptitle(title, fontsize=10)
     return fig
+
+
+def plot_rotd(spec, psa_a=None, psa_b=None, ax=None, names=("a", "b")):
+    """RotD50 and RotD100 [m/s²] against period [s] (a :class:`murus.motion.components.
+    RotDSpectrum`), with the spectra of the two components when given (same periods)."""
+    ax = _ax(ax)
+    T = spec.period
+    if psa_a is not None:
+        ax.plot(T, psa_a, lw=0.7, color="0.6", label=f"component a ({names[0]})")
+    if psa_b is not None:
+        ax.plot(T, psa_b, lw=0.7, color="0.6", ls="--", label=f"component b ({names[1]})")
+    ax.plot(T, spec[50], lw=1.4, color="C0", label="RotD50")
+    ax.plot(T, spec[100], lw=1.4, color="C3", label="RotD100")
+    ax.set_xscale("log")
+    ax.set_xlabel("period [s]")
+    ax.set_ylabel(f"PSA [m/s²] ({spec.damping:.0%} damping)")
+    ax.set_title("RotDnn spectra (Boore 2010)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax

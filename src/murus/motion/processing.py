@@ -337,7 +337,7 @@ def resample(motion: GroundMotion, dt: float, antialias: bool = True,
         raise ValueError(f"resampling step {dt:g} s is longer than the record "
                          f"({motion.duration:g} s)")
     m = motion
-    if antialias and dt > motion.dt * (1 + 1e-9) and 0.4 / dt < 0.5 / motion.dt:
+    if antialias and dt > motion.dt * (1 + 1e-9):  # then 0.4 / dt is below the old Nyquist
         m = _filter(motion, "lowpass", 0.4 / dt, order)
     return m.resampled(dt)
 

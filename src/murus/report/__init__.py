@@ -15,8 +15,12 @@ study's ``study.json``, a lab ``report.md``; a folder of no known kind still get
 (every JSON as a table, every CSV's head, every figure).
 """
 
-from __future__ import annotations
+from murus._lazy import lazy_exports
 
-from murus.report.build import KINDS, build_report, detect, write_report
+_EXPORTS = {"KINDS": "build", "build_report": "build", "detect": "build",
+            "write_report": "build"}
 
-__all__ = ["KINDS", "build_report", "detect", "write_report"]
+__all__ = sorted(_EXPORTS)
+
+# lazy: the command module imports this package on the `murus --help` path
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
