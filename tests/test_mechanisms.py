@@ -185,6 +185,211 @@ def test_nonlinear_check_single_block():
     assert nl.demand == pytest.approx(sp.SDe(T, 0.08), rel=5e-3)
 
 
+def test_ntc_displacement_spectrum_beyond_TE():
+    # NTC 2018 §3.2.3.2.3: SDe = Se (T / 2 pi)^2 up to T_E, eq. 3.2.11 from T_E to T_F, then
+    # d_g = 0.025 ag S TC TD (eq. 3.2.12); Table 3.2.VII: soil A T_E = 4.5 s, T_F = 10 s
+    ag, F0, Tc = 0.25 * G, 2.5, 0.30
+    sp = NTCSpectrum(ag, F0, Tc, "A")
+    TC, TD = 0.30, 4.0 * 0.25 + 1.6
+    dg = 0.025 * ag * 1.0 * TC * TD
+    assert (sp.TE, sp.TF) == (4.5, 10.0) and sp.dg == pytest.approx(dg, rel=1e-12)
+    eta = math.sqrt(10 / 13)   # 8 %
+    assert sp.SDe(4.4, 0.08) == pytest.approx(ag * eta * F0 * TC * TD / (4 * math.pi ** 2),
+                                              rel=1e-12)
+    assert sp.SDe(7.0, 0.08) == pytest.approx(
+        dg * (F0 * eta + (1 - F0 * eta) * (7.0 - 4.5) / (10.0 - 4.5)), rel=1e-12)
+    assert sp.SDe(12.0, 0.08) == pytest.approx(dg, rel=1e-12)
+    assert NTCSpectrum(ag, F0, Tc, "C").TE == 6.0 and NTCSpectrum(ag, F0, Tc, "B").TE == 5.0
+
+
+# --- full chains reproduced by hand (vertical flexure, corner) ------------------------------------
+#
+# Both cases are written so that the capacity curve has a closed form; every number below comes
+# from the formulas of the Circolare 2019 §C8.7.1.2.1 and NTC 2018 §3.2.3.2 evaluated with plain
+# arithmetic in the test (murus supplies only the results compared). Tolerances: 1e-9 for what
+# murus evaluates in closed form (alpha0, e*, M*, a0*, floor acceleration: its virtual
+# displacements are central differences, error ~1e-10), 1e-6 for d0* (bisection) and for what it
+# reads from its capacity curve sampled at n = 2001 points (a(d), T, demand: linear interpolation
+# between points 5e-4 d0 apart, relative error of order (5e-4)^2 / 8 = 3e-8). Measured: <= 1.4e-8.
+
+def _ntc_by_hand(ag, F0, Tc_star, soil):
+    """Se(T, xi) and SDe(T, xi) of NTC 2018 eqs. 3.2.2-3.2.12 for soils A and B (T1 topography)."""
+    a = ag / G
+    SS = {"A": 1.0, "B": min(max(1.40 - 0.40 * F0 * a, 1.0), 1.20)}[soil]
+    CC = {"A": 1.0, "B": 1.10 * Tc_star ** -0.20}[soil]
+    TE, TF = {"A": (4.5, 10.0), "B": (5.0, 10.0)}[soil]
+    TC = CC * Tc_star
+    TB, TD = TC / 3, 4.0 * a + 1.6
+
+    def Se(T, xi):
+        eta = max(math.sqrt(10 / (5 + 100 * xi)), 0.55)
+        if T < TB:
+            return ag * SS * eta * F0 * (T / TB + (1 - T / TB) / (eta * F0))
+        if T < TC:
+            return ag * SS * eta * F0
+        if T < TD:
+            return ag * SS * eta * F0 * TC / T
+        return ag * SS * eta * F0 * TC * TD / T ** 2
+
+    def SDe(T, xi):
+        eta = max(math.sqrt(10 / (5 + 100 * xi)), 0.55)
+        dg = 0.025 * ag * SS * TC * TD
+        if T <= TE:
+            return Se(T, xi) * T ** 2 / (4 * math.pi ** 2)
+        if T <= TF:
+            return dg * (F0 * eta + (1 - F0 * eta) * (T - TE) / (TF - TE))
+        return dg
+
+    return Se, SDe, ag * SS
+
+
+def test_vertical_flexure_at_height_by_hand():
+    # A wall of the second storey, restrained at both floors (z0 = 3.5 m in a two-storey
+    # building, H = 6.7 m, T1 = 0.25 s), hinge at mid-height h1 = h/2, the floor above bearing
+    # N at mid-thickness (no horizontal inertia: it loads the top restraint).
+    h, t, rho, N, z0 = 3.2, 0.45, 2000.0, 15.0e3, 3.5
+    h1 = h / 2
+    W = rho * G * t * h
+    FC = 1.35
+    # Kinematics (x outward, y up, origin at the outer face of the base A): the lower block turns
+    # by theta about A, B = (-t cos + h1 sin, t sin + h1 cos); with h1 = h2 the upper block is the
+    # mirror of the lower one about the horizontal through B, so C = (0, 2 yB), both centroids
+    # have x = xB / 2, and N (mirror of the mid-bottom point (-t/2, 0)) has y = 2 yB - t/2 sin.
+    def yB_d(th):                                                # d yB / d theta
+        return t * math.cos(th) - h1 * math.sin(th)
+
+    def xB_d(th):                                                # d xB / d theta
+        return t * math.sin(th) + h1 * math.cos(th)
+
+    # virtual work, eq. [C8.7.1.1]: alpha (W xB'/2) = (W/2)(yB'/2) + (W/2)(3 yB'/2)
+    #                                                  + N (2 yB' - t/2 cos)
+    def alpha(th):
+        return (W * yB_d(th) + N * (2 * yB_d(th) - 0.5 * t * math.cos(th))) / (W * xB_d(th) / 2)
+
+    a0 = alpha(0.0)
+    assert a0 == pytest.approx((W * t + 1.5 * N * t) / (W * h1 / 2), rel=1e-12)
+    # e* (eq. C8.7.1.5): both masses move by h1/2 per unit rotation -> e* = 1, M* = W / g
+    e, M = 1.0, W / G
+    a0s = a0 * G / (e * FC)                                      # eq. [C8.7.1.8]
+    # collapse where alpha = 0: tan theta0 = t (W + 1.5 N) / ((W + 2 N) h1)
+    th0 = math.atan(t * (W + 1.5 * N) / ((W + 2 * N) * h1))
+    assert alpha(th0) == pytest.approx(0.0, abs=1e-12)
+    # control point: centroid of the masses, x = xB/2; eq. [C8.7.1.4] factor = 1
+    def dstar(th):
+        return 0.5 * (t - t * math.cos(th) + h1 * math.sin(th))
+
+    d0 = dstar(th0)
+    # SLV: d = 0.4 d0 -> h1 sin - t cos = 2 d - t -> theta = beta + asin((2 d - t) / R)
+    R, beta = math.hypot(t, h1), math.atan(t / h1)
+    d_slv = 0.4 * d0
+    th = beta + math.asin((2 * d_slv - t) / R)
+    assert dstar(th) == pytest.approx(d_slv, rel=1e-12)
+    a_slv = alpha(th) * G / (e * FC)
+    T_slv = 1.68 * math.pi * math.sqrt(d_slv / a_slv)            # eq. [C8.7.1.10]
+    # demand at z0 (Circolare 2019 §C7.2.3, first mode, n = 2: gamma1 = 6/5, psi1 = z0 / H,
+    # xi1 = 5 %): a_Z = Se(T1) gamma psi sqrt(1 + 0.0004 xi1%^2)     eqs. [C7.2.7], [C7.2.10]
+    Se, SDe, pga = _ntc_by_hand(0.2 * G, 2.4, 0.31, "B")
+    T1, H, n = 0.25, 6.7, 2
+    aZ = Se(T1, 0.05) * 3 * n / (2 * n + 1) * (z0 / H) * math.sqrt(1 + 0.0004 * 25)
+    # floor spectrum eq. [C7.2.6] (a = 0.8, b = 1.1; amplification 1.1 xi1^-0.5 eta(xi) with
+    # xi1 = 0.05 as a fraction, the reading documented in murus.mechanisms.demand)
+    def SeZ(T, xi):
+        eta = math.sqrt(10 / (5 + 100 * xi))
+        A = 1.1 * 0.05 ** -0.5 * eta
+        if T < 0.8 * T1:
+            v = A * aZ / (1 + (A - 1) * (1 - T / (0.8 * T1)) ** 1.6)
+        elif T < 1.1 * T1:
+            v = A * aZ
+        else:
+            v = A * aZ / (1 + (A - 1) * (T / (1.1 * T1) - 1) ** 1.2)
+        return max(v, Se(T, xi)) if T > T1 else v             # eq. [C7.2.5]
+
+    k = 1 / (4 * math.pi ** 2)
+    assert T_slv > 1.1 * T1
+    # eq. [C8.7.1.12]: S_eZ(T) T^2 / 4 pi^2, not below S_eZ(T1)(b T1)^2 / 4 pi^2 beyond b T1; murus
+    # also keeps the ground SDe(T) as a floor
+    dem = max(SeZ(T_slv, 0.08) * T_slv ** 2 * k, SeZ(T1, 0.08) * (1.1 * T1) ** 2 * k,
+              SDe(T_slv, 0.08))
+    # nonlinear SLV check (§C8.7.1.2.1.8): ratio = d / demand, not below the activation ratio
+    act = a0s / max(pga, aZ)
+    ratio = max(d_slv / dem, act)
+
+    sp = NTCSpectrum(0.2 * G, 2.4, 0.31, "B")
+    vf = VerticalFlexure(height=h, thickness=t, weight=W, h1=h1, top_load=N, z0=z0)
+    res = analyse(vf, Seismic({"SLV": sp}, Building(T1=T1, height=H, storeys=n), FC=FC),
+                  n=2001)
+    lin, nl = res.checks
+    assert res.alpha0 == pytest.approx(a0, rel=1e-9)
+    assert res.e_star == pytest.approx(e, rel=1e-9)
+    assert res.M_star == pytest.approx(M, rel=1e-9)
+    assert res.a0_star == pytest.approx(a0s, rel=1e-9)
+    assert res.d0_star == pytest.approx(d0, rel=1e-6)            # bisection on theta0
+    assert lin.details["a_floor"] == pytest.approx(aZ, rel=1e-9)
+    assert lin.demand == pytest.approx(max(pga, aZ) / 2, rel=1e-9)
+    assert nl.capacity == pytest.approx(d_slv, rel=1e-6)
+    assert nl.details["a_at_d"] == pytest.approx(a_slv, rel=1e-6)
+    assert nl.details["T"] == pytest.approx(T_slv, rel=1e-6)
+    assert nl.demand == pytest.approx(dem, rel=1e-6)
+    assert nl.details["displacement_ratio"] == pytest.approx(d_slv / dem, rel=1e-6)
+    assert nl.ratio == pytest.approx(ratio, rel=1e-6)
+
+
+def test_corner_wedge_nonlinear_by_hand():
+    # Corner wedge at ground level with a roof load P at the top (at the centroid of the
+    # wedge's weights in plan, moving with it), soil A: its long periods reach the reduced
+    # displacement spectrum of NTC 2018 eq. 3.2.11 at the SLC.
+    h, t, rho, phi, P, FC = 6.7, 0.45, 2000.0, 30.0, 6.0e3, 1.35
+    L = h * math.tan(math.radians(phi))
+    r2 = math.sqrt(2.0)
+    Wi = rho * G * t * L * h / 2                                 # each triangle
+    s1, s2 = (L / 3 + t / 2) / r2, (t / 2 + t + L / 3) / r2    # distances along the bisector
+    W, s = 2 * Wi, (s1 + s2) / 2
+    k = 2 * h / 3                                                # height of the triangles' G
+    yb = (W * k + P * h) / (W + P)                               # centroid height of all masses
+    # all masses at the same distance s from the hinge line: the wedge is a block of half-width
+    # s and centroid height yb: alpha(theta) = tan(beta - theta), tan(beta) = s / yb
+    beta = math.atan(s / yb)
+    e = (W * k + P * h) ** 2 / ((W + P) * (W * k ** 2 + P * h ** 2))    # eq. [C8.7.1.5]
+    M = e * (W + P) / G
+    a0 = s / yb
+    a0s = a0 * G / (e * FC)
+    # control point = centroid of the masses: dC(theta) = s - s cos + yb sin; eq. [C8.7.1.4]
+    # factor sum W dx^2 / (dx_C sum W dx) = 1 / e*; dC(beta) = s -> d0* = s / e*
+    d0 = s / e
+    def dstar(th):
+        return (s - s * math.cos(th) + yb * math.sin(th)) / e
+
+    Rr = math.hypot(s, yb)
+    Se, SDe, pga = _ntc_by_hand(0.25 * G, 2.5, 0.30, "A")
+    out = {}
+    for ls, frac, c, xi in (("SLV", 0.4, 1.68, 0.08), ("SLC", 0.6, 1.56, 0.10)):
+        d = frac * d0
+        th = beta - math.asin((1 - e * d / s) * s / Rr)   # s - s cos + yb sin = e d
+        assert dstar(th) == pytest.approx(d, rel=1e-12)
+        a = math.tan(beta - th) * G / (e * FC)
+        T = c * math.pi * math.sqrt(d / a)                # eqs. [C8.7.1.10], [C8.7.1.11]
+        out[ls] = (d, a, T, SDe(T, xi))
+    assert out["SLC"][2] > 4.5 > out["SLV"][2]           # SLC beyond T_E (eq. 3.2.11)
+
+    sp = NTCSpectrum(0.25 * G, 2.5, 0.30, "A")
+    c = CornerOverturning(height=h, t1=t, t2=t, density=rho, crack_angle_deg=phi, roof_load=P)
+    res = analyse(c, Seismic({"SLV": sp, "SLC": sp}, FC=FC), n=2001)
+    assert res.alpha0 == pytest.approx(a0, rel=1e-9)
+    assert res.e_star == pytest.approx(e, rel=1e-9)
+    assert res.M_star == pytest.approx(M, rel=1e-9)
+    assert res.a0_star == pytest.approx(a0s, rel=1e-9)
+    assert res.d0_star == pytest.approx(d0, rel=1e-6)
+    lin = res.checks[0]
+    assert lin.demand == pytest.approx(pga / 2, rel=1e-12)
+    for ch in res.checks[1:]:
+        d, a, T, dem = out[ch.limit_state]
+        assert ch.capacity == pytest.approx(d, rel=1e-6), ch.limit_state
+        assert ch.details["a_at_d"] == pytest.approx(a, rel=1e-6), ch.limit_state
+        assert ch.details["T"] == pytest.approx(T, rel=1e-6), ch.limit_state
+        assert ch.demand == pytest.approx(dem, rel=1e-6), ch.limit_state
+        assert ch.ratio == pytest.approx(max(d / dem, a0s / pga), rel=1e-6), ch.limit_state
+
+
 # --- worked example (hand calculation) ------------------------------------------------------------
 
 def test_hand_example_two_storey():

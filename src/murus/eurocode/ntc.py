@@ -8,7 +8,10 @@ Clauses implemented:
   S_T); S = S_S S_T (eq. 3.2.3); damping correction eta = sqrt(10 / (5 + xi)) >= 0.55 with xi in
   percent (eq. 3.2.4, numbered as cited by the Circolare 2019 §C7.2.3); TC = C_C Tc*,
   TB = TC / 3, TD = 4.0 ag / g + 1.6 s (eqs. 3.2.5-3.2.7 of the NTC 2018 numbering);
-- §3.2.3.2.3 elastic displacement spectrum SDe(T) = Se(T) (T / 2 pi)^2.
+- §3.2.3.2.3 elastic displacement spectrum SDe(T) = Se(T) (T / 2 pi)^2 up to T_E (eq. 3.2.10),
+  then eq. 3.2.11 from T_E to T_F (linear from F0 eta to 1 times d_g) and d_g beyond T_F, with
+  d_g = 0.025 ag S TC TD (eq. 3.2.12) and T_E, T_F of Table 3.2.VII (A: 4.5, 10.0 s; B: 5.0,
+  10.0 s; C, D, E: 6.0, 10.0 s).
 
 The equation numbers other than 3.2.4 are those of the NTC 2018 text as we read it (the 2008
 numbering was shifted by one: 3.2.5 S, 3.2.6 eta, 3.2.7-3.2.9 corners); the clause numbers are
@@ -30,13 +33,18 @@ import numpy as np
 
 from murus.errors import MurusError
 
-__all__ = ["NTCError", "NTCSpectrum", "soil_coefficients", "TOPOGRAPHY", "G_NTC", "PARAMS"]
+__all__ = ["NTCError", "NTCSpectrum", "soil_coefficients", "TOPOGRAPHY", "DISPLACEMENT_CORNERS",
+           "G_NTC", "PARAMS"]
 
 #: gravity used to normalise ag in the formulas of Table 3.2.IV and TD [m/s²]
 G_NTC = 9.81
 
 #: NTC 2018 Table 3.2.V: topographic amplification S_T (value at the top of the relief)
 TOPOGRAPHY = {"T1": 1.0, "T2": 1.2, "T3": 1.2, "T4": 1.4}
+
+#: NTC 2018 Table 3.2.VII: (T_E, T_F) [s] of the displacement spectrum by soil category
+DISPLACEMENT_CORNERS = {"A": (4.5, 10.0), "B": (5.0, 10.0), "C": (6.0, 10.0), "D": (6.0, 10.0),
+                        "E": (6.0, 10.0)}
 
 #: Declared parameters and their limits (name: (low, high, unit)); Tc* and F0 span the values of
 #: the national hazard grid (Allegato B of the NTC 2008: F0 about 2.2-3.0, Tc* 0.13-0.6 s),
@@ -186,6 +194,21 @@ class NTCSpectrum:
         return 4.0 * self.ag / G_NTC + 1.6
 
     @property
+    def TE(self) -> float:
+        """T_E [s], start of the reduced displacement spectrum (Table 3.2.VII)."""
+        return DISPLACEMENT_CORNERS[str(self.soil).strip().upper()][0]
+
+    @property
+    def TF(self) -> float:
+        """T_F [s], start of the constant displacement d_g (Table 3.2.VII)."""
+        return DISPLACEMENT_CORNERS[str(self.soil).strip().upper()][1]
+
+    @property
+    def dg(self) -> float:
+        """Peak ground displacement d_g = 0.025 ag S TC TD [m] (eq. 3.2.12)."""
+        return 0.025 * self.ag * self.S * self.TC * self.TD
+
+    @property
     def pga(self) -> float:
         """Peak ground acceleration ag S [m/s²] (Se at T = 0)."""
         return self.ag * self.S
@@ -219,7 +242,12 @@ class NTCSpectrum:
         return out if out.ndim else float(out)
 
     def SDe(self, T, damping: float = 0.05):
-        """Elastic displacement spectrum SDe(T) = Se(T) (T / 2 pi)^2 [m], NTC 2018 §3.2.3.2.3.
+        """Elastic displacement spectrum SDe(T) [m], NTC 2018 §3.2.3.2.3.
+
+        SDe = Se(T) (T / 2 pi)^2 for T <= T_E (eq. 3.2.10); for T_E < T <= T_F
+        SDe = 0.025 ag S TC TD [F0 eta + (1 - F0 eta) (T - T_E) / (T_F - T_E)] and for T > T_F
+        SDe = d_g (eq. 3.2.11). Just above T_E the ordinate is 0.025 / (1 / 4 pi^2) = 0.987 of
+        the one just below (the code's rounding of 1 / 4 pi^2 = 0.02533 to 0.025).
 
         Parameters
         ----------
@@ -235,4 +263,10 @@ class NTCSpectrum:
         """
         T = np.asarray(T, dtype=float)
         out = np.asarray(self.Se(T, damping)) * (T / (2.0 * math.pi)) ** 2
+        TE, TF, dg = self.TE, self.TF, self.dg
+        if np.any(T > TE):
+            eta = max(math.sqrt(10.0 / (5.0 + 100.0 * damping)), 0.55)
+            fe = self.F0 * eta
+            mid = dg * (fe + (1.0 - fe) * (np.minimum(T, TF) - TE) / (TF - TE))
+            out = np.where(T > TF, dg, np.where(T > TE, mid, out))
         return out if out.ndim else float(out)
