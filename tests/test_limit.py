@@ -116,7 +116,7 @@ def test_tilt_with_cohesion_solves_lambda_equals_sin():
 def test_examples_are_dem_cases_and_match_the_closed_forms():
     from murus.dem.case import build, load_case
 
-    for name in ("arch", "wall_panel"):
+    for name in ("arch", "wall_panel", "ftl_wall3_window"):
         cfg, path, text = load_case(EXAMPLES / "limit" / f"{name}.toml")
         build(cfg, path, text)
     asm = from_case(EXAMPLES / "limit" / "arch.toml")
