@@ -12,7 +12,12 @@ centroid of the blocks above that joint (statics of the rigid part above it); a 
 arch under self-weight stands down to ``t/R = 0.1075`` (Milankovitch 1907, reported by
 Ochsendorf 2002 and Makris & Alexakis 2013; Heyman's approximation 0.106); the pseudo-static
 resistance ``A_pseudo`` of the dry-stone retaining wall DSRW1 by the Coulomb-wedge joint checks of
-:mod:`murus.retaining.pseudostatic` (1.588 m/s², Savalle et al. (2022), Table 8: 1.58).
+:mod:`murus.retaining.pseudostatic` (1.588 m/s², Savalle et al. (2022), Table 8: 1.58); a wall panel
+with an opening (two piers and a lintel) under an overburden on the lintel or a live point load at
+its level, by the virtual work of its sway mechanism.
+
+No published collapse load factor of a wall with an opening could be checked offline: the rows of
+the panel with an opening are closed forms, not a published benchmark (tests/data/limit/README.md).
 """
 
 from __future__ import annotations
@@ -131,6 +136,76 @@ def portal_panel(b=0.4, h_block=0.3, courses=5, opening=1.0, lintel_h=0.3,
     return Assembly.from_polygons(polys, supports=[0], density=RHO, friction_deg=friction_deg)
 
 
+def coursed_wall(pattern, courses_width, unit=0.4, course=0.175, friction_coef=0.65,
+                 density=1000.0) -> Assembly:
+    """A wall of rectangular units laid in courses on a fixed base (block 0), described course by
+    course from the bottom as in the pattern notation of HybriDFEM (Bouckaert et al., public
+    repository thlgrs/HybriDFEM-3.1, ``add_wall``): each course is a list of lengths in units of
+    ``unit`` [m] laid from x = 0, a negative length a gap (an opening).
+
+    Parameters
+    ----------
+    pattern : sequence of sequence of float
+        Courses, bottom first.
+    courses_width : float
+        Width of the base in units (the base spans ``0 .. courses_width * unit``, 1 course high).
+    unit, course : float
+        Unit length and course height [m].
+    friction_coef : float
+        Friction coefficient mu = tan(phi) of every joint [-].
+    density : float
+        [kg/m³].
+
+    Returns
+    -------
+    Assembly
+    """
+    polys = [_rect(0.0, -course, courses_width * unit, course)]
+    for j, line in enumerate(pattern):
+        x = 0.0
+        for n in line:
+            w = abs(float(n)) * unit
+            if n > 0:
+                polys.append(_rect(x, j * course, w, course))
+            x += w
+    return Assembly.from_polygons(polys, supports=[0], density=density,
+                                  friction_deg=math.degrees(math.atan(friction_coef)))
+
+
+#: The wall with one window of the Ferris and Tin-Loi (2001) set as HybriDFEM rebuilds it
+#: (``Examples/Refactored_Legacy/FTL_Walls/Pushover_FTL_Wall3.py``): 11 courses of 0.4 x 0.175 m
+#: units on a 1.6 m base, a window 0.4 m wide through courses 4 to 8 (x = 0.6 .. 1.0 m).
+FTL_WALL3_PATTERN = (
+    [1, 1, 1, 1], [.5, 1, 1, 1, .5], [1, 1, 1, 1],
+    [.5, 1, -1, 1, .5], [1, .5, -1, .5, 1], [.5, 1, -1, 1, .5], [1, .5, -1, .5, 1],
+    [.5, 1, -1, 1, .5],
+    [1, 1, 1, 1], [.5, 1, 1, 1, .5], [1, 1, 1, 1])
+
+
+def portal_sway(b, h, W_piers, W_lintel, Q=0.0, P=0.0) -> float:
+    """Closed form of the sway mechanism of :func:`portal_panel` (virtual work): both piers
+    (width ``b``, height ``h`` [m], total weight ``W_piers`` [N]) rotate by theta about the toes
+    of their bases, the lintel (weight ``W_lintel``) translates with their tops by
+    ``theta (h, b)``. With a dead vertical load ``Q`` [N] on the lintel and a live horizontal
+    load ``P`` [N] at its level, besides the horizontal body force ``lambda W`` on every block:
+
+        lambda (W_piers h / 2 + W_lintel h + P h) = b (W_piers / 2 + W_lintel + Q)
+
+    (each pier's centroid rises by ``theta b / 2`` and moves by ``theta h / 2``; the lintel and
+    ``Q`` rise by ``theta b``). For one pier's weight ``W_p = W_piers / 2``:
+    ``lambda = (b / h) (W_p + W_lintel + Q) / (W_p + W_lintel + P)``.
+
+    The sway about the base governs the sway about any higher bed joint of the piers: with
+    ``h'`` the height above the joint, ``(a h' + c) / (h' (a h' + d))`` (a = W_p / h,
+    c = W_lintel + Q, d = W_lintel, P = 0) decreases with ``h'``. Sliding of the lintel needs
+    ``lambda >= mu (W_lintel + Q) / (W_lintel + P)``, of the whole panel on its base
+    ``lambda >= mu (W + Q) / (W + P)``: above the sway for the parameters of
+    :func:`case_opening` (mu = tan 40 deg); that the associative LP, a minimum over all
+    mechanisms, returns the sway value confirms that no other mechanism is lower."""
+    Wp = 0.5 * W_piers
+    return b / h * (Wp + W_lintel + Q) / (Wp + W_lintel + P)
+
+
 # ---------------------------------------------------------------------- cases
 def case_block(quick=False):
     """A 0.25 x 1 m block on a base: toppling lambda = b/h (1e-6), tilt atan(b/h); with 10 deg
@@ -245,12 +320,50 @@ def case_retaining(quick=False):
     return rows
 
 
+def case_opening(quick=False):
+    """The panel with an opening of :func:`portal_panel` (piers 0.4 x 1.5 m of five 0.3 m
+    courses, a 1 m opening, a 1.8 x 0.3 m lintel, friction 40 deg) loaded besides its weight:
+    a dead vertical load on the lintel of once and three times the lintel's weight (an
+    overburden raises the factor to 0.3930 and 0.6456) and a live horizontal point load at the
+    lintel's level equal to its weight (0.1810), both senses, non-associative and associative
+    friction (the sway mechanism does not slide: the two agree). Closed form
+    :func:`portal_sway`; HiGHS solves the LP to about 1e-15, tolerance 1e-6.
+
+    Not a published benchmark: no published collapse load factor of a wall with an opening,
+    with its geometry, could be read offline (tests/data/limit/README.md)."""
+    b, hb, nc, op, lh = 0.4, 0.3, 5, 1.0, 0.3
+    asm = portal_panel(b, hb, nc, op, lh)
+    g = asm.gravity
+    lint = asm.nblock - 1
+    W_l = asm.mass[lint] * g
+    W_p = asm.mass[1:lint].sum() * g
+    h = hb * nc
+    xc = b + 0.5 * op
+    rows = []
+    for q in (1.0, 3.0):
+        exp = portal_sway(b, h, W_p, W_l, Q=q * W_l)
+        load = [PointLoad(lint, (0.0, -q * W_l), (xc, h + lh))]
+        for fr in ("non-associative", "associative"):
+            for d in (1, -1):
+                r = analyse(asm, friction=fr, direction=d, point_loads=load)
+                rows.append(_row(f"opening, lintel load {q:g} W_lintel, {fr}, dir {d:+d}: "
+                                 "sway (b/h)(W_p+W_l+Q)/(W_p+W_l)", exp, r.load_factor, 1e-6))
+    exp = portal_sway(b, h, W_p, W_l, P=W_l)
+    for d in (1, -1):
+        r = analyse(asm, direction=d,
+                    point_loads=[PointLoad(lint, (d * W_l, 0.0), (xc, h + lh / 2), live=True)])
+        rows.append(_row(f"opening, live point load W_lintel at the lintel, dir {d:+d}: "
+                         "sway (b/h)(W_p+W_l)/(W_p+W_l+P)", exp, r.load_factor, 1e-6))
+    return rows
+
+
 CASES = {
     "block": case_block,
     "stack": case_stack,
     "leaning": case_leaning,
     "arch": case_arch,
     "panel": case_panel,
+    "opening": case_opening,
     "retaining": case_retaining,
 }
 
@@ -275,4 +388,5 @@ def run_verification(quick: bool = False) -> list[dict]:
 
 
 __all__ = ["CASES", "run_verification", "block_on_base", "stack", "stack_toppling",
-           "arch_polygons", "arch_min_thickness", "portal_panel", "PointLoad"]
+           "arch_polygons", "arch_min_thickness", "portal_panel", "portal_sway", "coursed_wall",
+           "FTL_WALL3_PATTERN", "PointLoad"]
