@@ -82,6 +82,9 @@ def runs() -> dict[str, dict]:
     ens("mesh", "mesh_DSRW1_5_h24", wall="DSRW1", f=5.0, vertical="none",
         kw={"size": 2.5 / 24})
     ens("width", "width_DSRW1_5_W10", wall="DSRW1", f=5.0, vertical="none", kw={"W": 10.0})
+    for b in ("quiet", "fixed"):  # the far side's options against the default free field
+        ens("boundary", f"boundary_DSRW1_5_{b}", wall="DSRW1", f=5.0, vertical="none",
+            kw={"boundary": b})
     ens("scale", "scale_DSRW1_5_k1e-3", wall="DSRW1", f=5.0, vertical="none",
         kw={"stiffness_scale": 1e-3})
     for r in (0.6, 0.7):
@@ -131,7 +134,7 @@ def compute(key: str) -> dict:
     wall = _wall(spec)
     kw = dict(spec["kw"])
     bmode = kw.pop("backfill", "continuum")
-    opts = {k: kw.pop(k) for k in ("size", "W") if k in kw}
+    opts = {k: kw.pop(k) for k in ("size", "W", "boundary") if k in kw}
     mock = wall.name.lower().startswith("mockup")
     if mock:
         kw.update(A_rate=A_MOCK, t_max=MOCK_TMAX)
@@ -186,8 +189,8 @@ def main(argv=None) -> None:
     ap.add_argument("--out", default=None, help="Markdown file (default: standard output).")
     ap.add_argument("--jobs", type=int, default=1, help="Parallel runs (processes).")
     ap.add_argument("--group", nargs="*", default=None, help="Compute the runs of these "
-                    "groups only (no Markdown): t7, t7_thrust, mesh, width, scale, s1, mock, "
-                    "mock_phi, mock30, slow.")
+                    "groups only (no Markdown): t7, t7_thrust, mesh, width, boundary, scale, "
+                    "s1, mock, mock_phi, mock30, slow.")
     ap.add_argument("--recompute", action="store_true", help="Run again, ignoring the cache.")
     ap.add_argument("--keys", nargs="*", default=None, help="Compute these runs only, in this "
                     "order (no Markdown).")
@@ -467,6 +470,8 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
     d5 = ens_stats(recs, "t7_DSRW1_5_none")
     mesh = ens_stats(recs, "mesh_DSRW1_5_h24")
     width = ens_stats(recs, "width_DSRW1_5_W10")
+    quiet = ens_stats(recs, "boundary_DSRW1_5_quiet")
+    fixed = ens_stats(recs, "boundary_DSRW1_5_fixed")
     k3 = ens_stats(recs, "scale_DSRW1_5_k1e-3")
     k1 = recs.get("scale_DSRW1_5_k1_r0")
     out = ["## Dry-stone retaining walls on the continuum backfill (Savalle et al. (2022), §2-4)",
@@ -520,7 +525,9 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
             f"| default: zones H / 12, stiffness x 1e-2, W = 5 m | {_cell(d5)} | |"]
     if d5 is not None:
         for lab, st in (("zones H / 24 (twice as fine)", mesh),
-                        ("stiffness x 1e-3", k3), ("W = 10 m (2W)", width)):
+                        ("stiffness x 1e-3", k3), ("W = 10 m (2W)", width),
+                        ("far side quiet (dashpots relative to the base)", quiet),
+                        ("far side fixed (rigid, moving with the base)", fixed)):
             out.append(f"| {lab} | {_cell(st)} | "
                        f"{_pct(st[0], d5[0]) if st and math.isfinite(st[0]) else '-'} |")
         if k1 is not None:

@@ -141,6 +141,10 @@ BAD = {
                          "unknown material"),
     "free field on a horizontal side": (('kind = "fixed"', 'kind = "free-field"'),
                                         "boundaries[2]", "must be vertical"),
+    "frame on a fixed side": (('kind = "fixed"\n', 'kind = "fixed"\nframe = "base"\n'),
+                              "boundaries[2]", "goes with kind = 'quiet'"),
+    "unknown quiet frame": (('kind = "fixed"\n', 'kind = "quiet"\nframe = "sideways"\n'),
+                            "boundaries[2].frame", "'rest' or 'base'"),
     "motion without a base": (("[[monitors]]", '[motion]\ntype = "sine-pulse"\namplitude = 1.0\n'
                                                'frequency = 2.0\n\n[[monitors]]'),
                               "motion", "kind 'base'"),
@@ -180,3 +184,18 @@ def test_examples_run_briefly(tmp_path, name):
     run = run_case(build(cfg, path, text))
     assert run.ok, run.summary()
     assert run.result.t[-1] == pytest.approx(0.2, abs=0.01)
+
+
+def test_a_quiet_side_takes_its_frame_from_the_case(tmp_path):
+    """``frame = "base"`` on a quiet boundary sets the model's dashpot frame to the base;
+    without it, rest (the classical quiet boundary)."""
+    from murus.continuum import kernels as K
+
+    for frame, want in (("", 0.0), ('frame = "base"\n', 1.0)):
+        text = BASE.replace('kind = "roller"\ndirection = "x"\nside = "soil.left"\n',
+                            f'kind = "quiet"\n{frame}side = "soil.left"\n', 1)
+        case = tmp_path / "q.toml"
+        case.write_text(text)
+        model = build(*load_case(case)).model
+        assert model.P[K.P_QFRAME] == want
+        assert np.any(model.gdash != 0.0)

@@ -486,3 +486,77 @@ def test_large_strain_rotates_the_stress_with_the_body():
     # the invariants are kept to round-off order of the step: mean and radius of Mohr's circle
     got = m.zsig[0, 0]
     assert got[0] + got[1] == pytest.approx(s0[0] + s0[1], rel=1e-12)
+
+
+# ---------------------------------------------------------------------- quiet sides on the base
+def _box(frame, static=False):
+    """A 4 x 2 m elastic box on a base-driven bottom, its two sides quiet in ``frame``."""
+    xy, zones = rect_mesh(8, 4, 4.0, 2.0)
+    mat = Elastic(density=RHO, E=5e7, nu=0.3)
+    m = ContinuumModel(xy, zones, mat, gravity=0.0, large_strain=False)
+    left, right, bottom, top = sides(xy)
+    m.set_base(bottom)
+    for side in (left, right):
+        g = np.flatnonzero(side)
+        g = g[np.argsort(xy[g, 1])]
+        m.add_quiet(np.stack([g[:-1], g[1:]], axis=1), frame=frame, static=static)
+    return m
+
+
+def test_quiet_sides_on_the_base_do_not_resist_a_rigid_motion_with_it():
+    """The box moving with its base at a constant velocity is a rigid translation: dashpots on
+    the velocity relative to the base exert nothing (the velocity stays uniform to round-off);
+    on the absolute velocity they brake the sides (the closed form of the dashpot force, rho Cp
+    v per unit length, decelerates them)."""
+    v0 = 0.05
+    out = {}
+    for frame in ("base", "rest"):
+        m = _box(frame)
+        m.set_base_motion(velocity=lambda t: np.full(np.shape(t), v0))
+        m.gvel[:, 0] = v0
+        m.run(0.05)
+        out[frame] = m.gvel[:, 0].copy()
+    assert np.abs(out["base"] - v0).max() < 1e-12 * v0
+    assert np.abs(out["rest"] - v0).max() > 1e-2 * v0
+
+
+def test_quiet_frame_is_one_per_model():
+    m = _box("base")
+    e = m.gxy.shape[0]
+    with pytest.raises(ModelError) as err:
+        m.add_quiet([[0, 1]], frame="rest")
+    assert err.value.key == ("quiet", "frame")
+    with pytest.raises(ModelError) as err:
+        _box("sideways")
+    assert err.value.key == ("quiet", "frame")
+    assert e == m.ng
+
+
+def test_quiet_side_with_its_static_reaction_keeps_a_settled_layer_at_rest():
+    """A layer settled under gravity on rollers: a side made quiet with ``static=True`` keeps
+    the roller's reaction as a constant force, so the layer stays at rest (displacement after
+    0.2 s below 1e-6 of the oedometric settlement of its top, rho g H^2 / 2M); released
+    without it, the side bulges out."""
+    res = {}
+    for static in (True, False):
+        xy, zones = rect_mesh(8, 4, 4.0, 2.0)
+        mat = Elastic(density=RHO, E=5e7, nu=0.3)
+        m = ContinuumModel(xy, zones, mat, gravity=G_ACC, large_strain=False)
+        left, right, bottom, top = sides(xy)
+        m.fix(bottom)
+        m.fix(left | right, x=True, y=False)
+        m.settle(tol=1e-9, max_steps=400_000)
+        # the settlement of the layer's top under its own weight, rho g H^2 / (2 M)
+        M = mat.E * (1 - mat.nu) / ((1 + mat.nu) * (1 - 2 * mat.nu))
+        settle = RHO * G_ACC * 2.0**2 / (2 * M)
+        g = np.flatnonzero(right)
+        g = g[np.argsort(xy[g, 1])]
+        if static:
+            m.add_quiet(np.stack([g[:-1], g[1:]], axis=1), frame="base", static=True)
+        else:
+            m.free(g[1:], x=True, y=False)
+        u0 = m.gdisp.copy()
+        m.run(0.2)
+        res[static] = float(np.abs(m.gdisp - u0).max()) / settle
+    assert res[True] < 1e-6  # measured 3e-15 (the settling tolerance is 1e-9)
+    assert res[False] > 1e-2

@@ -34,7 +34,9 @@ have ``[dem]``, rocking cases ``[body]``). Example (every table is optional exce
 
     [[boundaries]]              # kind: "fixed", "roller" (direction = the fixed one: "x" |
     kind = "base"               # "y"), "base" (moved by [motion]; direction "x", "y" or
-    side = "soil.bottom"        # "both"), "quiet" (viscous dashpots), "pressure" (pressure
+    side = "soil.bottom"        # "both"), "quiet" (viscous dashpots; frame = "rest", the
+                                # default, or "base": on the velocity relative to the
+                                # base, one frame per model), "pressure" (pressure
                                 # [Pa], compression positive), "free-field" (a vertical
                                 # side: a 1D column beside it, attached after the static
                                 # stage); where: side = "REGION.SIDE"
@@ -188,6 +190,7 @@ class BoundaryCfg(Strict):
     tol: float | None = Field(default=None, gt=0.0, allow_inf_nan=False)
     direction: Literal["x", "y", "both"] | None = None
     pressure: float | None = Field(default=None, allow_inf_nan=False)
+    frame: Literal["rest", "base"] | None = None
 
     @model_validator(mode="after")
     def _where(self):
@@ -199,6 +202,8 @@ class BoundaryCfg(Strict):
             raise ValueError("a roller needs direction = 'x' or 'y' (the fixed direction)")
         if self.kind in ("quiet", "pressure", "free-field") and self.direction is not None:
             raise ValueError(f"kind '{self.kind}' takes no direction")
+        if self.frame is not None and self.kind != "quiet":
+            raise ValueError("frame ('rest' or 'base') goes with kind = 'quiet'")
         if (self.kind == "pressure") != (self.pressure is not None):
             raise ValueError("pressure (Pa) goes with kind = 'pressure', and it needs one")
         return self
@@ -452,7 +457,7 @@ def build(case: ContinuumCase, path: Path, text: str) -> Built:
                                   f"kind '{b.kind}': the gridpoints selected hold no boundary "
                                   "edge of the mesh")
                 if b.kind == "quiet":
-                    model.add_quiet(edges)
+                    model.add_quiet(edges, frame=b.frame or "rest")
                 else:
                     model.apply_pressure(edges, b.pressure)
         except CaseError:

@@ -520,6 +520,8 @@ class CoupledModel:
             m._motion_kind, m._motion_callable = keep
         for name in ckd.STATE_ARRAYS + self._ZONE_ARRAYS:
             setattr(z, name, np.array(arrays["zones__" + name], copy=True))
+        if z.P.size < ZK.NP:  # a checkpoint of a version with fewer parameters: zero (off)
+            z.P = np.concatenate([z.P, np.zeros(ZK.NP - z.P.size)])
         z.ff = FreeField(*[np.array(arrays["ff__" + n], copy=True) for n in FreeField._fields])
         for name in ("P", "E", "C"):
             setattr(f, name, np.array(arrays["iface__" + name], copy=True))

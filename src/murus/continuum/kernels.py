@@ -70,7 +70,8 @@ P_DREL = 3  # damping frame: 1 relative to the base motion, 0 absolute
 P_LARGE = 4  # 1: large strain (coordinates updated, stresses rotated), 0: small strain
 P_PLASTIC = 5  # 1: plasticity on, 0: every material elastic (elastic settling)
 P_PARMIN = 6  # smallest number of zones for the parallel loops
-NP = 7
+P_QFRAME = 7  # reference of the quiet dashpots: 1 the base motion, 0 rest
+NP = 8
 
 # ---- energy accumulators ---------------------------------------------------------------------
 E_WDAMP = 0  # work of the damping forces (negative) [J]
@@ -783,6 +784,31 @@ def zone_forces(P, grid, zones, mprops, par):
                    grid.gxy, grid.gvel, mprops, P)
 
 
+@njit(cache=True, error_model="numpy")
+def quiet_reference(fr, gdash, gff):
+    """The velocity that quiet dashpots act against, when it is the base's (``P_QFRAME`` = 1):
+    ``gff[g, 2:4]`` of every gridpoint with dashpots set to the base velocity at t, ``fr.vx``,
+    ``fr.vy`` (the free-field columns, stepped after, overwrite their own sides').
+
+    Parameters
+    ----------
+    fr : murus.dem._kdata.Frame
+        The step's base velocities and gravity.
+    gdash : ndarray (ng, 3)
+        Dashpot matrices of the gridpoints.
+    gff : ndarray (ng, 4)
+        The free field's action; columns 2 and 3 written here.
+
+    Returns
+    -------
+    None
+    """
+    for g in range(gdash.shape[0]):
+        if gdash[g, 0] != 0.0 or gdash[g, 2] != 0.0:
+            gff[g, 2] = fr.vx
+            gff[g, 3] = fr.vy
+
+
 @njit(cache=True, error_model="numpy", inline="always")
 def grid_update(P, E, C, S, fr, grid, zf, work, par):
     """The second half of a step: the free-field columns (their action written to
@@ -811,6 +837,8 @@ def grid_update(P, E, C, S, fr, grid, zf, work, par):
     None
     """
     part, ff, mprops = work
+    if P[P_QFRAME] > 0.0:
+        quiet_reference(fr, grid.gdash, grid.gff)
     if ff.fy.size > 0:
         freefield_step(P, fr, ff, mprops, grid.gff)
     if par:

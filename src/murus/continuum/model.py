@@ -427,26 +427,52 @@ class ContinuumModel:
                                  key=(name, i))
         return out, zone
 
-    def add_quiet(self, edges) -> None:
+    def add_quiet(self, edges, *, frame: str = "rest", static: bool = False) -> None:
         """Quiet (viscous) boundary on boundary edges: dashpots ``rho Cp`` normal and
         ``rho Cs`` tangential per unit length (the material of each edge's zone), lumped half
-        to each end gridpoint, on the absolute velocity (a base or side where the waves leave
-        the model; with an input motion from below, combine with free-field sides).
+        to each end gridpoint (Lysmer and Kuhlemeyer 1969).
 
         Parameters
         ----------
         edges : array_like (k, 2) of int
             Gridpoint pairs, each an edge of exactly one zone (either orientation).
+        frame : {"rest", "base"}
+            The velocity the dashpots act against: rest (a base or a side where the waves
+            leave an unbounded medium at rest, the classical quiet boundary) or the base
+            motion (a lateral side of a model shaken from below: dashpots on the velocity
+            relative to the base do not resist the rigid motion of the whole model with its
+            base, which dashpots on the absolute velocity would). One frame for every quiet
+            edge of a model (set by the first call).
+        static : bool
+            Replace the supports of the edges' gridpoints by the forces they carry now, as FLAC
+            does when a quiet boundary replaces a fixed one: each fixed direction of those
+            gridpoints is released and gets, as a constant applied force, its reaction (minus
+            the zones' corner forces of the last step, the applied and free-field forces on it;
+            directions moved by the base stay so). Call it after the static stage.
 
         Raises
         ------
         ModelError
-            An edge that is not a boundary edge (key ``("quiet", i)``).
+            An edge that is not a boundary edge (key ``("quiet", i)``), an unknown frame, or a
+            frame other than that of the quiet edges already added (key ``("quiet",
+            "frame")``).
 
         References
         ----------
-        Lysmer & Kuhlemeyer (1969); Itasca FLAC, Dynamic Analysis ("quiet boundaries").
+        Lysmer & Kuhlemeyer (1969), J. Eng. Mech. Div. ASCE 95(4) 859-877; Itasca FLAC,
+        Dynamic Analysis ("quiet boundaries"; the static reactions applied when a fixed
+        boundary becomes quiet).
         """
+        fr = str(frame).strip().lower()
+        if fr not in ("rest", "base"):
+            raise ModelError(f"quiet: frame must be 'rest' or 'base', got {frame!r}",
+                             key=("quiet", "frame"))
+        want = 1.0 if fr == "base" else 0.0
+        if bool(np.any(self.gdash != 0.0)) and self.P[K.P_QFRAME] != want:
+            raise ModelError(f"quiet: the quiet edges already added act against "
+                             f"{'the base' if self.P[K.P_QFRAME] else 'rest'}: one frame for "
+                             f"every quiet edge of a model, got {frame!r}",
+                             key=("quiet", "frame"))
         ed, zone = self._orient(edges, "quiet")
         for (a, b), z in zip(ed, zone, strict=True):
             mt = self.materials[self.zmat[z]]
@@ -457,6 +483,17 @@ class ContinuumModel:
             C = 0.5 * L * mt.density * (mt.vp * np.outer(n, n) + mt.vs * np.outer(t, t))
             for g in (a, b):
                 self.gdash[g] += (C[0, 0], C[0, 1], C[1, 1])
+        if static:
+            gw = np.array([0.0, -self.gravity])
+            for g in np.unique(ed):
+                corners = self.gzc[self.gsp[g]:self.gsp[g + 1]]
+                fint = self.zf[corners].sum(axis=0)
+                for k in range(2):
+                    if self.gfix[g, k] == 1:
+                        self.gext[g, k] -= (fint[k] + self.gext[g, k] + self.gff[g, k]
+                                            + self.gmass[g] * gw[k])
+                        self.gfix[g, k] = 0
+        self.P[K.P_QFRAME] = want
 
     def add_free_field(self, sides) -> None:
         """Free-field lateral boundaries on vertical sides (:mod:`murus.continuum.freefield`),

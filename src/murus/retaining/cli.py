@@ -246,7 +246,8 @@ def collapse(
                                         "at full scale, the paper's free field) or 'container' "
                                         "(a rigid plate moving with the base; default for the "
                                         "mock-ups, tested in a box). With --backfill "
-                                        "continuum: 'free-field' (default) or 'fixed'."),
+                                        "continuum: 'free-field' (default), 'fixed' or "
+                                        "'quiet' (dashpots relative to the base)."),
     zone_size: float | None = typer.Option(None, "--zone-size", help="With --backfill "
                                            "continuum: target zone size [m] (default H / 12)."),
     radius: float | None = typer.Option(None, "--radius", help="With --backfill discrete: "

@@ -21,10 +21,12 @@ cohesion.
 Boundaries: the bottom gridpoints move with the base (the paper's "velocity of the bottom
 computational nodes ... fixed to match the dynamic solicitation"); the far side is on rollers
 during the static stage, then (``boundary``) a free-field column (default, the paper's) or a
-rigid side moving horizontally with the base (``"fixed"``). (Quiet dashpots alone are not
-offered: the zones' quiet boundary acts on the absolute velocity and would resist the rigid
-motion of the backfill with the base; the free-field column carries its dashpots relative to
-the column.)
+rigid side moving horizontally with the base (``"fixed"``) or a quiet side (``"quiet"``):
+dashpots ``rho Cp``, ``rho Cs`` on the velocity relative to the base (on the absolute velocity
+they would resist the rigid motion of the backfill with its base), the roller's reaction at the
+end of the static stage kept as a constant force (FLAC's practice when a fixed boundary becomes
+quiet). The free field is the paper's and the default; the quiet side absorbs the waves
+leaving the model without a free-field column's own response; the fixed side reflects them.
 
 Initial state: K0 stresses (``nu / (1 - nu)``), then the coupled settling, elastic first then
 plastic (:meth:`~murus.continuum.coupled.CoupledModel.settle`), then the far side's dynamic
@@ -59,7 +61,7 @@ __all__ = ["ContinuumBackfillError", "ContinuumBackfill", "BOUNDARIES", "CRUST_C
            "CRUST_HEIGHT"]
 
 #: Far-side boundaries during the dynamic run.
-BOUNDARIES = ("free-field", "fixed")
+BOUNDARIES = ("free-field", "fixed", "quiet")
 #: Cohesion of the thin top layer [Pa] (Savalle et al. (2022), §2), for a wall of height
 #: :data:`CRUST_HEIGHT`; scaled with the height for others (see :class:`ContinuumBackfill`).
 CRUST_COHESION = 2.0e3
@@ -91,7 +93,7 @@ class ContinuumBackfill:
     size : float, optional
         Target zone size [m]; default ``H / 12``.
     boundary : str
-        Far side during the run: ``"free-field"`` or ``"fixed"``.
+        Far side during the run: ``"free-field"``, ``"fixed"`` or ``"quiet"``.
     stiffness_scale : float
         Factor on the interface stiffness of Savalle et al. (2022), Table 6 (Table 1 for the
         mock-ups) [-]; the wall's.
@@ -248,6 +250,8 @@ class ContinuumBackfill:
         side = right[zm.gfix[right, 1] == 0]  # the far side above the base corner
         if self.boundary == "free-field":
             zm.add_free_field([right])
+        elif self.boundary == "quiet":  # dashpots on the velocity relative to the base
+            zm.add_quiet(self.mesh.edges_of(right), frame="base", static=True)
         else:  # "fixed": a rigid side moving with the base
             zm.set_base(side, x=True, y=False)
         return st

@@ -58,7 +58,7 @@ Case file (TOML, ``examples/retaining/``)::
     # backfill = "discrete"      # a disc backfill instead of the equivalent thrust, with
     # [numerics.backfill_options] W = 5.0, boundary = "absorbing", radius, spread, seed, rolling
     # backfill = "continuum"     # Mohr-Coulomb zones, the paper's model, with
-    # [numerics.backfill_options] W = 5.0, size = 0.2, boundary = "free-field" | "fixed"
+    # [numerics.backfill_options] W = 5.0, size = 0.2, boundary = "free-field" | "fixed" | "quiet"
 
     [executor]                   # the CLI's --executor/--workers/--scheduler win
     kind = "process"             # serial | process | dask
@@ -200,7 +200,7 @@ class BackfillCfg(Strict):
     W, boundary free-field or fixed, size) (None: their defaults)."""
 
     W: float | None = Field(default=None, gt=0, **_FLOAT)
-    boundary: Literal["container", "absorbing", "free-field", "fixed"] | None = None
+    boundary: Literal["container", "absorbing", "free-field", "fixed", "quiet"] | None = None
     radius: float | None = Field(default=None, gt=0, **_FLOAT)
     spread: float | None = Field(default=None, ge=0, lt=1, **_FLOAT)
     seed: int | None = Field(default=None, ge=0)
@@ -211,7 +211,7 @@ class BackfillCfg(Strict):
 #: The options and the far-side boundaries of each backfill model (:class:`BackfillCfg`).
 BACKFILL_OPTIONS = {"discrete": ({"W", "boundary", "radius", "spread", "seed", "rolling"},
                                  ("container", "absorbing")),
-                    "continuum": ({"W", "boundary", "size"}, ("free-field", "fixed"))}
+                    "continuum": ({"W", "boundary", "size"}, ("free-field", "fixed", "quiet"))}
 
 
 class NumericsCfg(Strict):
