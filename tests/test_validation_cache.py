@@ -64,3 +64,20 @@ def test_the_real_engine_key_is_stable():
                                                      "continuum", "dem")
     with pytest.raises(FileNotFoundError):
         runcache.source_key("no_such_package_here")
+
+
+def test_restamp_rekeys_only_the_old_engines_records(tmp_path):
+    """``runcache.restamp`` moves the records of one engine to another, keeping where they came
+    from and the evidence; records of other engines and unreadable files are left alone."""
+    recs = {"a": {"x": 1, runcache.ENGINE_FIELD: "old"}, "b": {"x": 2, runcache.ENGINE_FIELD:
+                                                                "other"}}
+    for k, r in recs.items():
+        (tmp_path / f"{k}.json").write_text(json.dumps(r))
+    (tmp_path / "c.json").write_text("{not json")
+    done = runcache.restamp(tmp_path, "old", "new", "a recomputed bit for bit")
+    assert done == ["a"]
+    a = json.loads((tmp_path / "a.json").read_text())
+    assert a[runcache.ENGINE_FIELD] == "new" and a["_restamped_from"] == "old"
+    assert a["_restamp_evidence"] == "a recomputed bit for bit" and a["x"] == 1
+    assert json.loads((tmp_path / "b.json").read_text()) == recs["b"]
+    assert (tmp_path / "c.json").read_text() == "{not json"

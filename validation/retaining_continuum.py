@@ -79,6 +79,11 @@ def runs() -> dict[str, dict]:
         ens("t7_thrust", f"thrust_{row['wall']}_{float(row['frequency_Hz']):g}_{v}",
             wall=row["wall"], f=float(row["frequency_Hz"]), vertical=v,
             kw={"backfill": "thrust"})
+        # the disc backfill (its defaults: absorbing side, W = 2 H): the nominal run only
+        # (about ten minutes each on one core)
+        out[f"discs_{row['wall']}_{float(row['frequency_Hz']):g}_{v}_r0"] = dict(
+            group="t7_discs", wall=row["wall"], f=float(row["frequency_Hz"]), vertical=v,
+            kw={"backfill": "discrete"}, run=0)
     ens("mesh", "mesh_DSRW1_5_h24", wall="DSRW1", f=5.0, vertical="none",
         kw={"size": 2.5 / 24})
     ens("width", "width_DSRW1_5_W10", wall="DSRW1", f=5.0, vertical="none", kw={"W": 10.0})
@@ -94,6 +99,11 @@ def runs() -> dict[str, dict]:
 
     for s in MOCKUP_SLENDERNESS:
         ens("mock", f"mock_{s:g}", wall=f"mockup-{s:g}", f=10.0, vertical="none", kw={})
+    for s in MOCKUP_SLENDERNESS:  # the other two backfills, nominal runs
+        for bm, tag in (("thrust", "thrust"), ("discrete", "discs")):
+            out[f"mock{tag}_{s:g}_r0"] = dict(group=f"mock_{tag}", wall=f"mockup-{s:g}",
+                                              f=10.0, vertical="none", kw={"backfill": bm},
+                                              run=0)
     for phi in (50.0, 55.0):
         ens("mock_phi", f"mock_2.7_phi{phi:g}", wall="mockup-2.7", f=10.0, vertical="none",
             kw={}, overrides={"backfill_friction_deg": phi})
@@ -189,8 +199,8 @@ def main(argv=None) -> None:
     ap.add_argument("--out", default=None, help="Markdown file (default: standard output).")
     ap.add_argument("--jobs", type=int, default=1, help="Parallel runs (processes).")
     ap.add_argument("--group", nargs="*", default=None, help="Compute the runs of these "
-                    "groups only (no Markdown): t7, t7_thrust, mesh, width, boundary, scale, "
-                    "s1, mock, mock_phi, mock30, slow.")
+                    "groups only (no Markdown): t7, t7_thrust, t7_discs, mesh, width, boundary, "
+                    "scale, s1, mock, mock_thrust, mock_discs, mock_phi, mock30, slow.")
     ap.add_argument("--recompute", action="store_true", help="Run again, ignoring the cache.")
     ap.add_argument("--keys", nargs="*", default=None, help="Compute these runs only, in this "
                     "order (no Markdown).")
@@ -273,8 +283,8 @@ def t7_table(recs: dict) -> tuple[list[str], dict]:
     """Tables 7 and 8: the continuum and the equivalent thrust against the paper."""
     out = ["| case | wall | f [Hz] | vertical | paper A_col [m/s²] | **continuum** A_col, median "
            "[range] (error) | mode | A_pseudo murus [m/s²] | r = 0.6 A_col / A_pseudo (paper) "
-           "| equivalent thrust A_col [m/s²] (error) |",
-           "|---|---|---|---|---|---|---|---|---|---|"]
+           "| equivalent thrust A_col [m/s²] (error) | discs A_col [m/s²] (error) |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
     errs, rs, info = [], [], {}
     for row in table7():
         v = _vert(row["vertical"])
@@ -282,6 +292,7 @@ def t7_table(recs: dict) -> tuple[list[str], dict]:
         ref = float(row["A_col_m_s2"])
         st = ens_stats(recs, f"t7_{tag}")
         th = ens_stats(recs, f"thrust_{tag}")
+        dc = ens_stats(recs, f"discs_{tag}")
         aps = rr = math.nan
         k0 = f"t7_{tag}_r0"
         if k0 in recs:
@@ -297,7 +308,7 @@ def t7_table(recs: dict) -> tuple[list[str], dict]:
         out.append(f"| {row['case']} | {row['wall']} | {float(row['frequency_Hz']):g} | "
                    f"{row['vertical']} | {ref:.2f} | {_cell(st, ref)} | "
                    f"{_modes(recs, f't7_{tag}')} | {aps:.2f} | {rr:.2f}{pr} | "
-                   f"{_cell(th, ref)} |")
+                   f"{_cell(th, ref)} | {_cell(dc, ref)} |")
     info["errs"], info["r"] = errs, rs
     return out, info
 
@@ -312,8 +323,9 @@ def mock_table(recs: dict) -> tuple[list[str], dict]:
     """Table 3: the mock-ups on the continuum against the experiment and UDEC."""
     rows = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
     out = ["| H/B | A_fail exp. [m/s²] | mode exp. | UDEC [m/s²] (error) | mode UDEC | "
-           "**continuum** A_fail, median [range] (error) | mode |",
-           "|---|---|---|---|---|---|---|"]
+           "**continuum** A_fail, median [range] (error) | mode | equivalent thrust (error) "
+           "| mode | discs (error) | mode |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
     errs, right, n = [], 0, 0
     for s in _mock_walls():
         r = rows[s]
@@ -324,8 +336,11 @@ def mock_table(recs: dict) -> tuple[list[str], dict]:
             errs.append(100 * (st[0] / e - 1))
             n += 1
             right += mode[:1] in r["exp_mode"] and mode != "-"
+        other = " | ".join(f"{_cell(ens_stats(recs, f'mock{t}_{s:g}'), e)} | "
+                           f"{_modes(recs, f'mock{t}_{s:g}')}" for t in ("thrust", "discs"))
         out.append(f"| {s:g} | {e:.1f} | {r['exp_mode']} | {float(r['num_A_fail_m_s2']):.1f} "
-                   f"({r['error_pct']} %) | {r['num_mode']} | {_cell(st, e)} | {mode} |")
+                   f"({r['error_pct']} %) | {r['num_mode']} | {_cell(st, e)} | {mode} | "
+                   f"{other} |")
     return out, {"errs": errs, "right": right, "n": n}
 
 

@@ -114,6 +114,29 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
     return {k: json.loads((cache / f"{k}.json").read_text()) for k in keys}
 
 
+def restamp(cache: Path, old: str, new: str, evidence: str) -> list[str]:
+    """Re-key the records of ``cache`` computed by the engine ``old`` to the engine ``new``,
+    when a change of the engine's source is shown not to change a run: ``evidence`` (kept in
+    each record, with ``_restamped_from``) must name the runs recomputed bit for bit by the new
+    engine (``validation/restamp_check.py``). Returns the keys re-keyed."""
+    done = []
+    for path in sorted(Path(cache).glob("*.json")):
+        try:
+            rec = json.loads(path.read_text())
+        except (OSError, ValueError):
+            continue
+        if not isinstance(rec, dict) or rec.get(ENGINE_FIELD) != old:
+            continue
+        rec[ENGINE_FIELD] = new
+        rec["_restamped_from"] = old
+        rec["_restamp_evidence"] = evidence
+        tmp = path.with_suffix(".json.tmp")
+        tmp.write_text(json.dumps(rec))
+        tmp.replace(path)
+        done.append(path.stem)
+    return done
+
+
 def emit(text: str, out: str | None) -> None:
     """Write a section to the file ``out``, or to standard output without one."""
     if out:
