@@ -95,9 +95,9 @@ def test_associative_exceeds_non_associative_on_a_confined_wall():
     assert ass.load_factor >= na.load_factor
     assert ass.load_factor > na.load_factor * 1.03  # 0.4857 vs 0.4577
     assert na.load_factor == pytest.approx(0.457, rel=0.01)  # path-dependent within 0.5 %
-    # the forces of the non-associative solution nearly obey Coulomb with their own normal
-    # forces (residual 0.035 of the largest block weight here: a known limit of the scheme)
-    assert na.coulomb_residual <= 0.05
+    # the forces returned obey Coulomb with their own normal forces but for 1.2e-4 of the
+    # largest block weight (the iterates exceed it by 0.035: chosen among the LP's optima)
+    assert na.coulomb_residual <= 1e-3
     assert ass.coulomb_residual <= 1e-7
     assert np.all(na.n1 >= -1e-6) and np.all(na.n2 >= -1e-6)
 
@@ -159,6 +159,9 @@ def test_window_wall_example_is_the_rebuilt_pattern():
     ass = analyse(ref, friction="associative")
     assert na.converged
     assert ass.load_factor > na.load_factor
+    # the iterates exceed Coulomb by 0.37 of a block weight here; the forces returned do not
+    # (2e-7 measured: chosen among the optima of the last LP)
+    assert na.coulomb_residual <= 1e-3
 
 
 def test_running_bond_wall_from_walls_table():
