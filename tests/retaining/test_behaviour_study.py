@@ -475,6 +475,11 @@ def test_table3_case_files_are_the_validated_runs(name):
     assert st.wall.stone_height == pytest.approx(wall.stone_height, rel=1e-12)
     assert st.wall.backfill_friction_deg == wall.backfill_friction_deg
     assert st.check_ratios == [] and st.cases[0] == (s["f"], "none")
+    # Figure 7 (30 Hz) is the H/B = 2.3 wall's second case, the validation's mock30 run
+    assert [c[0] for c in st.cases] == ([10.0, 30.0] if name == "mockup_2.3" else [10.0])
+    if name == "mockup_2.3":
+        s30 = spec["mock_2.3_30Hz_r0"]
+        assert s30["wall"] == s["wall"] and s30["f"] == 30.0 and s30["kw"] == {}
     got = st.case_kwargs(st.tasks()[0])
     for k in ("A_rate", "t_max"):
         assert got[k] == pytest.approx(kw[k], rel=1e-12)
