@@ -96,6 +96,7 @@ def run_chunk(nsteps, drive, dem, zon, itf):
     gvel = grid.gvel
     gfix = grid.gfix
     v0 = np.zeros((ig.size, 2))
+    cdamp = DK.damped(joints.jprops)
     for i in range(nsteps):
         c, pw, nact, dpar = DK.step_forces(P, E, C, S, bodies, shapes, joints, c,
                                            (pw, nact, fb))
@@ -117,6 +118,9 @@ def run_chunk(nsteps, drive, dem, zon, itf):
             gff[g, 1] = fg[g, 1] * inv_t
         fr = DK._frame(i, drive)
         DK.step_update(P, E, C, S, fr, fb, bodies, shapes, bpart, (bsp, bsh), dpar)
+        if cdamp:
+            E[DK.E_DDASH] += DK.dashpot_work(c, nact, pw, joints.jprops, shapes.sbody, bodies,
+                                             P[DK.P_DT])
         for k in range(ig.size):
             g = ig[k]
             v0[k, 0] = gvel[g, 0]

@@ -21,7 +21,8 @@ Example (every table is optional except ``[dem]``, ``[materials.*]`` and the blo
     frame = "base"           # velocities damped: relative to the "base" or "absolute"
 
     [materials.stone]        # density [kg/m3], kn, ks [Pa/m], friction_deg, cohesion,
-    density = 2600.0         # tensile, cohesion_res, tensile_res [Pa], rolling [-]
+    density = 2600.0         # tensile, cohesion_res, tensile_res [Pa], rolling [-],
+                             # contact_damping [-] (0..1; 1: Housner's rocking impacts)
     kn = 1e9
     ks = 1e9
     friction_deg = 35.0
@@ -143,6 +144,7 @@ class MaterialCfg(Strict):
     cohesion_res: float = Field(default=0.0, ge=0.0, allow_inf_nan=False)
     tensile_res: float = Field(default=0.0, ge=0.0, allow_inf_nan=False)
     rolling: float = Field(default=0.0, ge=0.0, allow_inf_nan=False)
+    contact_damping: float = Field(default=0.0, ge=0.0, le=1.0, allow_inf_nan=False)
 
     def joint(self):
         from murus.dem.materials import Joint
@@ -150,7 +152,7 @@ class MaterialCfg(Strict):
         return Joint(kn=self.kn, ks=self.ks, friction_deg=self.friction_deg,
                      cohesion=self.cohesion, tension=self.tensile,
                      cohesion_res=self.cohesion_res, tension_res=self.tensile_res,
-                     rolling=self.rolling)
+                     rolling=self.rolling, contact_damping=self.contact_damping)
 
 
 class JointCfg(Strict):

@@ -109,7 +109,8 @@ J_T = 4  # tensile strength [Pa]
 J_CRES = 5  # residual cohesion [Pa]
 J_TRES = 6  # residual tensile strength [Pa]
 J_MUROLL = 7  # rolling friction coefficient [-]
-NJ = 8
+J_CDAMP = 8  # contact damping: critical-damping ratio zeta of the normal dashpot [-] (0: none)
+NJ = 9
 
 # ---- parameter vector ------------------------------------------------------------------------
 P_DT = 0  # time step [s]
@@ -130,6 +131,7 @@ E_DROLL = 3  # rolling-resistance dissipation [J]
 E_DBREAK = 4  # elastic energy released by breaking or opening sub-contacts [J]
 E_WEXT = 5  # work of the external (applied) body forces ``bext`` [J]
 E_WTILT = 6  # work of a time-varying gravity, -sum m x . dg/dt dt, and of its jumps [J]
+E_DDASH = 7  # dissipation of the contact dashpots (J_CDAMP) [J]
 NE = 8
 
 # ---- counters ----------------------------------------------------------------------------------
@@ -147,7 +149,11 @@ W_FX = 3  # resultant force of the pair's sub-contacts on body b [N]
 W_FY = 4
 W_MB = 5  # its moment about the centroid of body b [N m]
 W_MA = 6  # its moment about the centroid of body a [N m] (the reaction on a is the opposite)
-NW = 8
+W_DFX = 7  # of it, the force of the contact dashpots on body b [N] (written when J_CDAMP > 0)
+W_DFY = 8
+W_DMB = 9  # its moment about the centroid of body b [N m]
+W_DMA = 10  # its moment about the centroid of body a [N m]
+NW = 12
 
 # ---- partial sums of a block of bodies (``part[blk, Q_*]``, written by the body update) ----
 Q_UNBAL = 0  # max unbalanced force of a dynamic body [N]
@@ -856,14 +862,50 @@ def _released(k, o, sf):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _dashpot(c, pt, pm):
+    """Force [N] (compression positive) of the normal dashpot of coefficient ``c`` [N s/m] of
+    the sub-contact ``pt`` (:class:`SubContact`) of the pair of motion ``pm``
+    (:class:`PairMotion`): ``-c v_n`` while the surfaces overlap (gap < 0) and close
+    (v_n < 0, v_n the relative normal velocity of b with respect to a at the contact point),
+    0 otherwise: it damps the approach of an impact, not the separation, and never pulls."""
+    if pt.gap >= 0.0:
+        return 0.0
+    px = pt.px
+    py = pt.py
+    rvx = (pm.vbx - pm.wb * (py - pm.yb)) - (pm.vax - pm.wa * (py - pm.ya))
+    rvy = (pm.vby + pm.wb * (px - pm.xb)) - (pm.vay + pm.wa * (px - pm.xa))
+    vn = pt.nx * rvx + pt.ny * rvy
+    if vn >= 0.0:
+        return 0.0
+    return -c * vn
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _reduced_mass(ba, bb, bmass, bkin):
+    """Reduced mass [kg] of bodies ba and bb (a kinematic body counts as infinitely heavy)."""
+    if bkin[ba] != 0:
+        return bmass[bb]
+    if bkin[bb] != 0:
+        return bmass[ba]
+    return bmass[ba] * bmass[bb] / (bmass[ba] + bmass[bb])
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
-                 bpos, bvel, bomg, jprops, dt, thick, reach, discs):
+                 bpos, bvel, bomg, bmass, bkin, jprops, dt, thick, reach, discs):
     """Narrow phase and joint law of pair k (the arrays of :class:`Contacts`, then of
     :class:`Shapes` and :class:`Bodies`, unpacked by :func:`_contacts_parallel`; joint rows
     ``jprops``; time step ``dt`` [s], thickness ``thick`` [m], largest kept gap ``reach``
     [m]): updates its two slots in place and writes the
     energy dissipated in the step (slip, rolling, breaking/opening) and the resultant of its
     sub-contacts on body b with its moments about both centroids to ``pw[k]`` (``W_*``).
+    With contact damping (``J_CDAMP`` zeta > 0), each overlapping and closing sub-contact also
+    carries the normal dashpot force ``-c v_n`` (:func:`_dashpot`), ``c = 2 zeta sqrt(kn A
+    m_eff)`` with ``m_eff`` the reduced mass of the two bodies (:func:`_reduced_mass`): added
+    to the resultant and written apart to ``pw[k, W_DFX:W_DMA + 1]`` for its work
+    (:func:`dashpot_work`); the slot keeps the spring force (``F_FN``), which alone sets the
+    friction limit and the elastic energy. Without contact damping the branch is skipped and
+    the operations are those of the undamped law.
     Returns the number of sub-contacts kept. Allocates nothing (scalars only): it runs once
     per candidate pair and step, in a parallel loop. ``discs`` (a constant where it is inlined):
     the pair is known to be two discs (one sub-contact at most, no branch on shape kinds).
@@ -977,6 +1019,40 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
             rmb += mb
             rma += ma
             slot += 1
+        cz = jprops[jp, J_CDAMP]
+        if cz > 0.0:
+            # contact damping (joint column J_CDAMP): the dashpots of the kept sub-contacts
+            meff = _reduced_mass(ba, bb, bmass, bkin)
+            dfx = 0.0
+            dfy = 0.0
+            dmb = 0.0
+            dma = 0.0
+            if keep0:
+                fd = _dashpot(2.0 * cz * math.sqrt(kna0 * meff), pt0, pm)
+                if fd > 0.0:
+                    fx = fd * pt0.nx
+                    fy = fd * pt0.ny
+                    dfx += fx
+                    dfy += fy
+                    dmb += (pt0.px - pm.xb) * fy - (pt0.py - pm.yb) * fx
+                    dma += (pt0.px - pm.xa) * fy - (pt0.py - pm.ya) * fx
+            if not discs and keep1:
+                fd = _dashpot(2.0 * cz * math.sqrt(kna1 * meff), pt1, pm)
+                if fd > 0.0:
+                    fx = fd * pt1.nx
+                    fy = fd * pt1.ny
+                    dfx += fx
+                    dfy += fy
+                    dmb += (pt1.px - pm.xb) * fy - (pt1.py - pm.yb) * fx
+                    dma += (pt1.px - pm.xa) * fy - (pt1.py - pm.ya) * fx
+            pw[k, W_DFX] = dfx
+            pw[k, W_DFY] = dfy
+            pw[k, W_DMB] = dmb
+            pw[k, W_DMA] = dma
+            rfx += dfx
+            rfy += dfy
+            rmb += dmb
+            rma += dma
         nkeep = slot
         pw[k, W_FX] = rfx
         pw[k, W_FY] = rfy
@@ -995,14 +1071,14 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody, bpos, bvel,
-             bomg, jprops, dt, thick, reach):
+             bomg, bmass, bkin, jprops, dt, thick, reach):
     """:func:`process_pair`, in its copy specialised to two discs when both shapes of pair k
     are discs."""
     if skind[pairs[k, 0]] == 1 and skind[pairs[k, 1]] == 1:
         return process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
-                            sbody, bpos, bvel, bomg, jprops, dt, thick, reach, True)
+                            sbody, bpos, bvel, bomg, bmass, bkin, jprops, dt, thick, reach, True)
     return process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad, sbody,
-                        bpos, bvel, bomg, jprops, dt, thick, reach, False)
+                        bpos, bvel, bomg, bmass, bkin, jprops, dt, thick, reach, False)
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
@@ -1020,9 +1096,11 @@ def _contacts_parallel(c, pw, shapes, bodies, jprops, dt, thick, reach, nact):
     bpos = bodies.bpos
     bvel = bodies.bvel
     bomg = bodies.bomg
+    bmass = bodies.bmass
+    bkin = bodies.bkin
     for k in prange(pairs.shape[0]):
         nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, srad,
-                           sbody, bpos, bvel, bomg, jprops, dt, thick, reach)
+                           sbody, bpos, bvel, bomg, bmass, bkin, jprops, dt, thick, reach)
 
 
 @njit(cache=True, error_model="numpy")
@@ -1032,7 +1110,41 @@ def _contacts_serial(c, pw, shapes, bodies, jprops, dt, thick, reach, nact):
     for k in range(pairs.shape[0]):
         nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, shapes.wv, shapes.svs,
                            shapes.svn, shapes.skind, shapes.srad, shapes.sbody, bodies.bpos,
-                           bodies.bvel, bodies.bomg, jprops, dt, thick, reach)
+                           bodies.bvel, bodies.bomg, bodies.bmass, bodies.bkin, jprops, dt,
+                           thick, reach)
+
+
+@njit(cache=True, error_model="numpy")
+def damped(jprops):
+    """True when a joint row of ``jprops`` has contact damping (``J_CDAMP`` > 0)."""
+    for j in range(jprops.shape[0]):
+        if jprops[j, J_CDAMP] > 0.0:
+            return True
+    return False
+
+
+@njit(cache=True, error_model="numpy")
+def dashpot_work(c, nact, pw, jprops, sbody, bodies, dt):
+    """Energy [J] dissipated in the step by the contact dashpots (:func:`process_pair`): minus
+    the work of their forces ``pw[k, W_DFX:W_DMA + 1]`` with the mid-step velocities of the
+    bodies (``bodies.bsnap[:, 3:6]``, written by the body update), the form in which the
+    central-difference scheme changes the kinetic energy, so that the balance closes exactly.
+    Called after the body update of a step, only when the model has contact damping
+    (:func:`damped`)."""
+    pairs = c.pairs
+    pj = c.pj
+    sn = bodies.bsnap
+    d = 0.0
+    for k in range(pairs.shape[0]):
+        if nact[k] == 0 or jprops[pj[k], J_CDAMP] <= 0.0:
+            continue
+        ba = sbody[pairs[k, 0]]
+        bb = sbody[pairs[k, 1]]
+        fx = pw[k, W_DFX]
+        fy = pw[k, W_DFY]
+        d -= dt * (fx * (sn[bb, 3] - sn[ba, 3]) + fy * (sn[bb, 4] - sn[ba, 4])
+                   + pw[k, W_DMB] * sn[bb, 5] - pw[k, W_DMA] * sn[ba, 5])
+    return d
 
 
 #: number of fixed blocks of the parallel body loops: their partial sums are combined in a fixed
@@ -1410,9 +1522,13 @@ def run_chunk(nsteps, P, E, C, S, drive, bodies, shapes, joints, contacts):
     # the body update keeps the world vertices current from here on
     world_vertices(bpos, bang, shapes)
     bsp, bsh = incidence(shapes.sbody, nb)
+    cdamp = damped(joints.jprops)
     for i in range(nsteps):
         c, pw, nact, par = step_forces(P, E, C, S, bodies, shapes, joints, c, (pw, nact, fb))
         step_update(P, E, C, S, _frame(i, drive), fb, bodies, shapes, bpart, (bsp, bsh), par)
+        if cdamp:
+            E[E_DDASH] += dashpot_work(c, nact, pw, joints.jprops, shapes.sbody, bodies,
+                                       P[P_DT])
     # mean contact force at the end of the chunk
     tot = 0.0
     na = 0

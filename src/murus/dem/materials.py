@@ -34,6 +34,13 @@ class Joint:
     cohesion, tension : initial cohesion c and tensile strength T [Pa];
     cohesion_res, tension_res : residual values after failure [Pa] (default 0);
     rolling : rolling-friction coefficient mu_r [-] of disc contacts (limit mu_r r_eff Fn).
+    contact_damping : critical-damping ratio zeta [-] of a normal dashpot per sub-contact,
+        0 <= zeta <= 1 (default 0: none). The dashpot ``c = 2 zeta sqrt(kn A m_eff)``
+        (``m_eff`` the reduced mass of the two bodies, a kinematic body counting as infinitely
+        heavy) acts only while the surfaces overlap and approach (an impact), never in
+        separation, and never pulls; its dissipation is the energy term ``contact_damping``.
+        :func:`murus.dem.rocking_damping.calibrate` gives the zeta of a target rocking
+        restitution (docs/guide/dem_rocking.md).
     """
 
     kn: float = 1.0e10
@@ -44,6 +51,7 @@ class Joint:
     cohesion_res: float = 0.0
     tension_res: float = 0.0
     rolling: float = 0.0
+    contact_damping: float = 0.0
 
     def __post_init__(self) -> None:
         for name in ("kn", "ks"):
@@ -57,6 +65,10 @@ class Joint:
             v = getattr(self, name)
             if not (math.isfinite(v) and v >= 0):
                 raise JointError(f"Joint: {name} must be >= 0, got {v!r}")
+        z = self.contact_damping
+        if not (math.isfinite(z) and 0.0 <= z <= 1.0):
+            raise JointError("Joint: contact_damping (critical-damping ratio of the normal "
+                             f"dashpot) must be in [0, 1], got {z!r}")
 
     def row(self) -> np.ndarray:
         """The property row of the kernels (``J_*`` columns)."""
@@ -69,6 +81,7 @@ class Joint:
         r[K.J_CRES] = self.cohesion_res
         r[K.J_TRES] = self.tension_res
         r[K.J_MUROLL] = self.rolling
+        r[K.J_CDAMP] = self.contact_damping
         return r
 
     @classmethod
@@ -77,4 +90,5 @@ class Joint:
                    friction_deg=math.degrees(math.atan(float(r[K.J_TANPHI]))),
                    cohesion=float(r[K.J_C]), tension=float(r[K.J_T]),
                    cohesion_res=float(r[K.J_CRES]), tension_res=float(r[K.J_TRES]),
-                   rolling=float(r[K.J_MUROLL]))
+                   rolling=float(r[K.J_MUROLL]),
+                   contact_damping=float(r[K.J_CDAMP]) if len(r) > K.J_CDAMP else 0.0)

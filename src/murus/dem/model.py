@@ -687,6 +687,9 @@ class Model:
         m.snap_time = meta["snap_time"]
         m._groups = meta["groups"]
         m._bodies = [dict(b, parts=[]) for b in meta["bodies"]]
+        if m.jprops.shape[1] < K.NJ:  # a checkpoint written before the J_CDAMP column
+            m.jprops = np.hstack([m.jprops, np.zeros((m.jprops.shape[0],
+                                                      K.NJ - m.jprops.shape[1]))])
         m._joints = [Joint.from_row(r) for r in m.jprops]
         m._built = True
         for k, spec in meta["probes"].items():
