@@ -522,10 +522,12 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
         "cached in `validation/results/retaining_continuum/`, each stamped with the key of "
         "the engine's source, so that a changed engine recomputes them.", "",
         "### Full-scale walls (§4, Tables 7 and 8)", "", *t7, "",
-        "The equivalent thrust (`backfill=\"thrust\"`, joints x 1e-3, the same 5 % damping) is "
-        "given for its nominal run; the disc backfill was run for DSRW1 at 5 Hz only, at the "
-        "earlier damping of 10 % (3.65 m/s², -32 %: section *Discrete granular backfill* "
-        "above), and not again.", "",
+        "The equivalent thrust (`backfill=\"thrust\"`, joints x 1e-3, the same 5 % damping) and "
+        "the disc backfill (`backfill=\"discrete\"` at its defaults: discs calibrated by the "
+        "biaxial test, an absorbing far side at W = 2 H, the same damping) are given for their "
+        "nominal run (\"not run\": not computed yet; the disc backfill's earlier run of DSRW1 "
+        "at 5 Hz at 10 % damping, 3.65 m/s², -32 %, is in section *Discrete granular "
+        "backfill* above).", "",
     ]
     if info["errs"]:
         e = np.asarray(info["errs"])

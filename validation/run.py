@@ -45,8 +45,10 @@ def main() -> None:
     # a run early, which would cache a truncated run)
     signal.signal(signal.SIGINT, _interrupt)
     import continuum
+    import dem_rocking_damping
     import eurocode
     import identify
+    import limit
     import mechanisms_dynamics
     import mordant_series_model
     import motion
@@ -64,6 +66,8 @@ def main() -> None:
     sections = [("rocking", rocking.section), ("restrained", restrained.section),
                 ("rest_rule", rest_rule.section),
                 ("mechanisms_dynamics", mechanisms_dynamics.section),
+                ("limit", limit.section),
+                ("dem_rocking_damping", dem_rocking_damping.section),
                 ("mordant_series_model", mordant_series_model.section),
                 ("winkler", lambda: winkler.run(ROOT / "docs" / "figures" / "winkler")),
                 ("motion", motion.section), ("eurocode", eurocode.section),

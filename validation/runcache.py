@@ -15,10 +15,10 @@ from pathlib import Path
 ENGINE_FIELD = "_engine_source"
 
 
-#: Modules that do not compute (command lines, figures, case files, verification tables),
-#: left out of :func:`source_key` unless named.
+#: Modules that do not compute (command lines, figures, case files, verification tables, the
+#: calibration of the DEM's contact damping), left out of :func:`source_key` unless named.
 NOT_ENGINE = ("cli.py", "plots.py", "vtk.py", "case.py", "coupled_case.py", "verify.py",
-              "study.py", "closed_forms.py")
+              "study.py", "closed_forms.py", "rocking_damping.py")
 
 
 def source_key(*packages: str, root: Path | None = None,

@@ -46,7 +46,8 @@ from murus import G
 from murus.errors import MurusError
 
 __all__ = ["point_restitution", "point_zeta", "FreeRocking", "free_rocking", "restitutions",
-           "calibrate", "CalibrationError", "KN", "FRICTION_DEG", "ROUNDING", "DENSITY"]
+           "record_rocking", "calibrate", "CalibrationError", "KN", "FRICTION_DEG", "ROUNDING",
+           "DENSITY"]
 
 #: defaults of the calibration block: contact stiffness [Pa/m], friction [deg], rounding [m],
 #: density [kg/m³] (those of murus.dem.verify.case_rocking)
@@ -189,6 +190,47 @@ def free_rocking(width: float, height: float, zeta: float, *, theta0_over_alpha:
     p2 = G * R / (4.0 / 3.0 * R * R)  # m g R / I_O of a uniform rectangle, I_O = 4/3 m R²
     e, peaks = restitutions(np.asarray(res.t), theta, omega, alpha, p2)
     return FreeRocking(np.asarray(res.t), theta, omega, alpha, p2, e, peaks)
+
+
+def record_rocking(width: float, height: float, zeta: float, motion, *,
+                   duration: float | None = None, kn: float = KN,
+                   friction_deg: float = FRICTION_DEG, rounding: float = ROUNDING,
+                   density: float = DENSITY):
+    """A ``width`` x ``height`` DEM block standing on a base shaken by ``motion`` (a
+    :class:`~murus.motion.core.GroundMotion`, horizontal), with joint contact damping ``zeta``:
+    its rotation history.
+
+    Parameters
+    ----------
+    width, height : float
+        Block [m].
+    zeta : float
+        Contact damping of the joint.
+    motion : murus.motion.core.GroundMotion
+        Base acceleration.
+    duration : float, optional
+        Length of the run [s] (default: the record's, plus 2 s).
+    kn, friction_deg, rounding, density : float
+        As in :func:`free_rocking`.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(t, theta)`` [s, rad] (theta counter-clockwise, sampled every step).
+    """
+    from murus.dem import engine as E
+    from murus.dem.materials import Joint
+    from murus.dem.verify import block_on_base
+
+    joint = Joint(kn=kn, ks=kn, friction_deg=friction_deg, contact_damping=zeta)
+    m, base, blk = block_on_base(width, height, joint, base="base", rounding=rounding)
+    for b in m._bodies:
+        b["density"] = density
+    m.set_base_motion(motion)
+    if duration is None:
+        duration = motion.dt * motion.acc.size + 2.0
+    res = m.run(duration, probes={"a": E.body_probe(blk, "angle")}, every=4)
+    return np.asarray(res.t), np.asarray(res["a"])
 
 
 def restitutions(t, theta, omega, alpha, p2, window=0.1, band=0.5):
