@@ -17,7 +17,6 @@
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import sys
@@ -224,10 +223,7 @@ def section(fig_dir: Path | None = None) -> str:
 def main(argv=None) -> None:
     import runcache
 
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default=None, help="Markdown file (default: standard output).")
-    args = ap.parse_args(argv)
-    runcache.emit(section(), args.out)
+    runcache.section_main(section, __doc__, argv)
 
 
 if __name__ == "__main__":

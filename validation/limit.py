@@ -9,7 +9,6 @@ kinematic checks are verified against. A few seconds.
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
@@ -65,10 +64,7 @@ def section() -> str:
 def main(argv=None) -> None:
     import runcache
 
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default=None, help="Markdown file (default: standard output).")
-    args = ap.parse_args(argv)
-    runcache.emit(section(), args.out)
+    runcache.section_main(section, __doc__, argv)
 
 
 if __name__ == "__main__":

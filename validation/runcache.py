@@ -143,3 +143,14 @@ def emit(text: str, out: str | None) -> None:
         Path(out).write_text(text)
     else:
         sys.stdout.write(text)
+
+
+def section_main(section: Callable[[], str], doc: str, argv=None) -> None:
+    """Command line of a validation module that makes one section: ``[--out FILE]`` (default
+    standard output)."""
+    import argparse
+
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("--out", default=None, help="Markdown file (default: standard output).")
+    args = ap.parse_args(argv)
+    emit(section(), args.out)
