@@ -29,8 +29,9 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 FIG = ROOT / "docs" / "figures" / "dem"
 CACHE = HERE / "results" / "dem_rocking_damping"
-#: the block of the comparison and its contact stiffness (kn = ks) [m, m, Pa/m]
-B, H, KN_REC = 0.25, 1.0, 1e9
+#: the block of the comparison and its contact stiffness (kn = ks) [m, m, Pa/m]; the records
+#: are also run at the free-rocking part's stiffness, KN_STIFF
+B, H, KN_REC, KN_STIFF = 0.25, 1.0, 1e9, 1e10
 #: records searched in this order, and the scales tried [-]
 SCALES = np.round(np.arange(0.5, 2.001, 0.02), 3)
 N_RECORDS = 3
@@ -148,17 +149,21 @@ def record_runs(cases: list[dict]) -> list[dict]:
     CACHE.mkdir(parents=True, exist_ok=True)
     for c in cases:
         g = _trim(recs[c["record"]]).scaled(c["scale"])
-        path = CACHE / f"{c['record']}_x{c['scale']:g}.json"
-        rec = json.loads(path.read_text()) if path.exists() else None
-        if rec is None or rec.get("_engine_source") != eng:
-            t, th = RD.record_rocking(B, H, 1.0, g, kn=KN_REC)
-            rec = {"record": c["record"], "scale": c["scale"],
-                   "theta_max": float(np.abs(th).max()), "t": t[::25].round(4).tolist(),
-                   "theta": th[::25].round(7).tolist(), "_engine_source": eng}
-            tmp = path.with_suffix(".json.tmp")
-            tmp.write_text(json.dumps(rec))
-            tmp.replace(path)
-        out.append(dict(c, dem=rec["theta_max"] / alpha,
+        dem = {}
+        for kn in (KN_REC, KN_STIFF):
+            sfx = "" if kn == KN_REC else f"_kn{kn:g}"
+            path = CACHE / f"{c['record']}_x{c['scale']:g}{sfx}.json"
+            rec = json.loads(path.read_text()) if path.exists() else None
+            if rec is None or rec.get("_engine_source") != eng:
+                t, th = RD.record_rocking(B, H, 1.0, g, kn=kn)
+                rec = {"record": c["record"], "scale": c["scale"], "kn": kn,
+                       "theta_max": float(np.abs(th).max()), "t": t[::25].round(4).tolist(),
+                       "theta": th[::25].round(7).tolist(), "_engine_source": eng}
+                tmp = path.with_suffix(".json.tmp")
+                tmp.write_text(json.dumps(rec))
+                tmp.replace(path)
+            dem[kn] = rec["theta_max"] / alpha
+        out.append(dict(c, dem=dem[KN_REC], dem_stiff=dem[KN_STIFF],
                         rocking_e_dem=_theta_max(blk, g, e_dem) / alpha,
                         rocking_housner=_theta_max(blk, g) / alpha, e_dem=e_dem))
     return out
@@ -201,19 +206,25 @@ def section(fig_dir: Path | None = None) -> str:
               "without overturning and stably (theta_max within 6 % over -4, -2, +2, +4 % of "
               "the scale: not chaotic there; the first such records of the suite). theta_max "
               "/ alpha:", "",
-              "| record | scale | PGA [m/s²] | spread of the rocking engine over +-4 % | DEM | "
-              "rocking engine, DEM's e (difference) | rocking engine, Housner's e "
-              "(difference) |", "|---|---|---|---|---|---|---|"]
+              f"| record | scale | PGA [m/s²] | spread of the rocking engine over +-4 % | "
+              f"rocking engine, DEM's e | rocking engine, Housner's e | DEM, kn {KN_REC:g} "
+              f"(against the DEM's e) | DEM, kn {KN_STIFF:g} (against the DEM's e) |",
+              "|---|---|---|---|---|---|---|---|"]
     for r in res:
         d1 = 100 * (r["dem"] / r["rocking_e_dem"] - 1)
-        d2 = 100 * (r["dem"] / r["rocking_housner"] - 1)
+        d2 = 100 * (r["dem_stiff"] / r["rocking_e_dem"] - 1)
         lines.append(f"| {r['record']} | {r['scale']:g} | {r['pga']:.2f} | "
-                     f"{100 * r['spread']:.1f} % | {r['dem']:.3f} | {r['rocking_e_dem']:.3f} "
-                     f"({d1:+.1f} %) | {r['rocking_housner']:.3f} ({d2:+.1f} %) |")
+                     f"{100 * r['spread']:.1f} % | {r['rocking_e_dem']:.3f} | "
+                     f"{r['rocking_housner']:.3f} | {r['dem']:.3f} ({d1:+.1f} %) | "
+                     f"{r['dem_stiff']:.3f} ({d2:+.1f} %) |")
     within = sum(abs(r["dem"] / r["rocking_e_dem"] - 1) <= 0.10 for r in res)
+    within2 = sum(abs(r["dem_stiff"] / r["rocking_e_dem"] - 1) <= 0.10 for r in res)
     lines += ["", f"Within 10 % of the rocking engine with the same e: {within} of {len(res)} "
-              "(goal: theta_max within 10 % under three records where the response is not "
-              "chaotic).", "",
+              f"at kn = {KN_REC:g}, {within2} of {len(res)} at kn = {KN_STIFF:g} (goal: theta_max "
+              "within 10 % under three records where the response is not chaotic; the two "
+              "contact stiffnesses are a perturbation of the model of the size a DEM user makes, "
+              "and the difference between them measures how sensitive the response still is).",
+              "",
               "Regenerate: `PYTHONPATH=src python validation/dem_rocking_damping.py` (the "
               "free-rocking part about 3 minutes on one core; each DEM record run several "
               "minutes, cached).", ""]
