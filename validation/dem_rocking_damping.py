@@ -169,6 +169,31 @@ def record_runs(cases: list[dict]) -> list[dict]:
     return out
 
 
+def untrimmed(case: dict, e_dem: float) -> dict:
+    """The first case on its whole record (not trimmed), DEM at KN_STIFF (cached) against the
+    rocking engine with the DEM's e."""
+    from murus.dem import rocking_damping as RD
+    from murus.motion import suite
+    from murus.rocking import RigidBlock
+
+    alpha = math.atan(B / H)
+    g0 = next(g for g in suite("farfield", components="both") if g.name == case["record"])
+    g = g0.scaled(case["scale"])
+    path = CACHE / f"{case['record']}_x{case['scale']:g}_whole_kn{KN_STIFF:g}.json"
+    rec = json.loads(path.read_text()) if path.exists() else None
+    if rec is None or rec.get("_engine_source") != _engine():
+        t, th = RD.record_rocking(B, H, 1.0, g, kn=KN_STIFF)
+        rec = {"record": case["record"], "scale": case["scale"], "kn": KN_STIFF,
+               "theta_max": float(np.abs(th).max()), "_engine_source": _engine()}
+        CACHE.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(rec))
+    cum = np.cumsum(g0.acc ** 2)
+    lead = g0.dt * int(np.searchsorted(cum, 0.05 * cum[-1]))
+    return {"record": case["record"], "scale": case["scale"], "lead": lead,
+            "dem": rec["theta_max"] / alpha,
+            "rocking": _theta_max(RigidBlock(B, H, density=2000.0), g, e_dem) / alpha}
+
+
 def section(fig_dir: Path | None = None) -> str:
     fig_dir = FIG if fig_dir is None else fig_dir
     rel = fig_dir.relative_to(ROOT) if fig_dir.is_relative_to(ROOT) else fig_dir
@@ -217,6 +242,7 @@ def section(fig_dir: Path | None = None) -> str:
                      f"{100 * r['spread']:.1f} % | {r['rocking_e_dem']:.3f} | "
                      f"{r['rocking_housner']:.3f} | {r['dem']:.3f} ({d1:+.1f} %) | "
                      f"{r['dem_stiff']:.3f} ({d2:+.1f} %) |")
+    un = untrimmed(cases[0], res[0]["e_dem"])
     within = sum(abs(r["dem"] / r["rocking_e_dem"] - 1) <= 0.10 for r in res)
     within2 = sum(abs(r["dem_stiff"] / r["rocking_e_dem"] - 1) <= 0.10 for r in res)
     lines += ["", f"Within 10 % of the rocking engine with the same e: {within} of {len(res)} "
@@ -225,6 +251,12 @@ def section(fig_dir: Path | None = None) -> str:
               "contact stiffnesses are a perturbation of the model of the size a DEM user makes, "
               "and the difference between them measures how sensitive the response still is).",
               "",
+              f"The trimming matters: on the whole record {un['record']} x {un['scale']:g} "
+              f"(with its {un['lead']:.0f} s of weak motion before the strong part) the DEM at "
+              f"kn = {KN_STIFF:g} gives {un['dem']:.3f} against the rocking engine's "
+              f"{un['rocking']:.3f} ({100 * (un['dem'] / un['rocking'] - 1):+.1f} %): below the "
+              "uplift threshold the rigid block does not move at all, the DEM block on elastic "
+              "contacts does (the source of the difference is not isolated further here).", "",
               "Regenerate: `PYTHONPATH=src python validation/dem_rocking_damping.py` (the "
               "free-rocking part about 3 minutes on one core; each DEM record run several "
               "minutes, cached).", ""]
