@@ -522,8 +522,8 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
         "mass-proportional damping of 5 % of critical at the input frequency on the whole "
         "model (the paper's effective damping, which its tables print as the 10 % given to "
         "UDEC), on the velocity relative to the base.", "",
-        "Every A_col is the **median of five runs** (of the first three where the table says "
-        "so: the others are computed by the next `make validate`) whose time step is 100, 95, "
+        "Every A_col is the **median of five runs** (of the first n where a cell says \"n runs "
+        "of 5\": the others are computed by the next `make validate`) whose time step is 100, 95, "
         "90, 85 and 80 % of the nominal one (`murus.retaining.collapse.collapse_ensemble`), "
         "with the range in brackets; the nominal run is the one the shipped command makes, "
         "e.g. `murus retaining collapse --preset DSRW1 --frequency 5 --backfill continuum` "
