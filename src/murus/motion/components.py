@@ -231,15 +231,10 @@ def rotd_spectrum(gm_a: GroundMotion, gm_b: GroundMotion, periods=None, damping:
     Boore, D. M. (2010), Bull. Seismol. Soc. Am. 100(4), 1830-1835, doi:10.1785/0120090400.
     """
     from murus.motion._kernels import sdof_history
-    from murus.motion.spectra import default_periods
+    from murus.motion.spectra import damping_and_periods
 
     _check_pair(gm_a, gm_b)
-    xi = float(damping)
-    if not (0.0 <= xi < 1.0):
-        raise ValueError(f"damping ratio must be in [0, 1), got {damping!r}")
-    T = default_periods() if periods is None else np.atleast_1d(np.asarray(periods, float))
-    if T.ndim != 1 or np.any(~np.isfinite(T)) or np.any(T <= 0):
-        raise ValueError("periods must be finite and > 0 s")
+    xi, T = damping_and_periods(damping, periods)
     pcts = [float(p) for p in np.atleast_1d(percentiles)]
     if any(not (0.0 <= p <= 100.0) for p in pcts):
         raise ValueError(f"percentiles must be in [0, 100], got {percentiles!r}")

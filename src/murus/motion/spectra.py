@@ -89,6 +89,19 @@ class ResponseSpectrum:
         return float(np.exp(np.interp(np.log(period), np.log(self.period), np.log(y))))
 
 
+def damping_and_periods(damping, periods, zero_ok: bool = False) -> tuple[float, np.ndarray]:
+    """The damping ratio (in [0, 1)) and the periods [s] of a spectrum, checked: ``periods``
+    ``None`` gives :func:`default_periods`; finite and > 0 (>= 0 with ``zero_ok``: T = 0 is the
+    peak ground acceleration). Raises ``ValueError`` naming what is wrong."""
+    xi = float(damping)
+    if not (0.0 <= xi < 1.0):
+        raise ValueError(f"damping ratio must be in [0, 1), got {damping!r}")
+    T = default_periods() if periods is None else np.atleast_1d(np.asarray(periods, float))
+    if T.ndim != 1 or np.any(~np.isfinite(T)) or np.any(T < 0 if zero_ok else T <= 0):
+        raise ValueError(f"periods must be finite and {'>=' if zero_ok else '>'} 0 s")
+    return xi, T
+
+
 def _substeps(periods: np.ndarray, dt: float, oversample) -> np.ndarray:
     if oversample == "auto" or oversample is None:
         m = np.ceil(POINTS_PER_PERIOD * dt / periods)
@@ -135,12 +148,7 @@ def response_spectrum(
 
     Reference: Nigam and Jennings (1969), exact for the piecewise-linear input.
     """
-    xi = float(damping)
-    if not (0.0 <= xi < 1.0):
-        raise ValueError(f"damping ratio must be in [0, 1), got {damping!r}")
-    T = default_periods() if periods is None else np.atleast_1d(np.asarray(periods, float))
-    if T.ndim != 1 or np.any(~np.isfinite(T)) or np.any(T < 0):
-        raise ValueError("periods must be finite and >= 0 s")
+    xi, T = damping_and_periods(damping, periods, zero_ok=True)
     acc = motion.acc
     if tail > 0:
         acc = np.concatenate([acc, np.zeros(int(math.ceil(tail / motion.dt)))])
@@ -198,12 +206,7 @@ def pseudo_spectrum(motion: GroundMotion, periods=None, damping: float = 0.05,
     ----------
     Nigam and Jennings (1969).
     """
-    xi = float(damping)
-    if not (0.0 <= xi < 1.0):
-        raise ValueError(f"damping ratio must be in [0, 1), got {damping!r}")
-    T = default_periods() if periods is None else np.atleast_1d(np.asarray(periods, float))
-    if T.ndim != 1 or np.any(~np.isfinite(T)) or np.any(T <= 0):
-        raise ValueError("periods must be finite and > 0 s")
+    xi, T = damping_and_periods(damping, periods)
     w = 2.0 * np.pi / T
     sd = sdof_sd_peaks(motion.acc, motion.dt, w, xi, _substeps(T, motion.dt, oversample), refine)
     return w * w * sd
