@@ -324,14 +324,21 @@ def _solve_lp(B, fD, fL, itf, A, slope, const, reg=0.0):
     median interface length times it), which HiGHS needs for walls of hundreds of blocks."""
     from scipy.sparse import diags
 
+    Ws, r = _scales(B, fD, fL, itf)
+    lam, n1, n2, s, y = _lp(diags(r) @ B, r * fD / Ws, r * fL / Ws, -0.5 * itf.tensile * A / Ws,
+                            slope, np.asarray(const) / Ws, reg * Ws)
+    return lam, n1 * Ws, n2 * Ws, s * Ws, r * y / Ws
+
+
+def _scales(B, fD, fL, itf):
+    """The LP's units (:func:`_solve_lp`): the force scale (the largest load component [N])
+    and the row factors of the equilibrium equations (1 for forces, one over the median
+    interface length for moments)."""
     Ws = max(np.abs(fD).max(initial=0.0), np.abs(fL).max(initial=0.0), 1e-300)
     Ls = float(np.median(itf.length)) if len(itf) else 1.0
     r = np.ones(B.shape[0])
     r[2::3] = 1.0 / Ls
-    R = diags(r)
-    lam, n1, n2, s, y = _lp(R @ B, r * fD / Ws, r * fL / Ws, -0.5 * itf.tensile * A / Ws,
-                            slope, np.asarray(const) / Ws, reg * Ws)
-    return lam, n1 * Ws, n2 * Ws, s * Ws, r * y / Ws
+    return Ws, r
 
 
 def _lp(B, fD, fL, lo_n, slope, const, reg):
@@ -388,10 +395,7 @@ def _closest_to_coulomb(B, fD, fL, itf, A, cap, lam):
     from scipy.sparse import eye as speye
 
     k = len(itf)
-    Ws = max(np.abs(fD).max(initial=0.0), np.abs(fL).max(initial=0.0), 1e-300)
-    Ls = float(np.median(itf.length)) if k else 1.0
-    r = np.ones(B.shape[0])
-    r[2::3] = 1.0 / Ls
+    Ws, r = _scales(B, fD, fL, itf)
     Bs = diags(r) @ B
     # the load factor a hair below the LP's, so that round-off cannot make it infeasible
     rhs = -(r * fD + (lam - 1e-9 * max(1.0, abs(lam))) * r * fL) / Ws
