@@ -468,11 +468,11 @@ class ContinuumModel:
             raise ModelError(f"quiet: frame must be 'rest' or 'base', got {frame!r}",
                              key=("quiet", "frame"))
         want = 1.0 if fr == "base" else 0.0
-        if bool(np.any(self.gdash != 0.0)) and self.P[K.P_QFRAME] != want:
+        had = getattr(self, "_quiet_frame", None)  # (free-field sides have dashpots too)
+        if had is not None and had != fr:
             raise ModelError(f"quiet: the quiet edges already added act against "
-                             f"{'the base' if self.P[K.P_QFRAME] else 'rest'}: one frame for "
-                             f"every quiet edge of a model, got {frame!r}",
-                             key=("quiet", "frame"))
+                             f"{'the base' if had == 'base' else 'rest'}: one frame for every "
+                             f"quiet edge of a model, got {frame!r}", key=("quiet", "frame"))
         ed, zone = self._orient(edges, "quiet")
         for (a, b), z in zip(ed, zone, strict=True):
             mt = self.materials[self.zmat[z]]
@@ -494,6 +494,7 @@ class ContinuumModel:
                                             + self.gmass[g] * gw[k])
                         self.gfix[g, k] = 0
         self.P[K.P_QFRAME] = want
+        self._quiet_frame = fr
 
     def add_free_field(self, sides) -> None:
         """Free-field lateral boundaries on vertical sides (:mod:`murus.continuum.freefield`),
