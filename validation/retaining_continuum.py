@@ -23,6 +23,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 import statistics
 import sys
 from pathlib import Path
@@ -287,6 +288,16 @@ def _nominal(recs: dict, key: str, ref: float) -> str:
     return "no collapse" if not math.isfinite(a) else f"{a:.2f} ({100 * (a / ref - 1):+.0f} %)"
 
 
+def _unsettled(recs: dict, key: str, limit: float = 0.5) -> float | None:
+    """The unbalanced-force ratio at the end of a disc backfill's settling when above
+    ``limit`` (the backfill far from equilibrium before the shaking), else None."""
+    if key not in recs:
+        return None
+    msg = recs[key]["summary"]["options"].get("backfill_options", {}).get("settle", "")
+    m = re.search(r"not settled after \d+ steps, ratio ([0-9.eE+-]+)", msg or "")
+    return float(m.group(1)) if m and float(m.group(1)) > limit else None
+
+
 def _modes(recs: dict, prefix: str) -> str:
     ms = [recs[k].get("mode") or "-" for k in (f"{prefix}_r{i}" for i in range(NRUNS))
           if k in recs]
@@ -315,6 +326,11 @@ def t7_table(recs: dict) -> tuple[list[str], dict]:
         st = ens_stats(recs, f"t7_{tag}")
         th = _nominal(recs, f"thrust_{tag}_r0", ref)
         dc = _nominal(recs, f"discs_{tag}_r0", ref)
+        if _unsettled(recs, f"discs_{tag}_r0") is not None:
+            dc += " †"
+            info.setdefault("unsettled", []).append(
+                (row["wall"], _unsettled(recs, f"discs_{tag}_r0"),
+                 recs[f"discs_{tag}_r0"]["summary"]["t_col"]))
         aps = rr = math.nan
         k0 = f"t7_{tag}_r0"
         if k0 in recs:
@@ -558,6 +574,17 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
         "at 5 Hz at 10 % damping, 3.65 m/s², -32 %, is in section *Discrete granular "
         "backfill* above).", "",
     ]
+    if info.get("unsettled"):
+        ref = _unsettled(recs, "discs_DSRW1_5_none_r0", limit=0.0)
+        early = [w for w, _, t in info["unsettled"] if t is not None and t < 1.0]
+        out += ["† The disc backfill did not settle under gravity before the shaking "
+                "(unbalanced-force ratio at the end of its settling: " + ", ".join(
+                    f"{w} {u:.2f}, collapse at t = {t:.2f} s" for w, u, t in info["unsettled"])
+                + ("" if ref is None else f"; DSRW1 {ref:.2f}") + "): the discs at their "
+                "default calibration are far from equilibrium behind these walls"
+                + (f"; {', '.join(early)} collapses within the first second, under gravity "
+                   "rather than the shaking: that A_col is no dynamic capacity" if early else "")
+                + ".", ""]
     if info["errs"]:
         e = np.asarray(info["errs"])
         out.append(f"- {len(e)} of 8 cases run; error of the median against Table 7: mean "
