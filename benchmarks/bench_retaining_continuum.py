@@ -9,20 +9,22 @@ B. one simulated second of the H/B = 2.7 mock-up (§3) at the mesh used for Tabl
 C. the behaviour-factor study of DSRW1 (examples/retaining/dsrw1_behaviour_factor.toml: five S2
    runs and ten S1 checks on the continuum backfill) on a process pool of 2 workers and on a
    Dask LocalCluster of 2 single-threaded workers, and its resume after Ctrl-C (SIGINT to the
-   process group once the first case is stored): the resumed study gives the same table, byte
-   for byte, as the uninterrupted one.
+   process group once the first case is stored): the resumed study gives the results of the
+   uninterrupted one (every case record, its history and the table, all but the wall times);
+R. the resume check of C alone, against a finished study folder (``--ref``, default the
+   validation cache of DSRW1, which C's process run produced).
 
 Peer: UDEC, the tool of Savalle et al. (2022) (commercial, not runnable here): 12 hours of
 computation per simulated second of its mock-up model (§3.1), quoted as the peer point.
 
-``python benchmarks/bench_retaining_continuum.py [--parts A,B,C] [--out
+``python benchmarks/bench_retaining_continuum.py [--parts A,B,C|R] [--ref DIR] [--out
 benchmarks/RESULTS_retaining_continuum.md]``
 """
 
 from __future__ import annotations
 
 import argparse
-import filecmp
+import json
 import os
 import platform
 import shutil
@@ -38,6 +40,7 @@ ROOT = HERE.parent
 UDEC_H_PER_S = 12.0
 GOALS = {"A": 900.0, "B": 300.0}
 EXAMPLE = ROOT / "examples" / "retaining" / "dsrw1_behaviour_factor.toml"
+REF = ROOT / "validation" / "results" / "retaining_behaviour" / "continuum" / "DSRW1"
 #: The command line of this environment.
 MURUS = str(Path(sys.executable).parent / "murus")
 
@@ -91,6 +94,63 @@ def _interrupted(out: Path, extra: list[str], env) -> tuple[float, int]:
     return time.perf_counter() - t0, p.returncode
 
 
+def same_results(a: Path, b: Path) -> tuple[bool, list[str]]:
+    """Whether two finished study folders hold the same results: every case record (its
+    summary without the wall time), every case history byte for byte, and the table without
+    its wall-time column; (verdict, the files that differ)."""
+    def table(folder):
+        lines = (folder / "behaviour_factor.csv").read_text().splitlines()
+        i = lines[0].split(",").index("wall_time_s")
+        return [[x for k, x in enumerate(line.split(",")) if k != i] for line in lines]
+
+    def record(path):
+        rec = json.loads(path.read_text())
+        rec["summary"].pop("wall_time", None)
+        return rec
+
+    bad = [] if table(a) == table(b) else ["behaviour_factor.csv"]
+    names = sorted(p.name for p in (a / "cases").glob("*.json"))
+    if names != sorted(p.name for p in (b / "cases").glob("*.json")):
+        bad.append("cases/ (other case files)")
+        return False, bad
+    for n in names:
+        if record(a / "cases" / n) != record(b / "cases" / n):
+            bad.append(f"cases/{n}")
+        h = n[:-5] + ".csv"
+        if (a / "cases" / h).read_bytes() != (b / "cases" / h).read_bytes():
+            bad.append(f"cases/{h}")
+    return not bad, bad
+
+
+def resume_check(ref: Path, tmp: Path, env) -> dict:
+    """Interrupt the study once a case is stored, resume it, compare with ``ref``."""
+    out = tmp / "resumed"
+    stop, code = _interrupted(out, ["--executor", "process", "--workers", "2"], env)
+    done = len(list((out / "cases").glob("*.json.sha256")))
+    secs, p = _study(out, ["--executor", "process", "--workers", "2"], env)
+    same, bad = same_results(ref, out) if p.returncode == 0 else (False, ["(no result)"])
+    return dict(stop=stop, code=code, done=done, resume=secs, rc=p.returncode, same=same,
+                bad=bad, n=len(list((out / "cases").glob("*.json"))))
+
+
+def part_r(ref: Path):
+    env = dict(os.environ, NUMBA_NUM_THREADS="1")
+    tmp = Path(tempfile.mkdtemp(prefix="bench_bf_"))
+    try:
+        return resume_check(ref, tmp, env)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _resume_text(res: dict, ref: str) -> str:
+    verdict = ("yes" if res["same"] else "NO (" + ", ".join(res["bad"][:6]) + ")")
+    return (f"Ctrl-C once the first case was stored: the study stopped in {res['stop']:.1f} s "
+            f"(exit code {res['code']}) with {res['done']} case(s) kept; the resume took "
+            f"{res['resume']:.0f} s (exit {res['rc']}). Its results against {ref} (the "
+            f"{res['n']} case records without their wall time, their histories byte for byte, "
+            f"the table without its wall-time column): the same: {verdict}.")
+
+
 def part_c():
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
     tmp = Path(tempfile.mkdtemp(prefix="bench_bf_"))
@@ -106,14 +166,10 @@ def part_c():
                 raise RuntimeError(f"{label}: exit {p.returncode}: {p.stderr[-500:]}")
             rows[label] = (secs, out)
         ref = rows["process, 2 workers"][1]
-        out = tmp / "resumed"
-        stop, code = _interrupted(out, ["--executor", "process", "--workers", "2"], env)
-        done = len(list((out / "cases").glob("*.json.sha256")))
-        secs, p = _study(out, ["--executor", "process", "--workers", "2"], env)
-        same = all(filecmp.cmp(ref / n, out / n, shallow=False)
-                   for n in ("behaviour_factor.csv", "behaviour_factor.md"))
-        return rows, dict(stop=stop, code=code, done=done, resume=secs, rc=p.returncode,
-                          same=same)
+        dask_same = same_results(ref, rows["Dask LocalCluster, 2 workers"][1])
+        res = resume_check(ref, tmp, env)
+        res["dask_same"] = dask_same
+        return rows, res
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
@@ -122,6 +178,8 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--parts", default="A,B,C")
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--ref", default=str(REF), help="Part R: the finished study folder to "
+                    "compare with.")
     ap.add_argument("--out", default=str(HERE / "RESULTS_retaining_continuum.md"))
     args = ap.parse_args(argv)
     os.environ["NUMBA_NUM_THREADS"] = str(args.threads)
@@ -171,10 +229,16 @@ def main(argv=None) -> None:
         L += ["## C. Behaviour-factor study of DSRW1 (its example case file)", "",
               "| executor | wall time [s] |", "|---|---|"]
         L += [f"| {k} | {v[0]:.0f} |" for k, v in rows.items()]
-        L += ["", f"Ctrl-C once the first case was stored: the study stopped in "
-              f"{res['stop']:.1f} s (exit code {res['code']}) with {res['done']} cases kept; "
-              f"the resume took {res['resume']:.0f} s (exit {res['rc']}) and gave the same "
-              f"table byte for byte: {'yes' if res['same'] else 'NO'}.", ""]
+        ds, dbad = res["dask_same"]
+        L += ["", f"The Dask study against the process one (same comparison as below): "
+              f"{'the same' if ds else 'NOT the same: ' + ', '.join(dbad[:6])}.", "",
+              _resume_text(res, "the uninterrupted process run"), ""]
+    if "R" in parts:
+        ref = Path(args.ref).resolve()
+        lab = ref.relative_to(ROOT) if ref.is_relative_to(ROOT) else ref
+        res = part_r(ref)
+        L += ["## C (resume). Behaviour-factor study of DSRW1, interrupted and resumed", "",
+              _resume_text(res, f"`{lab}`"), ""]
     load1 = os.getloadavg()
     L.append(f"Load average (1, 5, 15 min) at the start {' '.join(f'{x:.2f}' for x in load0)}, "
              f"at the end {' '.join(f'{x:.2f}' for x in load1)}.")
