@@ -81,3 +81,35 @@ def test_restamp_rekeys_only_the_old_engines_records(tmp_path):
     assert a["_restamp_evidence"] == "a recomputed bit for bit" and a["x"] == 1
     assert json.loads((tmp_path / "b.json").read_text()) == recs["b"]
     assert (tmp_path / "c.json").read_text() == "{not json"
+
+
+def test_an_s1_check_at_another_median_is_stale():
+    """An S1 check (Figure 14) is made at a ratio of the median A_col of the cached runs of
+    DSRW1 at 5 Hz: a record made when that median was another (fewer runs then) is made again
+    by the section (validation/retaining_continuum.py)."""
+    import statistics
+
+    import retaining_continuum as rc
+
+    vals = [json.loads(p.read_text())["summary"]["A_col"]
+            for p in sorted(rc.CACHE.glob("t7_DSRW1_5_none_r*.json"))]
+    med = statistics.median(vals)
+    rec = {"spec": {"ratio": 0.6}, "summary": {"a_peak": 0.6 * med}}
+    assert rc._s1_current(rec)
+    rec["summary"]["a_peak"] = 0.6 * med * (1 + 1e-9)
+    assert not rc._s1_current(rec)
+
+
+def test_a_disc_backfill_far_from_equilibrium_is_flagged():
+    import retaining_continuum as rc
+
+    def rec(msg):
+        return {"summary": {"options": {"backfill_options": {"settle": msg}}}}
+
+    recs = {"a": rec("not settled after 20000 steps, ratio 7.72e-01 > 0.01"),
+            "b": rec("not settled after 20000 steps, ratio 6.69e-02 > 0.01"),
+            "c": rec("settled in 14400 steps, ratio 8.33e-05")}
+    assert rc._unsettled(recs, "a") == pytest.approx(0.772)
+    assert rc._unsettled(recs, "b") is None and rc._unsettled(recs, "c") is None
+    assert rc._unsettled(recs, "b", limit=0.0) == pytest.approx(0.0669)
+    assert rc._unsettled(recs, "missing") is None
