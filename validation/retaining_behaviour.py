@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import json
 import math
 import os
 from pathlib import Path
@@ -71,8 +72,6 @@ def _err(a, b) -> str:
 def _against_nominal(res: dict) -> tuple[list[str], list[str]]:
     """The S2 cases whose A_col equals (first list) or differs from (second) the nominal run
     of the same case in the continuum validation's cache (cases without one are skipped)."""
-    import json
-
     same, diff = [], []
     cont = ROOT / "validation" / "results" / "retaining_continuum"
     for r in res.values():

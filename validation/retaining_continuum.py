@@ -326,11 +326,11 @@ def t7_table(recs: dict) -> tuple[list[str], dict]:
         st = ens_stats(recs, f"t7_{tag}")
         th = _nominal(recs, f"thrust_{tag}_r0", ref)
         dc = _nominal(recs, f"discs_{tag}_r0", ref)
-        if _unsettled(recs, f"discs_{tag}_r0") is not None:
+        u = _unsettled(recs, f"discs_{tag}_r0")
+        if u is not None:
             dc += " †"
             info.setdefault("unsettled", []).append(
-                (row["wall"], _unsettled(recs, f"discs_{tag}_r0"),
-                 recs[f"discs_{tag}_r0"]["summary"]["t_col"]))
+                (row["wall"], u, recs[f"discs_{tag}_r0"]["summary"]["t_col"]))
         aps = rr = math.nan
         k0 = f"t7_{tag}_r0"
         if k0 in recs:

@@ -131,11 +131,13 @@ def test_case_file_contact_damping(tmp_path):
 
 def test_calibrate_reaches_a_restitution_between_housner_and_the_undamped():
     """Issue 19, item 5: a target restitution per impact between Housner's (0.912 for the
-    0.25 x 1.0 m block) and the undamped block's (0.97-0.98) is reached within 2 % (the
-    calibration's own tolerance is 0.002); one below Housner's is refused with the reason."""
+    0.25 x 1.0 m block) and the undamped block's (0.97-0.98) is reached: a free-rocking run
+    with the zeta returned has the target as the mean of its first three impacts within the
+    calibration's tolerance (0.002, its contract); one below Housner's is refused with the
+    reason."""
     z = RD.calibrate(0.25, 1.0, 0.94, kn=1e9)
     assert 0.0 < z < 1.0
-    r = RD.free_rocking(0.25, 1.0, z, n_impacts=4, kn=1e9)
-    assert np.all(np.abs(r.e[:4] / 0.94 - 1) <= 0.02), r.e
+    r = RD.free_rocking(0.25, 1.0, z, n_impacts=3, kn=1e9)
+    assert abs(float(np.mean(r.e[:3])) - 0.94) <= 0.002, r.e
     with pytest.raises(RD.CalibrationError, match="below"):
         RD.calibrate(0.25, 1.0, 0.85, kn=1e9)
