@@ -10,7 +10,9 @@ makes. Runs are cached as JSON under ``validation/results/retaining_continuum/``
 run, stamped with the key of the engine's source (:func:`runcache.source_key` of
 ``murus.dem``, ``murus.continuum``, ``murus.retaining`` and the harmonic signals of
 ``murus.motion``, without their command lines and figures): a run made by another engine is
-recomputed.
+recomputed. A run in progress writes a checkpoint every five minutes under
+``validation/results/retaining_continuum/checkpoints/`` (not in git): interrupted, it resumes
+from there.
 
 Usage::
 
@@ -39,6 +41,10 @@ ROOT = HERE.parent
 FIG = ROOT / "docs" / "figures" / "retaining"
 DATA = ROOT / "tests" / "data" / "retaining"
 CACHE = ROOT / "validation" / "results" / "retaining_continuum"
+#: Checkpoints of the runs in progress (not kept in git): a run interrupted (Ctrl-C, the end of
+#: a session) resumes from its last one and gives the uninterrupted run bit for bit
+#: (:func:`murus.retaining.collapse.collapse_run`, ``checkpoint``).
+CHECKPOINTS = CACHE / "checkpoints"
 #: Sub-packages and modules whose source keys the cache (without the command lines, figures
 #: and case files: runcache.NOT_ENGINE).
 ENGINE = ("__init__.py", "dem", "continuum", "retaining", "motion/core.py",
@@ -165,6 +171,16 @@ def compute(key: str) -> dict:
         acol, n_med = _median_acol("t7_DSRW1_5_none")
         kw.update(signal="S1", a_peak=spec["ratio"] * acol)
     kw["safety"] = 0.2 * DT_FACTORS[spec["run"]]
+    ck = None
+    if bmode != "discrete":  # a checkpoint every 5 minutes: an interrupted run resumes
+        from murus.retaining.collapse import _code_key
+
+        CHECKPOINTS.mkdir(parents=True, exist_ok=True)
+        ck = CHECKPOINTS / f"{key}.{_code_key()}.npz"
+        for old in CHECKPOINTS.glob(f"{key}.*.npz"):  # of another version of the code
+            if old != ck and re.fullmatch(re.escape(key) + r"\.[0-9a-f]{20}\.npz", old.name):
+                old.unlink()
+        kw.update(checkpoint=ck, checkpoint_every=300.0)
     r = collapse_run(wall, spec["f"], spec["vertical"], backfill=bmode,
                      backfill_options=opts if bmode == "continuum" else None, **kw)
     rec = {"key": key, "spec": spec, "summary": json_safe(r.summary()), "mode": r.mode,

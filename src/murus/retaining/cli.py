@@ -261,6 +261,15 @@ def collapse(
                              "of the nominal run are written."),
     workers: int = typer.Option(1, "--workers", help="With --runs: processes running them "
                                 "(one numba thread each)."),
+    checkpoint: str | None = typer.Option(None, "--checkpoint", help="A file (.npz) where the "
+                                          "run's state is saved every --checkpoint-every "
+                                          "seconds: the same command run again after an "
+                                          "interruption resumes from it and gives the "
+                                          "uninterrupted result bit for bit; removed when the "
+                                          "run ends. Continuum or thrust backfill, one run."),
+    checkpoint_every: float = typer.Option(300.0, "--checkpoint-every", help="With "
+                                           "--checkpoint: seconds of wall time between two "
+                                           "saves."),
 ) -> None:
     """S2 collapse run of the DEM wall on the continuum backfill of the paper (the default),
     the equivalent thrust or a disc backfill (Savalle et al. (2022), §4.2): writes d_top.csv
@@ -304,10 +313,14 @@ def collapse(
             raise ValueError(f"--runs must be from 1 to {len(DT_FACTORS)}, got {runs}")
         if workers < 1:
             raise ValueError(f"--workers must be >= 1, got {workers}")
+        if checkpoint is not None and runs != 1:
+            raise ValueError("--checkpoint needs --runs 1 (one run, one checkpoint file)")
         ens = None
         if runs == 1:
+            ck = {} if checkpoint is None else dict(checkpoint=checkpoint,
+                                                    checkpoint_every=checkpoint_every)
             with LazyProgress(f"collapse {wall.name} {frequency:g} Hz", unit="s") as bar:
-                res = collapse_run(wall, frequency, vertical, progress=bar.update, **kw)
+                res = collapse_run(wall, frequency, vertical, progress=bar.update, **kw, **ck)
         else:
             if workers > 1:
                 import os
@@ -332,8 +345,17 @@ def collapse(
     except KeyboardInterrupt:
         from murus.cliutil import failed
 
+        if checkpoint is not None:
+            from murus.retaining.collapse import _checkpoint_path
+
+            ck = _checkpoint_path(checkpoint)
+            if ck.exists():
+                failed(f"interrupted: nothing was written; the checkpoint {ck} is kept: run the "
+                       "same command again to resume from it", code=130)
+            failed(f"interrupted before the first checkpoint (one every {checkpoint_every:g} "
+                   "s): nothing was written; the same command starts the run again", code=130)
         failed("interrupted: nothing was written (a collapse run restarts from the beginning: "
-               "run the same command again)", code=130)
+               "run the same command again, or give --checkpoint to resume)", code=130)
     if error is not None:
         _fail(error)
     summary = res.summary() if ens is None else ens.summary()

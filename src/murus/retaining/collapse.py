@@ -65,6 +65,7 @@ import time as _time
 from collections.abc import Callable, Sequence
 from concurrent.futures import Executor
 from dataclasses import asdict, dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -299,7 +300,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                  A_pseudo: float | None = None,
                  damping_frame: str = "base", backfill: str = "continuum",
                  backfill_options: dict | None = None,
-                 progress: Callable | None = None) -> CollapseResult:
+                 progress: Callable | None = None, checkpoint=None,
+                 checkpoint_every: float = 600.0) -> CollapseResult:
     """Run the DEM wall under S2 (or S1 with ``a_peak``) until collapse (module docstring).
 
     Parameters
@@ -377,6 +379,18 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         ``progress(t, t_end, info)``, called before the settling (t = 0, info
         ``"settling"``) and after each chunk of the run (model time t [s], info ``"run"``),
         e.g. the ``update`` of a :func:`murus.progress.progress` block.
+    checkpoint : path-like, optional
+        A checkpoint file (``.npz``; the suffix is added when missing) that makes a long run
+        survive its interruption (Ctrl-C, a killed process): the state of the run is written
+        to it, atomically, every ``checkpoint_every`` seconds of wall time; a run started
+        again with the same arguments and the same file resumes from it (the wall is built
+        and settled again, then the state of the checkpoint replaces the settled one) and
+        gives the uninterrupted run's result **bit for bit** (the run is cut only at steps
+        where the uninterrupted run updates its loads and ends a chunk of steps). The file
+        is removed when the run ends (collapse or ``t_max``). Continuum and thrust
+        backfills; not the disc backfill (its relaxation has a state of its own).
+    checkpoint_every : float
+        Interval between two writes of the checkpoint [s of wall time], > 0.
 
     Returns
     -------
@@ -387,7 +401,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     ------
     CollapseError
         If an argument is out of range, the wall does not settle under gravity and the
-        static thrust, or the DEM run ends with an error status.
+        static thrust, the DEM run ends with an error status, or ``checkpoint`` is a file of
+        another run (other arguments or another version of murus's code).
     KeyboardInterrupt
         If the run was interrupted (Ctrl-C caught by the DEM engine).
 
@@ -442,6 +457,14 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     if bmode not in ("thrust", "discrete", "continuum"):
         raise CollapseError(f"backfill must be 'thrust', 'discrete' or 'continuum', got "
                             f"{backfill!r}")
+    if checkpoint is not None:
+        if bmode == "discrete":
+            raise CollapseError("checkpoint: not available with the disc backfill (its "
+                                "relaxation has a state of its own); use 'continuum' or "
+                                "'thrust'")
+        if not (checkpoint_every > 0 and math.isfinite(checkpoint_every)):
+            raise CollapseError(f"checkpoint_every must be positive [s], got "
+                                f"{checkpoint_every!r}")
     if stiffness_scale is None:
         stiffness_scale = STIFFNESS_SCALE[bmode]
     bf = None
@@ -490,10 +513,24 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
               "kh": lambda model: thrust.last[1], "kv": lambda model: thrust.last[2]}
     setup_time = _time.perf_counter() - t0
     report = None if progress is None else (lambda done, total: progress(m.time, t_end, "run"))
-    res = m.run(t_end=t_end, xi=xi, freq=f, probes=probes, sample_dt=sample_dt,
-                stop=stop_when(d_top, ">", thr), external=external, external_every=ext_every,
-                damping_frame=damping_frame, progress=report or False)
-    wall_time = _time.perf_counter() - t0
+    run_kw = dict(t_end=t_end, xi=xi, freq=f, probes=probes,
+                  every=max(1, int(round(sample_dt / m.dt))), stop=stop_when(d_top, ">", thr),
+                  external=external, external_every=ext_every, damping_frame=damping_frame,
+                  progress=report or False)
+    before = 0.0
+    if checkpoint is None:
+        res = m.run(**run_kw)
+    else:
+        digest = _run_digest(wall, dict(
+            f=f, vertical=vmode, signal=sig, A=A, a_peak=ap if sig == "S1" else None,
+            A_pseudo=float(A_pseudo), t_end=t_end, threshold=thr, xi=xi,
+            stiffness_scale=stiffness_scale, safety=safety, update_dt=update_dt,
+            sample_dt=sample_dt, motion_dt=motion_dt, thrust_scale=thrust_scale,
+            vertical_ratio=vertical_ratio, assumptions=repr(assumptions), build=build,
+            damping_frame=damping_frame, backfill=bmode, backfill_options=backfill_options,
+            tail=tail, t_pseudo=t_pseudo))
+        res, before = _run_checkpointed(m, run_kw, checkpoint, float(checkpoint_every), digest)
+    wall_time = _time.perf_counter() - t0 + before
     t = res.t
     d = res["d_top"]
     collapsed = res.status == "stopped"
@@ -579,6 +616,133 @@ def plot_collapse(polygons, displacement, discs=None, disc_displacement=None, ti
     if title:
         ax.set_title(title, fontsize=9)
     return ax
+
+
+#: Steps of a segment of a checkpointed run, at least (rounded up to a multiple of the steps
+#: between samples and between load updates): the run checks the clock after each segment.
+_SEGMENT = 20000
+
+_CODE_KEY: str | None = None
+
+
+def _code_key() -> str:
+    """A hash of the source of murus's engines and of this package: a checkpoint written by
+    another version of the code is refused."""
+    global _CODE_KEY
+    if _CODE_KEY is None:
+        import hashlib
+
+        root = Path(__file__).resolve().parents[1]
+        h = hashlib.sha256()
+        for pkg in ("dem", "continuum", "retaining", "motion"):
+            for f in sorted((root / pkg).rglob("*.py")):
+                h.update(str(f.relative_to(root)).encode())
+                h.update(f.read_bytes())
+        _CODE_KEY = h.hexdigest()[:20]
+    return _CODE_KEY
+
+
+def _run_digest(wall: RetainingWall, args: dict) -> str:
+    """The identity of a collapse run: the wall, the arguments and murus's code."""
+    import hashlib
+    import json
+
+    import murus
+
+    obj = {"wall": dict(asdict(wall), name=wall.name), "args": args, "code": _code_key(),
+           "version": murus.__version__, "format": 1}
+    return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()[:20]
+
+
+def _checkpoint_path(checkpoint) -> Path:
+    p = Path(checkpoint)
+    return p if p.name.endswith(".npz") else p.with_name(p.name + ".npz")
+
+
+def _save_checkpoint(m, path, digest: str, run: dict) -> None:
+    """The model's state (:meth:`murus.continuum.CoupledModel.save` or
+    :meth:`murus.dem.Model.save`) and the run's bookkeeping, in one file written atomically."""
+    import io
+    import json
+
+    from murus.outputs import atomic_write
+
+    buf = io.BytesIO()
+    (m.__dict__.get("coupled") or m).save(buf)
+    body = np.frombuffer(buf.getvalue(), np.uint8)
+    info = np.array(json.dumps(dict(run, digest=digest)))
+    atomic_write(path, lambda tmp: np.savez(tmp, model=body, run=info))
+
+
+def _load_checkpoint(m, path, digest: str) -> dict:
+    """Restore the model's state from a checkpoint of this run; its bookkeeping."""
+    import io
+    import json
+    import zipfile
+
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            run = json.loads(str(z["run"]))
+            body = z["model"].tobytes()
+    except (OSError, ValueError, KeyError, zipfile.BadZipFile) as e:
+        raise CollapseError(f"{path}: not a checkpoint of a collapse run ({e})") from None
+    if run.get("digest") != digest:
+        raise CollapseError(f"{path}: a checkpoint of another run (other arguments or another "
+                            f"version of murus): remove it or choose another file")
+    cp = m.__dict__.get("coupled")
+    if cp is not None:
+        cp.restore(io.BytesIO(body))
+    else:
+        with np.load(io.BytesIO(body), allow_pickle=False) as z:
+            m.restore_arrays(z, json.loads(str(z["meta"])))
+    return run
+
+
+def _run_checkpointed(m, kw: dict, checkpoint, interval: float, digest: str):
+    """:func:`murus.dem.engine.run` with the arguments ``kw`` in segments that end at steps
+    where the uninterrupted run updates its loads (and ends a chunk of steps), a checkpoint
+    written after a segment when ``interval`` seconds passed since the last one (or the start),
+    resumed from ``checkpoint`` when it exists (:func:`collapse_run`). Returns the run's result
+    (its steps, wall time and contact updates those of the whole run) and the wall time spent
+    before the checkpoint it resumed from [s]."""
+    from murus.dem import kernels as K
+    from murus.dem.engine import RunResult
+
+    path = _checkpoint_path(checkpoint)
+    left = int(round((kw["t_end"] - m.time) / m.dt))
+    steps = updates = 0
+    before = 0.0
+    if path.exists():
+        run = _load_checkpoint(m, path, digest)
+        left, steps, updates, before = (int(run["left"]), int(run["steps"]),
+                                        int(run["updates"]), float(run["wall"]))
+    # the engine sizes its chunks of steps from the step count alone (up to the next sample,
+    # the next load update, at most _MAX_CHUNK steps), so that a step where a chunk of the
+    # uninterrupted run ends is one where a segment can end and the next call go on in the
+    # same chunks; the engine also updates the loads at the first step of each call, which
+    # the uninterrupted run does at the multiples of external_every only
+    period = int(kw["external_every"]) if kw.get("external") is not None else int(kw["every"])
+    seg = period * max(1, -(-_SEGMENT // period))
+    t0 = last = _time.perf_counter()
+    while True:
+        rel = int(m.C[K.C_STEP]) - m.step_offset
+        n = min(seg - rel % seg, left)
+        r = m.run(**dict(kw, t_end=m.time + left * m.dt, max_steps=n))
+        steps += r.steps
+        updates += r.contact_updates
+        left -= r.steps
+        if r.status != "max_steps":
+            break
+        now = _time.perf_counter()
+        if now - last >= interval:
+            _save_checkpoint(m, path, digest, {"left": left, "steps": steps,
+                                               "updates": updates, "wall": before + now - t0})
+            last = now
+    if r.status in ("completed", "stopped"):
+        path.unlink(missing_ok=True)
+    res = RunResult(t=r.t, values=r.values, status=r.status, message=r.message, steps=steps,
+                    wall=before + _time.perf_counter() - t0, contact_updates=updates, dt=r.dt)
+    return res, before
 
 
 def failure_mode(d_top: float, rotation: float, z_top: float, share: float = 0.5) -> str:
