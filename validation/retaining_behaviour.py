@@ -111,9 +111,12 @@ def section(workers: int = 1, cached: bool = False) -> str:
     missing = [w for w in WALLS if w not in res]
     if missing:
         L.append("")
+        one = len(missing) == 1
         L.append(f"Not computed yet: {', '.join(missing)} (`python "
-                 "validation/retaining_behaviour.py --workers 2` computes them; their S2 runs "
-                 "are the nominal runs of the continuum section below).")
+                 f"validation/retaining_behaviour.py --workers 2` computes "
+                 f"{'it' if one else 'them'}; {'its' if one else 'their'} S2 "
+                 f"run{'' if one else 's'} {'is' if one else 'are'} the nominal "
+                 f"run{'' if one else 's'} of the continuum section below).")
     L.append("")
     L.append("| wall | f [Hz] | vertical | seed A_col [m/s²] | murus A_col [m/s²] (error) | "
              "seed A_pseudo | murus A_pseudo | seed r | murus r | S1 at 0.6 / 0.7 A_col "
