@@ -158,7 +158,7 @@ def _median_acol(prefix: str) -> tuple[float, int]:
 
 def compute(key: str) -> dict:
     """Run ``key`` and write its JSON to the cache; returns the stored record."""
-    from murus.retaining.collapse import DT_FACTORS, collapse_run
+    from murus.retaining.collapse import DT_FACTORS, CollapseError, collapse_run
 
     spec = runs()[key]
     wall = _wall(spec)
@@ -180,11 +180,20 @@ def compute(key: str) -> dict:
         CHECKPOINTS.mkdir(parents=True, exist_ok=True)
         ck = CHECKPOINTS / f"{key}.{_code_key()}.npz"
         for old in CHECKPOINTS.glob(f"{key}.*.npz"):  # of another version of the code
-            if old != ck and re.fullmatch(re.escape(key) + r"\.[0-9a-f]{20}\.npz", old.name):
+            if old != ck and re.fullmatch(re.escape(key) + r"\.[0-9a-f]{16,20}\.npz", old.name):
                 old.unlink()
         kw.update(checkpoint=ck, checkpoint_every=300.0)
-    r = collapse_run(wall, spec["f"], spec["vertical"], backfill=bmode,
-                     backfill_options=opts if bmode == "continuum" else None, **kw)
+    args = (wall, spec["f"], spec["vertical"])
+    kw.update(backfill=bmode, backfill_options=opts if bmode == "continuum" else None)
+    try:
+        r = collapse_run(*args, **kw)
+    except CollapseError as e:
+        # a checkpoint of this key left by another run (e.g. an S1 check whose median A_col
+        # changed since) or damaged: ours, removed, and the run starts again
+        if ck is None or not str(e).startswith(str(ck)):
+            raise
+        ck.unlink()
+        r = collapse_run(*args, **kw)
     rec = {"key": key, "spec": spec, "summary": json_safe(r.summary()), "mode": r.mode,
            "stone_height": wall.stone_height, "median_of": n_med,
            "t": [round(float(x), 4) for x in r.t],

@@ -15,42 +15,19 @@ from pathlib import Path
 ENGINE_FIELD = "_engine_source"
 
 
-#: Modules that do not compute (command lines, figures, case files, verification tables, the
-#: calibration of the DEM's contact damping), left out of :func:`source_key` unless named.
-NOT_ENGINE = ("cli.py", "plots.py", "vtk.py", "case.py", "coupled_case.py", "verify.py",
-              "study.py", "closed_forms.py", "rocking_damping.py")
+from murus._source import NOT_ENGINE  # noqa: E402,F401  (re-exported)
 
 
 def source_key(*packages: str, root: Path | None = None,
                exclude: tuple[str, ...] = NOT_ENGINE) -> str:
     """A short hash of the source of ``packages`` (sub-packages of murus, e.g. ``"dem"``,
-    ``"continuum"``, or modules, ``"motion/synthetic.py"``): the syntax tree of every module
-    with its docstrings removed, so that a change of code recomputes the cached runs and a
-    change of documentation or comments does not. Modules of a package named in ``exclude``
-    are left out. ``root``: the folder holding the packages (default this checkout's
-    ``src/murus``)."""
-    import ast
-    import hashlib
+    ``"continuum"``, or modules, ``"motion/synthetic.py"``) without their docstrings
+    (:func:`murus._source.source_key`), by default of this checkout's ``src/murus``: a change of
+    code recomputes the cached runs, a change of documentation or comments does not."""
+    from murus import _source
 
     src = Path(__file__).resolve().parents[1] / "src" / "murus" if root is None else Path(root)
-    h = hashlib.sha256()
-    for pkg in sorted(packages):
-        base = src / pkg
-        if base.is_dir():
-            files = [f for f in sorted(base.rglob("*.py")) if f.name not in exclude]
-        else:
-            files = [base if pkg.endswith(".py") else src / f"{pkg}.py"]
-        for f in files:
-            tree = ast.parse(f.read_text())
-            for node in ast.walk(tree):
-                body = getattr(node, "body", None)
-                if (isinstance(body, list) and body and isinstance(body[0], ast.Expr)
-                        and isinstance(body[0].value, ast.Constant)
-                        and isinstance(body[0].value.value, str)):
-                    body[0] = ast.Pass()
-            h.update(str(f.relative_to(src)).encode())
-            h.update(ast.dump(tree).encode())
-    return h.hexdigest()[:16]
+    return _source.source_key(*packages, root=src, exclude=exclude)
 
 
 def _readable(path: Path, engine: str | None = None) -> bool:

@@ -1,24 +1,34 @@
 """Checkpoints of long collapse runs (murus.retaining.collapse, ``checkpoint=``): a run
-interrupted after a checkpoint and started again resumes from it and gives the uninterrupted
-run's result bit for bit; a checkpoint of another run is refused and left as it is.
+interrupted (Ctrl-C, or a process killed right after a checkpoint) and started again resumes
+from its checkpoint and gives the uninterrupted run's result bit for bit, also when the time
+step changes during the run; a file that is not a checkpoint of the run is refused before any
+computation and left as it is.
 
 The runs are those of tests/retaining/test_collapse.py (the H/B = 1.3 mock-up with the thrust,
-joint stiffness x 1e-4, a fast ramp: a collapse in about a second of model time) and a short
-stretch of the H/B = 2.7 mock-up on the continuum backfill. The segments are shortened to one
-load update (``_SEGMENT``; the loads are updated ten times between two samples), so that a run of
-a few seconds writes hundreds of checkpoints, most of them between two samples.
+joint stiffness x 1e-4, a fast ramp: a collapse in about a second of model time) and short
+stretches of the H/B = 2.7 mock-up on the continuum backfill. Most tests shorten the segments
+between two pauses to one load update (``_SEGMENT``; the loads are updated ten times between two
+samples), so that a run of a few seconds pauses hundreds of times, mostly between two samples.
 """
 
 from __future__ import annotations
+
+import json
+import os
+import signal
 
 import numpy as np
 import pytest
 
 import murus.retaining.collapse as C
+from murus.continuum.coupled import CoupledModel
+from murus.dem.kernels import P_ALOCAL
 from murus.retaining.collapse import CollapseError, collapse_run
 from murus.retaining.geometry import preset
 
+_ORIG_SAVE = C._save_checkpoint
 KW = dict(stiffness_scale=1e-4, t_pseudo=0.5, backfill="thrust", t_max=2.0)
+CKW = dict(backfill="continuum", A_rate=0.5, sample_dt=0.005)
 
 
 @pytest.fixture(scope="module")
@@ -31,8 +41,21 @@ def plain(wall):
     return collapse_run(wall, 5.0, **KW)
 
 
-def _interrupt_after(monkeypatch, k: int) -> list:
-    """Ctrl-C right after the ``k``-th checkpoint is written."""
+@pytest.fixture(scope="module")
+def wall27():
+    return preset("mockup-2.7", stone_height=0.011)
+
+
+@pytest.fixture
+def sigint_default():
+    """Ctrl-C as in a terminal (a test runner's worker may ignore it)."""
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
+
+
+def _killed_after(monkeypatch, k: int) -> list:
+    """The process "killed" (KeyboardInterrupt) right after the ``k``-th checkpoint."""
     orig = C._save_checkpoint
     n = [0]
 
@@ -43,14 +66,26 @@ def _interrupt_after(monkeypatch, k: int) -> list:
             raise KeyboardInterrupt
 
     monkeypatch.setattr(C, "_save_checkpoint", save)
-    monkeypatch.setattr(C, "_SEGMENT", 1)
     return n
 
 
+def _resumed(monkeypatch) -> list:
+    """The bookkeeping of each checkpoint a run resumes from."""
+    seen = []
+    orig = C._run_checkpointed
+
+    def spy(m, kw, path, interval, digest, run):
+        seen.append(run)
+        return orig(m, kw, path, interval, digest, run)
+
+    monkeypatch.setattr(C, "_run_checkpointed", spy)
+    return seen
+
+
 def _same(a, b) -> None:
-    for name in ("t", "d_top", "kh", "acc", "displacement", "rotation"):
+    for name in ("t", "d_top", "kh", "kv", "acc", "displacement", "rotation"):
         assert np.array_equal(getattr(a, name), getattr(b, name)), name
-    assert a.status == b.status
+    assert a.status == b.status and a.dt == b.dt
     assert a.t_end == b.t_end and a.steps == b.steps
     if a.collapsed:
         assert a.t_col == b.t_col and a.A_col == b.A_col
@@ -59,56 +94,134 @@ def _same(a, b) -> None:
 def test_resumed_collapse_equals_the_uninterrupted_run(wall, plain, tmp_path, monkeypatch):
     assert plain.collapsed and plain.status == "stopped"
     ck = tmp_path / "run.npz"
-    n = _interrupt_after(monkeypatch, 3)
+    monkeypatch.setattr(C, "_SEGMENT", 1)
+    n = _killed_after(monkeypatch, 3)
     with pytest.raises(KeyboardInterrupt):
         collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=1e-9, **KW)
     assert n[0] == 3 and ck.exists()
     monkeypatch.undo()
+    seen = _resumed(monkeypatch)
     res = collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=1e-9, **KW)
+    assert len(seen) == 1 and seen[0]["steps"] > 0  # it did resume, from a run under way
     _same(plain, res)
     assert not ck.exists()  # removed when the run ended
 
 
+def test_ctrl_c_writes_a_checkpoint_and_the_run_resumes(wall, plain, tmp_path, monkeypatch,
+                                                        sigint_default):
+    # Ctrl-C (a real SIGINT) half way: taken at the next pause, where the checkpoint is written
+    # although the interval (an hour) has not passed
+    ck = tmp_path / "run.npz"
+    sent = []
+
+    def progress(t, t_end, info):
+        if info == "run" and t > 0.5 * plain.t_col and not sent:
+            sent.append(t)
+            os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=3600.0, progress=progress, **KW)
+    assert sent and ck.exists()
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # handler restored
+    seen = _resumed(monkeypatch)
+    res = collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=3600.0, **KW)
+    assert len(seen) == 1 and seen[0]["steps"] > 0
+    _same(plain, res)
+    assert not ck.exists()
+
+
+@pytest.mark.parametrize("segment", [1, C._SEGMENT])
 def test_uninterrupted_checkpointed_run_equals_the_plain_run(wall, plain, tmp_path,
-                                                             monkeypatch):
-    # many segments, a checkpoint after each: the segments do not change the run
-    monkeypatch.setattr(C, "_SEGMENT", 1)
+                                                             monkeypatch, segment):
+    # many pauses (one per load update, or the default segments), a checkpoint at each: the
+    # pauses do not change the run
+    monkeypatch.setattr(C, "_SEGMENT", segment)
     ck = tmp_path / "run"  # the suffix .npz is added
     res = collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=1e-9, **KW)
     _same(plain, res)
     assert not (tmp_path / "run.npz").exists()
 
 
-def test_continuum_run_resumes_bit_for_bit(tmp_path, monkeypatch):
-    w = preset("mockup-2.7", stone_height=0.011)
-    kw = dict(backfill="continuum", A_rate=0.5, t_max=0.04, sample_dt=0.005)
-    a = collapse_run(w, 10.0, **kw)
+def test_continuum_run_resumes_bit_for_bit(wall27, tmp_path, monkeypatch):
+    kw = dict(CKW, t_max=0.04)
+    a = collapse_run(wall27, 10.0, **kw)
     ck = tmp_path / "c.npz"
-    _interrupt_after(monkeypatch, 2)
+    monkeypatch.setattr(C, "_SEGMENT", 1)
+    _killed_after(monkeypatch, 2)
     with pytest.raises(KeyboardInterrupt):
-        collapse_run(w, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
+        collapse_run(wall27, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
     monkeypatch.undo()
-    b = collapse_run(w, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
+    seen = _resumed(monkeypatch)
+    b = collapse_run(wall27, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
+    assert len(seen) == 1 and seen[0]["steps"] > 0
     _same(a, b)
     assert not a.collapsed and a.status == "completed"
     assert np.array_equal(a.zone_xy, b.zone_xy) and np.array_equal(a.zone_state, b.zone_state)
 
 
+def test_time_step_change_during_the_run(wall27, tmp_path, monkeypatch):
+    # the zones' check of their critical step lowers the time step once, at 5 ms (forced
+    # here; it happens when zones distort): the frame of the step count restarts there, and
+    # the pauses must follow it
+    orig = CoupledModel.after_chunk
+    changes = []
+
+    def after_chunk(self):
+        out = orig(self)
+        m = self.dem
+        # at a sample that is not a load update (every = round(sample_dt / dt) is not a
+        # multiple of the load updates' round(1e-3 / dt) here)
+        rel = int(m.C[0]) - m.step_offset
+        every, ext = round(kw["sample_dt"] / m.dt), round(1e-3 / m.dt)
+        if (m.P[P_ALOCAL] == 0.0 and m.time >= 0.005 and m.dt >= 0.95 * self.stable_dt()
+                and rel % every == 0 and rel % ext != 0):
+            changes.append(m.time)
+            self.set_dt(0.9 * m.dt)
+        return out
+
+    monkeypatch.setattr(CoupledModel, "after_chunk", after_chunk)
+    kw = dict(CKW, t_max=0.03, sample_dt=0.0047)
+    a = collapse_run(wall27, 10.0, **kw)
+    ck = tmp_path / "c.npz"
+    monkeypatch.setattr(C, "_SEGMENT", 1)
+    _killed_after(monkeypatch, 15)
+    with pytest.raises(KeyboardInterrupt):
+        collapse_run(wall27, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
+    monkeypatch.setattr(C, "_save_checkpoint", _ORIG_SAVE)
+    seen = _resumed(monkeypatch)
+    b = collapse_run(wall27, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
+    assert len(seen) == 1 and seen[0]["steps"] > 0
+    # the step changed once in the plain run and once in the interrupted one, before its
+    # checkpoint (the resumed run goes on with the lower step)
+    assert len(changes) == 2 and changes[0] == changes[1]
+    _same(a, b)
+
+
 def test_checkpoint_of_another_run_is_refused_and_kept(wall, tmp_path, monkeypatch):
     ck = tmp_path / "run.npz"
-    _interrupt_after(monkeypatch, 1)
+    monkeypatch.setattr(C, "_SEGMENT", 1)
+    _killed_after(monkeypatch, 1)
     with pytest.raises(KeyboardInterrupt):
         collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=1e-9, **KW)
     monkeypatch.undo()
     before = ck.read_bytes()
+    settled = []
+    monkeypatch.setattr(C, "_run_checkpointed", lambda *a: settled.append(1))
     with pytest.raises(CollapseError, match="checkpoint of another run"):
         collapse_run(wall, 6.0, checkpoint=ck, **KW)
-    assert ck.read_bytes() == before
+    assert ck.read_bytes() == before and not settled  # refused before the run
+
+
+@pytest.mark.parametrize("content", [b"not a zip file", b""])
+def test_damaged_checkpoint_is_refused_and_kept(wall, tmp_path, content):
     bad = tmp_path / "bad.npz"
-    bad.write_bytes(b"not a zip file")
+    bad.write_bytes(content)
     with pytest.raises(CollapseError, match="not a checkpoint of a collapse run"):
         collapse_run(wall, 5.0, checkpoint=bad, **KW)
-    assert bad.read_bytes() == b"not a zip file"
+    assert bad.read_bytes() == content
+    np.savez(bad, run=np.array(json.dumps([1, 2])))  # a zip, but no bookkeeping
+    with pytest.raises(CollapseError, match="not a checkpoint of a collapse run"):
+        collapse_run(wall, 5.0, checkpoint=bad, **KW)
 
 
 def test_checkpoint_arguments_checked(wall, tmp_path):
@@ -116,12 +229,12 @@ def test_checkpoint_arguments_checked(wall, tmp_path):
         collapse_run(wall, 5.0, **dict(KW, backfill="discrete"), checkpoint=tmp_path / "x")
     with pytest.raises(CollapseError, match="checkpoint_every"):
         collapse_run(wall, 5.0, checkpoint=tmp_path / "x", checkpoint_every=0.0, **KW)
+    with pytest.raises(CollapseError, match="does not exist"):
+        collapse_run(wall, 5.0, checkpoint=tmp_path / "no" / "x.npz", **KW)
     assert not list(tmp_path.iterdir())
 
 
 def test_cli_interrupted_run_resumes_from_its_checkpoint(tmp_path, monkeypatch):
-    import json
-
     from typer.testing import CliRunner
 
     from murus.cli import app
@@ -135,7 +248,8 @@ def test_cli_interrupted_run_resumes_from_its_checkpoint(tmp_path, monkeypatch):
     assert r.exit_code == 0, r.output
     out, ck = tmp_path / "run", tmp_path / "state"
     args = base + ["--out", str(out), "--checkpoint", str(ck), "--checkpoint-every", "1e-9"]
-    _interrupt_after(monkeypatch, 2)
+    monkeypatch.setattr(C, "_SEGMENT", 1)
+    _killed_after(monkeypatch, 2)
     r = runner.invoke(app, args)
     assert r.exit_code == 130
     assert "checkpoint" in r.output and "resume" in r.output
@@ -151,3 +265,7 @@ def test_cli_interrupted_run_resumes_from_its_checkpoint(tmp_path, monkeypatch):
     r = runner.invoke(app, base + ["--out", str(tmp_path / "x"), "--runs", "2",
                                    "--checkpoint", str(ck)])
     assert r.exit_code == 2 and "--checkpoint needs --runs 1" in r.output
+    r = runner.invoke(app, base + ["--out", str(tmp_path / "y"), "--checkpoint",
+                                   str(tmp_path / "none" / "c.npz")])
+    assert r.exit_code == 2 and "does not exist" in r.output
+    assert not (tmp_path / "y").exists()

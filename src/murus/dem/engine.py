@@ -273,6 +273,8 @@ class SettleResult(Result):
     overlap : float
         Largest overlap of two bodies at the end [-], as a fraction of the thinner one's
         thickness along the contact normal (:func:`overlap_fraction`).
+    interrupted : bool
+        Whether Ctrl-C stopped the settling (``status`` ``"interrupted"``).
     """
 
     converged: bool
@@ -280,10 +282,12 @@ class SettleResult(Result):
     ratio: float  # final unbalanced-force ratio
     message: str = ""
     overlap: float = 0.0
+    interrupted: bool = False  # stopped by Ctrl-C
 
     @property
     def status(self) -> str:
-        return "converged" if self.converged else "not converged"
+        return ("converged" if self.converged else "interrupted" if self.interrupted
+                else "not converged")
 
     @property
     def success(self) -> bool:
@@ -306,6 +310,7 @@ class RunResult(RunHistory):
         energy terms ``energy.*`` [J] of :func:`energy` (nan before a probe was added).
     status : str
         ``completed`` | ``stopped`` (a stop condition) | ``interrupted`` | ``max_steps`` |
+        ``paused`` (``pause_every``) |
         ``unstable`` (non-finite positions) | ``interpenetration`` (two bodies overlap by more
         than :data:`OVERLAP_LIMIT` of the thinner one's thickness).
     message : str
@@ -737,13 +742,15 @@ def settle(m, tol: float = 1e-5, alpha: float = 0.7, max_steps: int = 200_000,
     m.snapshot()
     if reset:
         m.reset_reference()
+    hit = bool(sig.hit) and not converged
     msg = (f"settled in {done} steps, ratio {ratio:.2e}" if converged
+           else f"interrupted (Ctrl-C) after {done} steps, ratio {ratio:.2e}" if hit
            else f"not settled after {done} steps: {over}" if over is not None
            else f"not settled after {done} steps: no contact carries the load (the blocks "
            "fall freely, or passed through each other: a contact stiffness far too low?)"
            if ratio == math.inf
            else f"not settled after {done} steps, ratio {ratio:.2e} > {tol:g}")
-    return SettleResult(converged, done, ratio, msg, overlap_fraction(m)[0])
+    return SettleResult(converged, done, ratio, msg, overlap_fraction(m)[0], hit)
 
 
 def run(m, duration: float | None = None, *, t_end: float | None = None,
@@ -753,7 +760,8 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
         progress: bool = False, external: Callable | None = None,
         external_every: int | None = None, damping_frame: str = "base",
         threads: int | None = None,
-        max_overlap: float | None = OVERLAP_LIMIT) -> RunResult:
+        max_overlap: float | None = OVERLAP_LIMIT,
+        pause_every: int | None = None) -> RunResult:
     """Dynamic run up to ``t_end`` (or ``duration`` from now) [s].
 
     xi, freq : mass-proportional damping, fraction of critical at frequency [Hz];
@@ -789,6 +797,15 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
     max_overlap : the run stops with status ``"interpenetration"`` when two bodies overlap by
         more than this fraction of the thinner one's thickness along the contact normal
         (checked after each chunk of steps, :func:`overlap_fraction`; None: no check).
+
+    pause_every : return with status ``"paused"`` at the first end of a chunk of steps, at
+        least this many steps into the call, where the loads are updated (a multiple of
+        ``external_every`` steps since the last change of the time step, or any chunk's end
+        without ``external``): a later call with the same arguments (``t_end`` then the end
+        of the remaining steps, ``every`` and ``external_every`` given) goes on in the same
+        chunks of steps and gives the uninterrupted run bit for bit, since the sizes of the
+        chunks depend only on the step count. Used to checkpoint long runs
+        (:func:`murus.retaining.collapse.collapse_run`). None: no pause.
     """
     _set_dt(m, dt)
     if (duration is None) == (t_end is None):
@@ -884,6 +901,12 @@ def run(m, duration: float | None = None, *, t_end: float | None = None,
                 if sig.hit:
                     status = "interrupted"
                     message = f"interrupted at t = {m.time:.6g} s"
+                    break
+                if (pause_every is not None and done >= pause_every and remaining > 0
+                        and (external is None or (int(m.C[K.C_STEP]) - m.step_offset)
+                             % external_every == 0)):
+                    status = "paused"
+                    message = f"paused at t = {m.time:.6g} s"
                     break
     finally:
         m._threads = None

@@ -288,6 +288,7 @@ def collapse(
     from murus.retaining.continuum_backfill import ContinuumBackfillError
 
     error = None
+    phase = "run"
     try:
         _prepare_out(out, _COLLAPSE_FILES)
         wall = _dem_wall(preset_name, base, stone_height)
@@ -333,6 +334,7 @@ def collapse(
                                         workers=workers, progress=bar.update, **kw)
             res = ens.nominal
         checks = {}
+        phase = "checks"
         if check_peak and res.collapsed:
             # at the median A_col of an ensemble (that of the single run otherwise)
             a_col = res.A_col if ens is None else ens.median
@@ -345,6 +347,10 @@ def collapse(
     except KeyboardInterrupt:
         from murus.cliutil import failed
 
+        if checkpoint is not None and phase == "checks":
+            failed("interrupted during the S1 checks: nothing was written; the collapse run "
+                   "had ended and its checkpoint was removed: the same command runs "
+                   "everything again", code=130)
         if checkpoint is not None:
             from murus.retaining.collapse import _checkpoint_path
 

@@ -301,7 +301,7 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                  damping_frame: str = "base", backfill: str = "continuum",
                  backfill_options: dict | None = None,
                  progress: Callable | None = None, checkpoint=None,
-                 checkpoint_every: float = 600.0) -> CollapseResult:
+                 checkpoint_every: float = 300.0) -> CollapseResult:
     """Run the DEM wall under S2 (or S1 with ``a_peak``) until collapse (module docstring).
 
     Parameters
@@ -386,9 +386,13 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         again with the same arguments and the same file resumes from it (the wall is built
         and settled again, then the state of the checkpoint replaces the settled one) and
         gives the uninterrupted run's result **bit for bit** (the run is cut only at steps
-        where the uninterrupted run updates its loads and ends a chunk of steps). The file
-        is removed when the run ends (collapse or ``t_max``). Continuum and thrust
-        backfills; not the disc backfill (its relaxation has a state of its own).
+        where the uninterrupted run updates its loads and ends a chunk of steps, also after
+        a change of the time step). Ctrl-C (main thread) is taken at the next such step,
+        within a few seconds: the checkpoint is written there, then KeyboardInterrupt. The
+        file is removed when the run ends (collapse, ``t_max`` or an error status). The
+        file's folder must exist; a file that is not a checkpoint of this run is refused
+        before any computation and left as it is. Continuum and thrust backfills; not the
+        disc backfill (its relaxation has a state of its own).
     checkpoint_every : float
         Interval between two writes of the checkpoint [s of wall time], > 0.
 
@@ -467,6 +471,18 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                                 f"{checkpoint_every!r}")
     if stiffness_scale is None:
         stiffness_scale = STIFFNESS_SCALE[bmode]
+    ck_path = ck_run = digest = None
+    if checkpoint is not None:  # checked before any computation
+        ck_path = _checkpoint_path(checkpoint)
+        digest = _run_digest(wall, dict(
+            f=f, vertical=vmode, signal=sig, A=A, a_peak=ap if sig == "S1" else None,
+            A_pseudo=float(A_pseudo), t_end=t_end, threshold=thr, xi=xi,
+            stiffness_scale=stiffness_scale, safety=safety, update_dt=update_dt,
+            sample_dt=sample_dt, motion_dt=motion_dt, thrust_scale=thrust_scale,
+            vertical_ratio=vertical_ratio, assumptions=repr(assumptions), build=build,
+            damping_frame=damping_frame, backfill=bmode, backfill_options=backfill_options,
+            tail=tail, t_pseudo=t_pseudo))
+        ck_run = _check_checkpoint(ck_path, digest)
     bf = None
     if bmode == "thrust":
         dw = build_wall(wall, stiffness_scale=stiffness_scale, safety=safety, **(build or {}))
@@ -476,6 +492,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         if progress is not None:
             progress(0.0, t_end, "settling")
         st = m.settle(external=thrust)
+        if st.interrupted:
+            raise KeyboardInterrupt(f"{wall.name}: {st.message}")
         if not st.converged:
             raise CollapseError(f"{wall.name}: the DEM wall does not settle under gravity and "
                                 f"the static thrust ({st.message})")
@@ -496,6 +514,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         if progress is not None:
             progress(0.0, t_end, "settling")
         st = bf.settle(dw, external=thrust)
+        if getattr(st, "interrupted", False):
+            raise KeyboardInterrupt(f"{wall.name}: {st.message}")
         # (the disc backfill goes on with its dynamic relaxation when its settling stops short)
         if bmode == "continuum" and not st.converged:
             raise CollapseError(f"{wall.name}: the wall and its continuum backfill do not "
@@ -521,15 +541,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     if checkpoint is None:
         res = m.run(**run_kw)
     else:
-        digest = _run_digest(wall, dict(
-            f=f, vertical=vmode, signal=sig, A=A, a_peak=ap if sig == "S1" else None,
-            A_pseudo=float(A_pseudo), t_end=t_end, threshold=thr, xi=xi,
-            stiffness_scale=stiffness_scale, safety=safety, update_dt=update_dt,
-            sample_dt=sample_dt, motion_dt=motion_dt, thrust_scale=thrust_scale,
-            vertical_ratio=vertical_ratio, assumptions=repr(assumptions), build=build,
-            damping_frame=damping_frame, backfill=bmode, backfill_options=backfill_options,
-            tail=tail, t_pseudo=t_pseudo))
-        res, before = _run_checkpointed(m, run_kw, checkpoint, float(checkpoint_every), digest)
+        res, before = _run_checkpointed(m, run_kw, ck_path, float(checkpoint_every), digest,
+                                        ck_run)
     wall_time = _time.perf_counter() - t0 + before
     t = res.t
     d = res["d_top"]
@@ -618,45 +631,80 @@ def plot_collapse(polygons, displacement, discs=None, disc_displacement=None, ti
     return ax
 
 
-#: Steps of a segment of a checkpointed run, at least (rounded up to a multiple of the steps
-#: between samples and between load updates): the run checks the clock after each segment.
+#: Steps of a segment of a checkpointed run, at least: the run pauses at the first step after
+#: them where it updates its loads, checks the clock and Ctrl-C, and goes on.
 _SEGMENT = 20000
+
+#: The code a collapse run executes (sub-packages and modules of murus, without the command
+#: lines, figures and case files: murus._source.NOT_ENGINE): a checkpoint written by another
+#: version of it is refused.
+_CODE = ("__init__.py", "_jit.py", "threads.py", "results.py", "dem", "continuum", "retaining",
+         "motion", "eurocode")
 
 _CODE_KEY: str | None = None
 
 
 def _code_key() -> str:
-    """A hash of the source of murus's engines and of this package: a checkpoint written by
-    another version of the code is refused."""
+    """:func:`murus._source.source_key` of :data:`_CODE` (blind to docstrings and comments)."""
     global _CODE_KEY
     if _CODE_KEY is None:
-        import hashlib
+        from murus._source import source_key
 
-        root = Path(__file__).resolve().parents[1]
-        h = hashlib.sha256()
-        for pkg in ("dem", "continuum", "retaining", "motion"):
-            for f in sorted((root / pkg).rglob("*.py")):
-                h.update(str(f.relative_to(root)).encode())
-                h.update(f.read_bytes())
-        _CODE_KEY = h.hexdigest()[:20]
+        _CODE_KEY = source_key(*_CODE)
     return _CODE_KEY
 
 
 def _run_digest(wall: RetainingWall, args: dict) -> str:
-    """The identity of a collapse run: the wall, the arguments and murus's code."""
+    """The identity of a collapse run: the wall, the arguments, murus's code and the versions
+    of numpy and numba (their arithmetic)."""
     import hashlib
     import json
+
+    import numba
 
     import murus
 
     obj = {"wall": dict(asdict(wall), name=wall.name), "args": args, "code": _code_key(),
-           "version": murus.__version__, "format": 1}
+           "version": murus.__version__, "numpy": np.__version__, "numba": numba.__version__,
+           "format": 1}
     return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()[:20]
 
 
 def _checkpoint_path(checkpoint) -> Path:
     p = Path(checkpoint)
     return p if p.name.endswith(".npz") else p.with_name(p.name + ".npz")
+
+
+def _check_checkpoint(path: Path, digest: str) -> dict | None:
+    """Before any computation: the folder of ``path`` exists and is writable; a file there is
+    a checkpoint of this run (its bookkeeping returned) or a CollapseError (the file is left
+    as it is)."""
+    import json
+    import os
+
+    folder = path.parent
+    if not folder.is_dir():
+        raise CollapseError(f"checkpoint {path}: the folder {folder} does not exist")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise CollapseError(f"checkpoint {path}: the folder {folder} is not writable")
+    if not path.exists():
+        return None
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            run = json.loads(str(z["run"]))
+        if not isinstance(run, dict):
+            raise ValueError("no bookkeeping")
+        for k in ("left", "steps", "updates", "wall"):
+            float(run[k])
+    except Exception as e:  # noqa: BLE001 - any unreadable file is "not a checkpoint"
+        msg = " ".join(str(e).split()) or type(e).__name__
+        raise CollapseError(f"{path}: not a checkpoint of a collapse run ({msg}); remove it "
+                            f"or choose another file") from None
+    if run.get("digest") != digest:
+        raise CollapseError(f"{path}: a checkpoint of another run (other arguments or another "
+                            f"version of murus, numpy or numba): remove it or choose another "
+                            f"file")
+    return run
 
 
 def _save_checkpoint(m, path, digest: str, run: dict) -> None:
@@ -674,71 +722,90 @@ def _save_checkpoint(m, path, digest: str, run: dict) -> None:
     atomic_write(path, lambda tmp: np.savez(tmp, model=body, run=info))
 
 
-def _load_checkpoint(m, path, digest: str) -> dict:
-    """Restore the model's state from a checkpoint of this run; its bookkeeping."""
+def _restore_checkpoint(m, path) -> None:
+    """Replace the model's state by the checkpoint's (checked by :func:`_check_checkpoint`)."""
     import io
     import json
-    import zipfile
 
-    try:
-        with np.load(path, allow_pickle=False) as z:
-            run = json.loads(str(z["run"]))
-            body = z["model"].tobytes()
-    except (OSError, ValueError, KeyError, zipfile.BadZipFile) as e:
-        raise CollapseError(f"{path}: not a checkpoint of a collapse run ({e})") from None
-    if run.get("digest") != digest:
-        raise CollapseError(f"{path}: a checkpoint of another run (other arguments or another "
-                            f"version of murus): remove it or choose another file")
+    with np.load(path, allow_pickle=False) as z:
+        body = z["model"].tobytes()
     cp = m.__dict__.get("coupled")
     if cp is not None:
         cp.restore(io.BytesIO(body))
     else:
         with np.load(io.BytesIO(body), allow_pickle=False) as z:
             m.restore_arrays(z, json.loads(str(z["meta"])))
-    return run
 
 
-def _run_checkpointed(m, kw: dict, checkpoint, interval: float, digest: str):
-    """:func:`murus.dem.engine.run` with the arguments ``kw`` in segments that end at steps
-    where the uninterrupted run updates its loads (and ends a chunk of steps), a checkpoint
-    written after a segment when ``interval`` seconds passed since the last one (or the start),
-    resumed from ``checkpoint`` when it exists (:func:`collapse_run`). Returns the run's result
-    (its steps, wall time and contact updates those of the whole run) and the wall time spent
-    before the checkpoint it resumed from [s]."""
-    from murus.dem import kernels as K
+class _CtrlC:
+    """Ctrl-C as a flag while a checkpointed run goes on to its next pause (main thread, when
+    no caller set a handler of its own; a second Ctrl-C interrupts at once)."""
+
+    def __init__(self):
+        self.hit = False
+        self.old = None
+
+    def __enter__(self):
+        import signal
+        import threading
+
+        if threading.current_thread() is threading.main_thread() and \
+                signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            self.old = signal.signal(signal.SIGINT, self._handler)
+        return self
+
+    def _handler(self, signum, frame):
+        import signal
+
+        self.hit = True
+        signal.signal(signal.SIGINT, self.old)
+
+    def __exit__(self, *exc):
+        import signal
+
+        if self.old is not None:
+            signal.signal(signal.SIGINT, self.old)
+        return False
+
+
+def _run_checkpointed(m, kw: dict, path: Path, interval: float, digest: str,
+                      run: dict | None):
+    """:func:`murus.dem.engine.run` with the arguments ``kw``, paused every
+    :data:`_SEGMENT` steps or more at a step where it updates its loads (``pause_every``): the
+    uninterrupted run's chunks of steps, so the same result bit for bit. At a pause, a
+    checkpoint is written when ``interval`` seconds passed since the last one, and when Ctrl-C
+    was pressed (then KeyboardInterrupt). ``run``: the bookkeeping of the checkpoint to resume
+    from (its state restored into ``m`` here), or None. Returns the run's result (its steps,
+    wall time and contact updates those of the whole run) and the wall time spent before the
+    checkpoint it resumed from [s]."""
     from murus.dem.engine import RunResult
 
-    path = _checkpoint_path(checkpoint)
     left = int(round((kw["t_end"] - m.time) / m.dt))
     steps = updates = 0
     before = 0.0
-    if path.exists():
-        run = _load_checkpoint(m, path, digest)
+    if run is not None:
+        _restore_checkpoint(m, path)
         left, steps, updates, before = (int(run["left"]), int(run["steps"]),
                                         int(run["updates"]), float(run["wall"]))
-    # the engine sizes its chunks of steps from the step count alone (up to the next sample,
-    # the next load update, at most _MAX_CHUNK steps), so that a step where a chunk of the
-    # uninterrupted run ends is one where a segment can end and the next call go on in the
-    # same chunks; the engine also updates the loads at the first step of each call, which
-    # the uninterrupted run does at the multiples of external_every only
-    period = int(kw["external_every"]) if kw.get("external") is not None else int(kw["every"])
-    seg = period * max(1, -(-_SEGMENT // period))
     t0 = last = _time.perf_counter()
-    while True:
-        rel = int(m.C[K.C_STEP]) - m.step_offset
-        n = min(seg - rel % seg, left)
-        r = m.run(**dict(kw, t_end=m.time + left * m.dt, max_steps=n))
-        steps += r.steps
-        updates += r.contact_updates
-        left -= r.steps
-        if r.status != "max_steps":
-            break
-        now = _time.perf_counter()
-        if now - last >= interval:
-            _save_checkpoint(m, path, digest, {"left": left, "steps": steps,
-                                               "updates": updates, "wall": before + now - t0})
-            last = now
-    if r.status in ("completed", "stopped"):
+    with _CtrlC() as ctrl:
+        while True:
+            r = m.run(**dict(kw, t_end=m.time + left * m.dt, pause_every=_SEGMENT))
+            steps += r.steps
+            updates += r.contact_updates
+            left -= r.steps
+            if r.status != "paused":
+                break
+            now = _time.perf_counter()
+            if ctrl.hit or now - last >= interval:
+                _save_checkpoint(m, path, digest, {"left": left, "steps": steps,
+                                                   "updates": updates,
+                                                   "wall": before + now - t0})
+                last = now
+            if ctrl.hit:
+                raise KeyboardInterrupt(f"interrupted at t = {m.time:.6g} s (checkpoint "
+                                        f"{path})")
+    if r.status != "interrupted":  # the run ended: its checkpoint is of no more use
         path.unlink(missing_ok=True)
     res = RunResult(t=r.t, values=r.values, status=r.status, message=r.message, steps=steps,
                     wall=before + _time.perf_counter() - t0, contact_updates=updates, dt=r.dt)
