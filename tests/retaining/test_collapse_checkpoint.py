@@ -82,6 +82,22 @@ def _resumed(monkeypatch) -> list:
     return seen
 
 
+def _kill_and_resume(monkeypatch, ck, w, f: float, kw: dict, k: int):
+    """The run, pausing at every load update, killed after its ``k``-th checkpoint, then run
+    again: it must resume from the checkpoint (and remove it at the end)."""
+    monkeypatch.setattr(C, "_SEGMENT", 1)
+    n = _killed_after(monkeypatch, k)
+    with pytest.raises(KeyboardInterrupt):
+        collapse_run(w, f, checkpoint=ck, checkpoint_every=1e-9, **kw)
+    assert n[0] == k and ck.exists()
+    monkeypatch.setattr(C, "_save_checkpoint", _ORIG_SAVE)
+    seen = _resumed(monkeypatch)
+    res = collapse_run(w, f, checkpoint=ck, checkpoint_every=1e-9, **kw)
+    assert len(seen) == 1 and seen[0]["steps"] > 0  # it did resume, from a run under way
+    assert not ck.exists()  # removed when the run ended
+    return res
+
+
 def _same(a, b) -> None:
     for name in ("t", "d_top", "kh", "kv", "acc", "displacement", "rotation"):
         assert np.array_equal(getattr(a, name), getattr(b, name)), name
@@ -93,18 +109,7 @@ def _same(a, b) -> None:
 
 def test_resumed_collapse_equals_the_uninterrupted_run(wall, plain, tmp_path, monkeypatch):
     assert plain.collapsed and plain.status == "stopped"
-    ck = tmp_path / "run.npz"
-    monkeypatch.setattr(C, "_SEGMENT", 1)
-    n = _killed_after(monkeypatch, 3)
-    with pytest.raises(KeyboardInterrupt):
-        collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=1e-9, **KW)
-    assert n[0] == 3 and ck.exists()
-    monkeypatch.undo()
-    seen = _resumed(monkeypatch)
-    res = collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=1e-9, **KW)
-    assert len(seen) == 1 and seen[0]["steps"] > 0  # it did resume, from a run under way
-    _same(plain, res)
-    assert not ck.exists()  # removed when the run ended
+    _same(plain, _kill_and_resume(monkeypatch, tmp_path / "run.npz", wall, 5.0, KW, 3))
 
 
 def test_ctrl_c_writes_a_checkpoint_and_the_run_resumes(wall, plain, tmp_path, monkeypatch,
@@ -145,15 +150,7 @@ def test_uninterrupted_checkpointed_run_equals_the_plain_run(wall, plain, tmp_pa
 def test_continuum_run_resumes_bit_for_bit(wall27, tmp_path, monkeypatch):
     kw = dict(CKW, t_max=0.04)
     a = collapse_run(wall27, 10.0, **kw)
-    ck = tmp_path / "c.npz"
-    monkeypatch.setattr(C, "_SEGMENT", 1)
-    _killed_after(monkeypatch, 2)
-    with pytest.raises(KeyboardInterrupt):
-        collapse_run(wall27, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
-    monkeypatch.undo()
-    seen = _resumed(monkeypatch)
-    b = collapse_run(wall27, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
-    assert len(seen) == 1 and seen[0]["steps"] > 0
+    b = _kill_and_resume(monkeypatch, tmp_path / "c.npz", wall27, 10.0, kw, 2)
     _same(a, b)
     assert not a.collapsed and a.status == "completed"
     assert np.array_equal(a.zone_xy, b.zone_xy) and np.array_equal(a.zone_state, b.zone_state)
@@ -182,15 +179,7 @@ def test_time_step_change_during_the_run(wall27, tmp_path, monkeypatch):
     monkeypatch.setattr(CoupledModel, "after_chunk", after_chunk)
     kw = dict(CKW, t_max=0.03, sample_dt=0.0047)
     a = collapse_run(wall27, 10.0, **kw)
-    ck = tmp_path / "c.npz"
-    monkeypatch.setattr(C, "_SEGMENT", 1)
-    _killed_after(monkeypatch, 15)
-    with pytest.raises(KeyboardInterrupt):
-        collapse_run(wall27, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
-    monkeypatch.setattr(C, "_save_checkpoint", _ORIG_SAVE)
-    seen = _resumed(monkeypatch)
-    b = collapse_run(wall27, 10.0, checkpoint=ck, checkpoint_every=1e-9, **kw)
-    assert len(seen) == 1 and seen[0]["steps"] > 0
+    b = _kill_and_resume(monkeypatch, tmp_path / "c.npz", wall27, 10.0, kw, 15)
     # the step changed once in the plain run and once in the interrupted one, before its
     # checkpoint (the resumed run goes on with the lower step)
     assert len(changes) == 2 and changes[0] == changes[1]
