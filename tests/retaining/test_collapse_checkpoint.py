@@ -46,11 +46,13 @@ def wall27():
     return preset("mockup-2.7", stone_height=0.011)
 
 
-@pytest.fixture
-def sigint_default():
-    """Ctrl-C as in a terminal (a test runner's worker may ignore it)."""
-    old = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
+@pytest.fixture(params=["terminal", "background"])
+def sigint_start(request):
+    """SIGINT's handler when the run starts: Python's (a terminal) or ignored (a job started in
+    the background by a shell, which the engine also takes Ctrl-C from: kill -INT)."""
+    start = signal.default_int_handler if request.param == "terminal" else signal.SIG_IGN
+    old = signal.signal(signal.SIGINT, start)
+    yield start
     signal.signal(signal.SIGINT, old)
 
 
@@ -113,7 +115,7 @@ def test_resumed_collapse_equals_the_uninterrupted_run(wall, plain, tmp_path, mo
 
 
 def test_ctrl_c_writes_a_checkpoint_and_the_run_resumes(wall, plain, tmp_path, monkeypatch,
-                                                        sigint_default):
+                                                        sigint_start):
     # Ctrl-C (a real SIGINT) half way: taken at the next pause, where the checkpoint is written
     # although the interval (an hour) has not passed
     ck = tmp_path / "run.npz"
@@ -124,10 +126,15 @@ def test_ctrl_c_writes_a_checkpoint_and_the_run_resumes(wall, plain, tmp_path, m
             sent.append(t)
             os.kill(os.getpid(), signal.SIGINT)
 
+    saved = []
+    orig = C._save_checkpoint
+    monkeypatch.setattr(C, "_save_checkpoint", lambda m, *a: saved.append(m.time) or orig(m, *a))
     with pytest.raises(KeyboardInterrupt):
         collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=3600.0, progress=progress, **KW)
-    assert sent and ck.exists()
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # handler restored
+    # one checkpoint, written at the pause right after the Ctrl-C (within one segment)
+    assert sent and ck.exists() and len(saved) == 1 and sent[0] <= saved[0] < plain.t_col
+    assert signal.getsignal(signal.SIGINT) is sigint_start  # handler restored
+    monkeypatch.undo()
     seen = _resumed(monkeypatch)
     res = collapse_run(wall, 5.0, checkpoint=ck, checkpoint_every=3600.0, **KW)
     assert len(seen) == 1 and seen[0]["steps"] > 0

@@ -739,37 +739,6 @@ def _restore_checkpoint(m, path) -> None:
             m.restore_arrays(z, json.loads(str(z["meta"])))
 
 
-class _CtrlC:
-    """Ctrl-C as a flag while a checkpointed run goes on to its next pause (main thread, when
-    no caller set a handler of its own; a second Ctrl-C interrupts at once)."""
-
-    def __init__(self):
-        self.hit = False
-        self.old = None
-
-    def __enter__(self):
-        import signal
-        import threading
-
-        if threading.current_thread() is threading.main_thread() and \
-                signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-            self.old = signal.signal(signal.SIGINT, self._handler)
-        return self
-
-    def _handler(self, signum, frame):
-        import signal
-
-        self.hit = True
-        signal.signal(signal.SIGINT, self.old)
-
-    def __exit__(self, *exc):
-        import signal
-
-        if self.old is not None:
-            signal.signal(signal.SIGINT, self.old)
-        return False
-
-
 def _run_checkpointed(m, kw: dict, path: Path, interval: float, digest: str,
                       run: dict | None):
     """:func:`murus.dem.engine.run` with the arguments ``kw``, paused every
@@ -780,7 +749,7 @@ def _run_checkpointed(m, kw: dict, path: Path, interval: float, digest: str,
     from (its state restored into ``m`` here), or None. Returns the run's result (its steps,
     wall time and contact updates those of the whole run) and the wall time spent before the
     checkpoint it resumed from [s]."""
-    from murus.dem.engine import RunResult
+    from murus.dem.engine import RunResult, _SigInt
 
     left = int(round((kw["t_end"] - m.time) / m.dt))
     steps = updates = 0
@@ -790,7 +759,10 @@ def _run_checkpointed(m, kw: dict, path: Path, interval: float, digest: str,
         left, steps, updates, before = (int(run["left"]), int(run["steps"]),
                                         int(run["updates"]), float(run["wall"]))
     t0 = last = _time.perf_counter()
-    with _CtrlC() as ctrl:
+    # Ctrl-C as a flag (main thread; unless a caller set a handler of its own), taken at the
+    # next pause: the engine's own catch, which would stop the run between two pauses, stays
+    # out of the way (it defers to a handler set by a caller)
+    with _SigInt() as ctrl:
         while True:
             r = m.run(**dict(kw, t_end=m.time + left * m.dt, pause_every=_SEGMENT))
             steps += r.steps
