@@ -120,8 +120,11 @@ def runs() -> dict[str, dict]:
     # as an ensemble (its spread against the stiffness's effect), the toppling 2.7 nominal
     ens("mock_k1e-1", "mock_1.7_k1e-1", wall="mockup-1.7", f=10.0, vertical="none",
         kw={"stiffness_scale": 1e-1})
-    out["mock_2.7_k1e-1_r0"] = dict(group="mock_k1e-1", wall="mockup-2.7", f=10.0,
-                                    vertical="none", kw={"stiffness_scale": 1e-1}, run=0)
+    for s in MOCKUP_SLENDERNESS:  # the others: nominal runs (Table 3 at x 1e-1)
+        if s != 1.7:
+            out[f"mock_{s:g}_k1e-1_r0"] = dict(group="mock_k1e-1", wall=f"mockup-{s:g}",
+                                               f=10.0, vertical="none",
+                                               kw={"stiffness_scale": 1e-1}, run=0)
     for phi in (50.0, 55.0):
         ens("mock_phi", f"mock_2.7_phi{phi:g}", wall="mockup-2.7", f=10.0, vertical="none",
             kw={}, overrides={"backfill_friction_deg": phi})
@@ -708,7 +711,7 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
             f"H/B {sl:g}: {a[0]:.2f} against {_acol(recs[f'mock_{sl:g}_r0']):.2f} "
             f"({_pct(a[0], _acol(recs[f'mock_{sl:g}_r0']))})" for sl, a, b in k3m) + ".", ""]
     k1m = []
-    for sl in (1.7, 2.7):
+    for sl in _mock_walls():
         a, b = recs.get(f"mock_{sl:g}_k1e-1_r0"), recs.get(f"mock_{sl:g}_r0")
         if not (a and b):
             continue
@@ -733,7 +736,7 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
                 ""]
         t3 = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
         diffs = []
-        for sl in (1.7, 2.7):
+        for sl in _mock_walls():
             hi, lo = ens_stats(recs, f"mock_{sl:g}_k1e-1"), ens_stats(recs, f"mock_{sl:g}")
             if hi and lo and math.isfinite(hi[0]) and math.isfinite(lo[0]):
                 diffs.append((sl, hi, lo, float(t3[sl]["num_A_fail_m_s2"]),
