@@ -754,6 +754,16 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
                     + ". The table above is at x 1e-2; whether x 1e-1 is itself converged is "
                     "not measured (the printed stiffness needs about 3.5 hours per run of a "
                     "mock-up, x 1e-1 about one hour).", ""]
+        if diffs:
+            em = [100 * (h[0] / e - 1) for _, h, _, _, e in diffs]
+            eu = [100 * (u / e - 1) for _, _, _, u, e in diffs]
+            out += [f"  Against the experiment at x 1e-1 ({len(diffs)} of "
+                    f"{len(_mock_walls())} walls computed, H/B "
+                    + ", ".join(f"{sl:g}" for sl, *_ in diffs)
+                    + f"): mean error {sum(em) / len(em):+.1f} %, UDEC on the same walls "
+                    f"{sum(eu) / len(eu):+.1f} %; at x 1e-2 on the same walls "
+                    f"{sum(100 * (lo[0] / e - 1) for _, _, lo, _, e in diffs) / len(diffs):+.1f}"
+                    " %.", ""]
     fol = following(recs["t7_DSRW1_5_none_r0"]) if "t7_DSRW1_5_none_r0" in recs else None
     if fol is not None:
         out += ["### The backfill follows the wall (Figure 11)", "",
