@@ -48,8 +48,8 @@ ground); joint stiffness of Table 6 times ``stiffness_scale`` (:data:`STIFFNESS_
 on the continuum, whose A_col of DSRW1 is then that of the printed stiffness within 0.3 %; not
 so for the scaled-down mock-ups: H/B = 1.7 fails at 3.07 m/s² (median of three runs, range
 3.02-3.08) at 1e-2 and at 3.35 m/s² at 1e-1, H/B = 2.7 at 2.93 and 2.59 m/s², VALIDATION.md;
-1e-3 for the equivalent
-thrust and the discs, so that a full-scale run takes about half a minute). With
+1e-3 for the equivalent thrust and the discs, so that a full-scale run takes about half a
+minute). With
 ``backfill="thrust"`` a kinematic backstop runs along the back face (the backfill cannot be
 entered, :func:`~murus.retaining.dem_wall.build_wall`); with ``"discrete"`` or
 ``"continuum"`` the backstop and the thrust are replaced by the backfill behind the wall.
