@@ -46,7 +46,7 @@ velocity relative to the base (``damping_frame="base"``; ``"absolute"`` damps th
 the fixed frame, as UDEC does, so that it also resists the motion of the wall with the
 ground); joint stiffness of Table 6 times ``stiffness_scale`` (:data:`STIFFNESS_SCALE`: 1e-2
 on the continuum, whose A_col of DSRW1 is then that of the printed stiffness within 0.3 %; not
-so for the scaled-down mock-ups: H/B = 1.7 fails at 3.07 m/s² (median of three runs, range
+so for the scaled-down mock-ups: H/B = 1.7 fails at 3.06 m/s² (median of four runs, range
 3.02-3.08) at 1e-2 and at 3.35 m/s² at 1e-1, H/B = 2.7 at 2.93 and 2.59 m/s², VALIDATION.md;
 1e-3 for the equivalent thrust and the discs, so that a full-scale run takes about half a
 minute). With
