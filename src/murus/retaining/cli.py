@@ -354,12 +354,13 @@ def collapse(
         if checkpoint is not None:
             from murus.retaining.collapse import _checkpoint_path
 
-            ck = _checkpoint_path(checkpoint)
-            if ck.exists():
-                failed(f"interrupted: nothing was written; the checkpoint {ck} is kept: run the "
-                       "same command again to resume from it", code=130)
-            failed(f"interrupted before the first checkpoint (one every {checkpoint_every:g} "
-                   "s): nothing was written; the same command starts the run again", code=130)
+            path = _checkpoint_path(checkpoint)
+            if path.exists():
+                failed(f"interrupted: nothing was written; the checkpoint {path} is kept: run "
+                       "the same command again to resume from it", code=130)
+            # Ctrl-C during the run writes the checkpoint: this one came before the run
+            failed("interrupted before the run started (while the wall was built or settled): "
+                   "nothing was written; the same command starts again", code=130)
         failed("interrupted: nothing was written (a collapse run restarts from the beginning: "
                "run the same command again, or give --checkpoint to resume)", code=130)
     if error is not None:
