@@ -125,6 +125,17 @@ def runs() -> dict[str, dict]:
             out[f"mock_{s:g}_k1e-1_r0"] = dict(group="mock_k1e-1", wall=f"mockup-{s:g}",
                                                f=10.0, vertical="none",
                                                kw={"stiffness_scale": 1e-1}, run=0)
+    # subcycling (the zones step once every n steps of the stones): against the runs of one
+    # step for all at both stiffnesses, and DSRW1; then the printed stiffness, which only
+    # subcycling makes affordable (about 45 minutes a run of a mock-up instead of 3.5 hours)
+    for s in (1.7, 2.7):
+        for tag, sc in (("", {}), ("_k1e-1", {"stiffness_scale": 1e-1}),
+                        ("_k1", {"stiffness_scale": 1.0})):
+            out[f"sub_{s:g}{tag}_r0"] = dict(group="sub", wall=f"mockup-{s:g}", f=10.0,
+                                             vertical="none", run=0,
+                                             kw=dict(sc, subcycle="auto"))
+    out["sub_DSRW1_5_r0"] = dict(group="sub", wall="DSRW1", f=5.0, vertical="none", run=0,
+                                 kw={"subcycle": "auto"})
     for phi in (50.0, 55.0):
         ens("mock_phi", f"mock_2.7_phi{phi:g}", wall="mockup-2.7", f=10.0, vertical="none",
             kw={}, overrides={"backfill_friction_deg": phi})
@@ -242,9 +253,8 @@ def main(argv=None) -> None:
     ap.add_argument("--jobs", type=int, default=1, help="Parallel runs (processes).")
     ap.add_argument("--group", nargs="*", default=None, help="Compute the runs of these "
                     "groups only (no Markdown): t7, t7_thrust, t7_discs, mesh, width, boundary, "
-                    "scale, s1, mock, mock_thrust, mock_discs, mock_k1e-3, mock_k1e-1, mock_phi, "
-                    "mock30, "
-                    "slow.")
+                    "scale, s1, mock, mock_thrust, mock_discs, mock_k1e-3, mock_k1e-1, sub, "
+                    "mock_phi, mock30, slow.")
     ap.add_argument("--recompute", action="store_true", help="Run again, ignoring the cache.")
     ap.add_argument("--keys", nargs="*", default=None, help="Compute these runs only, in this "
                     "order (no Markdown).")

@@ -207,3 +207,95 @@ def test_elastic_first_settling_runs_an_elastic_then_a_plastic_stage():
     assert zm.P[ZK.P_PLASTIC] == 1.0
     weight = float(dm.bmass[0]) * G_ACC
     assert iface.normal_force() == pytest.approx(weight, rel=0.005)
+
+
+# ---------------------------------------------------------------------- subcycling
+def _stack_on_a_shaken_mohr_coulomb_layer():
+    """Two 0.8 m x 0.25 m blocks stacked on the shaken Mohr-Coulomb layer of
+    :func:`_block_on_a_shaken_mohr_coulomb_layer`, their joint 100 times stiffer than the
+    interface's (kn = ks = 1e11 Pa/m): the blocks' contact sets the time step, about a sixth
+    of the interface's and the zones' stable steps, as the stones' joints do in the mock-ups
+    of Savalle et al. (2022)."""
+    from murus.continuum import MohrCoulomb
+
+    mat = MohrCoulomb(density=RHO, E=2e7, nu=0.3, friction_deg=30.0, cohesion=2e3,
+                      dilation_deg=0.0)
+    xy, zones = rect_mesh(8, 4, W, H)
+    zm = ContinuumModel(xy, zones, mat, gravity=G_ACC)
+    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
+    zm.set_base(left, x=True, y=False)
+    zm.set_base(right, x=True, y=False)
+    zm.set_base(bottom)
+    stiff = Joint(kn=100 * KN, ks=100 * KN, friction_deg=35.0)
+    dm = Model(thickness=1.0, gravity=G_ACC, joint=stiff, rounding=1e-3)
+    for k in range(2):
+        dm.add_rectangle(0.8, 0.25, center=(1.0, H + 0.125 + 0.25 * k), density=RHO)
+    edges = [e for e in zm.boundary_edges() if np.isin(e, top).all()]
+    iface = Interface(zm, np.array(edges), dm, Joint(kn=KN, ks=KN, friction_deg=25.0))
+    cm = CoupledModel(dm, zm, iface)
+    assert cm.settle(tol=1e-6).converged
+    dm.set_base_motion(velocity=lambda t: 0.3 * np.sin(2 * np.pi * 4.0 * t))
+    dm.bext[:, 0] = 0.3 * dm.bmass * G_ACC
+    return cm, dm, zm
+
+
+def test_subcycling_closes_the_energy_balance_within_the_time_step_error():
+    """Subcycling (the zones step once every n steps of the blocks, the interface's force on
+    the gridpoints taken at the zones' steps): the energy balance of the shaken and pushed
+    stack still closes within 1 % of the work put in, with n at its limit (the zones' and
+    the interface's stable steps, 10 here) and at half of it; and subcycling changes the
+    stack's slide by less than halving the time step of one step for all does (its change
+    is within the time discretisation's own error)."""
+    def slide(n, dt_factor=1.0):
+        cm, dm, zm = _stack_on_a_shaken_mohr_coulomb_layer()
+        if dt_factor != 1.0:
+            cm.set_dt(dt_factor * dm.dt)
+        lim = cm.subcycle_limit()
+        got = cm.set_subcycle(max(2, lim // 2) if n == "half" else n)
+        assert zm.P[0] == pytest.approx(got * dm.dt, rel=1e-15)
+        res = cm.run(0.6, xi=0.05, freq=4.0, every=100, probes={"ux": body_probe(0, "ux")})
+        assert res.status == "completed"
+        e = cm.energy()
+        put_in = e["zones_base_work"] + e["external_work"]
+        assert e["interface_slip"] > 0.3 * put_in and e["zones_plastic"] > 0.02 * put_in
+        assert abs(e["error"]) < 0.01 * put_in, (n, e["error"] / put_in)
+        return res["ux"][-1], lim
+
+    ref, _ = slide(1, 0.5)
+    one, lim = slide(1)
+    assert lim >= 4 and ref > 0.05
+    for n in ("half", "auto"):
+        ux, _ = slide(n)
+        assert abs(ux - one) <= abs(one - ref), (n, ux, one, ref)
+
+
+def test_a_subcycled_run_resumes_bit_for_bit_within_a_zones_step(tmp_path):
+    """A checkpoint taken between two steps of the zones (the blocks' step count not a
+    multiple of n) holds the subcycle and its phase: the resumed run is the uninterrupted
+    one, bit for bit."""
+    cm, dm, zm = _stack_on_a_shaken_mohr_coulomb_layer()
+    n = cm.set_subcycle("auto")
+    k = 0.1 + 1.5 * dm.dt  # not a whole number of the zones' steps
+    cm.run(k, xi=0.05, freq=4.0, every=100)
+    phase = int(cm._phase[0])
+    assert phase != 0
+    ck = tmp_path / "ck.npz"
+    cm.save(ck)
+    cm.run(0.1, xi=0.05, freq=4.0, every=100)
+    cm2, dm2, zm2 = _stack_on_a_shaken_mohr_coulomb_layer()
+    cm2.restore(ck)
+    assert cm2.nsub == n and int(cm2._phase[0]) == phase
+    cm2.run(0.1, xi=0.05, freq=4.0, every=100)
+    assert cm2.nsub == n
+    assert np.array_equal(dm2.bpos, dm.bpos) and np.array_equal(dm2.bvel, dm.bvel)
+    assert np.array_equal(zm2.gxy, zm.gxy) and np.array_equal(zm2.zsig, zm.zsig)
+    assert cm2.energy()["error"] == cm.energy()["error"]
+
+
+def test_subcycle_is_checked():
+    cm, dm, zm, iface = _block_on_layer()
+    lim = cm.subcycle_limit()
+    for bad in (0, lim + 1, 2.5, True, "fast"):
+        with pytest.raises(CoupledError, match="subcycle"):
+            cm.set_subcycle(bad)
+    assert cm.set_subcycle("auto") == lim and cm.set_subcycle(1) == 1

@@ -14,7 +14,22 @@ A step (:func:`run_chunk`):
    base motion and gravity (one :class:`murus.dem._kdata.Drive`).
 
 One time step for all: the smallest of the blocks' stable step, the zones' critical step and
-the interface's (each with its safety factor). Units: the blocks' forces are for their model's
+the interface's (each with its safety factor).
+
+Subcycling (:meth:`CoupledModel.set_subcycle`, :func:`run_chunk_sub`): when the blocks' stiff
+joints set the step (the stones of a dry-stone wall: 10 to 20 times below the zones' and the
+interface's stable steps), the zones, most of a step's cost, may take one step of ``n`` blocks'
+steps (a nodal partition in the manner of Belytschko, Yen & Mullen (1979), *Mixed methods for
+time integration*, Comput. Methods Appl. Mech. Engrg. 17/18, 259-275: each partition with its
+own step, the slow nodes' motion interpolated for the fast ones). In the zones' step at t: the
+zones' stresses at t; the interface at t (the gridpoints at x(t), their velocities those of the
+half step before) gives its force on the gridpoints, applied over the zones' whole step; the
+gridpoints move to ``x(t + n dt)`` with their new half-step velocity v; in the blocks' steps
+``t + j dt`` (j = 1 .. n-1) the interface sees the gridpoints on that straight path,
+``x(t) + j dt v`` (exactly the path central differences give them), and acts on the blocks at
+every step. The blocks' time step and everything about them is unchanged; the zones' stable
+step bounds ``n dt``. What this costs in accuracy is measured (tests; VALIDATION.md: the A_col
+of the mock-ups with and without). Units: the blocks' forces are for their model's
 thickness ``t``; the continuum is per metre of thickness, so the interface forces on gridpoints
 are divided by ``t``.
 
@@ -47,6 +62,79 @@ class CoupledError(MurusError, ValueError):
     """Blocks and zones that cannot be coupled (thickness, gravity, shared gridpoints)."""
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _chunk_start(P, C, bodies, shapes, c, ZP, zones):
+    """The work arrays of a chunk of steps and the blocks' state it starts from (the pair
+    list's rebuild flag, the vertices, the incidence); whether the zones run in parallel."""
+    nb = bodies.bmass.size
+    fb = np.zeros((nb, 3))
+    cap = c.pairs.shape[0] + 16
+    pw = np.zeros((cap, DK.NW))
+    nact = np.zeros(cap, np.int64)
+    bpart = np.zeros((DK.NBLK, DK.NQ))
+    if C[DK.C_NEED_REBUILD] == 0 and DK._moved(bodies, P[DK.P_MARGIN]):
+        C[DK.C_NEED_REBUILD] = 1
+    DK.world_vertices(bodies.bpos, bodies.bang, shapes)
+    bsp, bsh = DK.incidence(shapes.sbody, nb)
+    return fb, pw, nact, bpart, bsp, bsh, zones.zg.shape[0] >= ZP[ZK.P_PARMIN]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _interface_step(IP, IE, IC, geo, side, bodies, shapes, jprops, nodes, corners, state,
+                    work, fb):
+    """The interface's contacts (:func:`murus.continuum.interface.step`) with ``side`` as the
+    gridpoints: its forces on the gridpoints in ``work.fg`` (zeroed first), on the blocks
+    added to ``fb``; returns the node and corner contacts."""
+    fg = work.fg
+    wfb = work.fb
+    ig = geo.ig
+    for k in range(ig.size):
+        fg[ig[k], 0] = 0.0
+        fg[ig[k], 1] = 0.0
+    wfb[:, :] = 0.0
+    t = IF.step(IP, IE, IC, geo, side, bodies, shapes, jprops, nodes, corners, state, work)
+    for b in range(fb.shape[0]):
+        fb[b, 0] += wfb[b, 0]
+        fb[b, 1] += wfb[b, 1]
+        fb[b, 2] += wfb[b, 2]
+    return (dkd.Contacts(t[0], t[1], t[2], t[3], t[4], t[5]),
+            dkd.Contacts(t[6], t[7], t[8], t[9], t[10], t[11]))
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _zones_work(IE, ig, gfix, fg, v0, gvel, dt):
+    """The interface's work on the zones' free gridpoints over a zones' step ``dt``, in the
+    zones' form (the force at t times the mean of the half-step velocities ``v0`` before and
+    ``gvel`` after it; the half after t kept apart): the zones count it in their external
+    work (module doc, energy balance)."""
+    half = 0.0
+    for k in range(ig.size):
+        g = ig[k]
+        for d in range(2):
+            if gfix[g, d] == 0:
+                IE[IF.IE_WZONE] += dt * fg[g, d] * 0.5 * (v0[k, d] + gvel[g, d])
+                half += 0.5 * dt * fg[g, d] * gvel[g, d]
+    IE[IF.IE_TZONE] = half
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _chunk_end(S, c, nodes, corners):
+    """The mean force of the blocks' and the interface's active contacts (the unbalanced-force
+    ratio's) into ``S``; the contacts' arrays as :func:`run_chunk` returns them."""
+    tot = 0.0
+    na = 0
+    for cc in (c, nodes, corners):
+        for k in range(cc.pairs.shape[0]):
+            for o in range(2):
+                if cc.sid[k, o] >= 0:
+                    tot += math.sqrt(cc.sf[k, o, DK.F_FN] ** 2 + cc.sf[k, o, DK.F_FS] ** 2)
+                    na += 1
+    S[DK.S_MEANF] = tot / na if na > 0 else 0.0
+    return (c.pairs, c.pj, c.pbond, c.sid, c.sf, c.sbr,
+            nodes.pairs, nodes.pj, nodes.pbond, nodes.sid, nodes.sf, nodes.sbr,
+            corners.pairs, corners.pj, corners.pbond, corners.sid, corners.sf, corners.sbr)
+
+
 @njit(cache=True, error_model="numpy")
 def run_chunk(nsteps, drive, dem, zon, itf):
     """Advance blocks, zones and interfaces ``nsteps`` steps together (module doc).
@@ -76,21 +164,10 @@ def run_chunk(nsteps, drive, dem, zon, itf):
     P, E, C, S, bodies, shapes, joints, c = dem
     ZP, ZE, ZC, ZS, grid, zones, mprops, part, ff = zon
     IP, IE, IC, geo, jprops, nodes, corners, state, work = itf
-    nb = bodies.bmass.size
-    fb = np.zeros((nb, 3))
-    cap = c.pairs.shape[0] + 16
-    pw = np.zeros((cap, DK.NW))
-    nact = np.zeros(cap, np.int64)
-    bpart = np.zeros((DK.NBLK, DK.NQ))
-    if C[DK.C_NEED_REBUILD] == 0 and DK._moved(bodies, P[DK.P_MARGIN]):
-        C[DK.C_NEED_REBUILD] = 1
-    DK.world_vertices(bodies.bpos, bodies.bang, shapes)
-    bsp, bsh = DK.incidence(shapes.sbody, nb)
-    zpar = zones.zg.shape[0] >= ZP[ZK.P_PARMIN]
+    fb, pw, nact, bpart, bsp, bsh, zpar = _chunk_start(P, C, bodies, shapes, c, ZP, zones)
     side = IF.GridSide(grid.gxy, grid.gvel)
     gff = grid.gff
     fg = work.fg
-    wfb = work.fb
     ig = geo.ig
     inv_t = 1.0 / IP[IF.IP_THICK]
     gvel = grid.gvel
@@ -101,17 +178,8 @@ def run_chunk(nsteps, drive, dem, zon, itf):
         c, pw, nact, dpar = DK.step_forces(P, E, C, S, bodies, shapes, joints, c,
                                            (pw, nact, fb))
         ZK.zone_forces(ZP, grid, zones, mprops, zpar)
-        for k in range(ig.size):
-            fg[ig[k], 0] = 0.0
-            fg[ig[k], 1] = 0.0
-        wfb[:, :] = 0.0
-        t = IF.step(IP, IE, IC, geo, side, bodies, shapes, jprops, nodes, corners, state, work)
-        nodes = dkd.Contacts(t[0], t[1], t[2], t[3], t[4], t[5])
-        corners = dkd.Contacts(t[6], t[7], t[8], t[9], t[10], t[11])
-        for b in range(nb):
-            fb[b, 0] += wfb[b, 0]
-            fb[b, 1] += wfb[b, 1]
-            fb[b, 2] += wfb[b, 2]
+        nodes, corners = _interface_step(IP, IE, IC, geo, side, bodies, shapes, jprops, nodes,
+                                         corners, state, work, fb)
         for k in range(ig.size):
             g = ig[k]
             gff[g, 0] = fg[g, 0] * inv_t
@@ -126,31 +194,92 @@ def run_chunk(nsteps, drive, dem, zon, itf):
             v0[k, 0] = gvel[g, 0]
             v0[k, 1] = gvel[g, 1]
         ZK.grid_update(ZP, ZE, ZC, ZS, fr, grid, zones.zf, (part, ff, mprops), zpar)
-        # the interface's work on the zones' free gridpoints, in the zones' form (the force
-        # at t times the mean of the half-step velocities around it; the half after t kept
-        # apart): the zones count it in their external work (module doc, energy balance)
-        dt = ZP[ZK.P_DT]
-        half = 0.0
+        _zones_work(IE, ig, gfix, fg, v0, gvel, ZP[ZK.P_DT])
+    return _chunk_end(S, c, nodes, corners)
+
+
+@njit(cache=True, error_model="numpy")
+def run_chunk_sub(nsteps, nsub, phase, drive, zdrive, dem, zon, itf, gxs):
+    """Advance ``nsteps`` steps of the blocks, the zones taking one step of ``nsub`` blocks'
+    steps (subcycling; module doc, *Subcycling*).
+
+    Parameters
+    ----------
+    nsteps : int
+        Steps of the blocks (of ``P_DT``; the zones' ``P_DT`` is ``nsub`` times it).
+    nsub : int
+        Blocks' steps per zones' step, >= 2.
+    phase : ndarray (1,) int64
+        The blocks' step within the zones' step at the start (0: the zones step first),
+        advanced in place.
+    drive : murus.dem._kdata.Drive
+        The blocks' step inputs.
+    zdrive : murus.dem._kdata.Drive
+        The zones' step inputs, row i read when the zones' step starts at the blocks' step i:
+        base velocity and gravity at t_i, base velocity at t_i + nsub dt / 2.
+    dem, zon, itf : tuple
+        As :func:`run_chunk`.
+    gxs : ndarray (ng, 2)
+        Scratch coordinates of the gridpoints as the interface sees them between two steps of
+        the zones (its rows of the interface's gridpoints written here).
+
+    Returns
+    -------
+    tuple
+        As :func:`run_chunk`.
+    """
+    P, E, C, S, bodies, shapes, joints, c = dem
+    ZP, ZE, ZC, ZS, grid, zones, mprops, part, ff = zon
+    IP, IE, IC, geo, jprops, nodes, corners, state, work = itf
+    fb, pw, nact, bpart, bsp, bsh, zpar = _chunk_start(P, C, bodies, shapes, c, ZP, zones)
+    gxy = grid.gxy
+    gvel = grid.gvel
+    now = IF.GridSide(gxy, gvel)
+    between = IF.GridSide(gxs, gvel)
+    gff = grid.gff
+    fg = work.fg
+    ig = geo.ig
+    inv_t = 1.0 / IP[IF.IP_THICK]
+    gfix = grid.gfix
+    v0 = np.zeros((ig.size, 2))
+    cdamp = DK.damped(joints.jprops)
+    dts = P[DK.P_DT]
+    for i in range(nsteps):
+        j = (phase[0] + i) % nsub
+        c, pw, nact, dpar = DK.step_forces(P, E, C, S, bodies, shapes, joints, c,
+                                           (pw, nact, fb))
+        side = now
+        if j == 0:
+            ZK.zone_forces(ZP, grid, zones, mprops, zpar)
+        else:  # the gridpoints on their straight path of the zones' step: x(t) + j dt v
+            side = between
+            back = (nsub - j) * dts
+            for k in range(ig.size):
+                g = ig[k]
+                gxs[g, 0] = gxy[g, 0] - back * gvel[g, 0]
+                gxs[g, 1] = gxy[g, 1] - back * gvel[g, 1]
+        nodes, corners = _interface_step(IP, IE, IC, geo, side, bodies, shapes, jprops, nodes,
+                                         corners, state, work, fb)
+        fr = DK._frame(i, drive)
+        DK.step_update(P, E, C, S, fr, fb, bodies, shapes, bpart, (bsp, bsh), dpar)
+        if cdamp:
+            E[DK.E_DDASH] += DK.dashpot_work(c, nact, pw, joints.jprops, shapes.sbody, bodies,
+                                             dts)
+        if j != 0:
+            continue
+        # the zones' step: the interface's force at t on the gridpoints (its work in the
+        # zones' form, as run_chunk), their update over nsub blocks' steps
         for k in range(ig.size):
             g = ig[k]
-            for d in range(2):
-                if gfix[g, d] == 0:
-                    IE[IF.IE_WZONE] += dt * fg[g, d] * 0.5 * (v0[k, d] + gvel[g, d])
-                    half += 0.5 * dt * fg[g, d] * gvel[g, d]
-        IE[IF.IE_TZONE] = half
-    # mean force of the blocks' and the interface's active contacts (unbalanced-force ratio)
-    tot = 0.0
-    na = 0
-    for cc in (c, nodes, corners):
-        for k in range(cc.pairs.shape[0]):
-            for o in range(2):
-                if cc.sid[k, o] >= 0:
-                    tot += math.sqrt(cc.sf[k, o, DK.F_FN] ** 2 + cc.sf[k, o, DK.F_FS] ** 2)
-                    na += 1
-    S[DK.S_MEANF] = tot / na if na > 0 else 0.0
-    return (c.pairs, c.pj, c.pbond, c.sid, c.sf, c.sbr,
-            nodes.pairs, nodes.pj, nodes.pbond, nodes.sid, nodes.sf, nodes.sbr,
-            corners.pairs, corners.pj, corners.pbond, corners.sid, corners.sf, corners.sbr)
+            gff[g, 0] = fg[g, 0] * inv_t
+            gff[g, 1] = fg[g, 1] * inv_t
+            v0[k, 0] = gvel[g, 0]
+            v0[k, 1] = gvel[g, 1]
+        ZK.grid_update(ZP, ZE, ZC, ZS, DK._frame(i, zdrive), grid, zones.zf,
+                       (part, ff, mprops), zpar)
+        _zones_work(IE, ig, gfix, fg, v0, gvel, ZP[ZK.P_DT])
+    phase[0] = (phase[0] + nsteps) % nsub
+    return _chunk_end(S, c, nodes, corners)
 
 
 class CoupledModel:
@@ -214,6 +343,9 @@ class CoupledModel:
         self.stored0 = 0.0
         self._since_check = 0
         self._plastic = 1.0  # 0 during the elastic stage of settle(elastic_first=True)
+        self.nsub = 1  # blocks' steps per zones' step (set_subcycle)
+        self._phase = np.zeros(1, np.int64)
+        self._gxs = None
         dem.coupled = self
         self.set_dt()
         self.reset_reference()
@@ -256,8 +388,56 @@ class CoupledModel:
         self._sync_dt()
 
     def _sync_dt(self) -> None:
-        self.zones.P[ZK.P_DT] = self.dem.dt
+        self.zones.P[ZK.P_DT] = self.dem.dt * self.nsub
         self.iface.P[IF.IP_DT] = self.dem.dt
+
+    def subcycle_limit(self) -> int:
+        """The largest stable number of blocks' steps per zones' step: the zones' and the
+        interface's stable steps over the time step, rounded down (at least 1).
+
+        Returns
+        -------
+        int
+        """
+        z = self.zones.stable_dt()
+        i = self.iface.critical_dt() * self.dem.safety
+        return max(1, int(math.floor(min(z, i) / self.dem.dt * (1 + 1e-12))))
+
+    def set_subcycle(self, n: int | str = "auto") -> int:
+        """Step the zones once every ``n`` steps of the blocks (module doc, *Subcycling*).
+
+        Parameters
+        ----------
+        n : int or "auto"
+            Blocks' steps per zones' step, 1 (off) to :meth:`subcycle_limit`; ``"auto"``:
+            that limit.
+
+        Returns
+        -------
+        int
+            The number set.
+
+        Raises
+        ------
+        CoupledError
+            ``n`` out of range, or a zones' step under way (set it between two).
+        """
+        lim = self.subcycle_limit()
+        if isinstance(n, str):
+            if n.strip().lower() != "auto":
+                raise CoupledError(f"subcycle must be a positive integer or 'auto', got {n!r}",
+                                   key=("subcycle",))
+            n = lim
+        elif isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= lim:
+            raise CoupledError(f"subcycle = {n!r}: must be an integer in [1, {lim}] (the zones' "
+                               f"and the interface's stable steps over the time step)",
+                               key=("subcycle",))
+        if int(self._phase[0]) != 0:
+            raise CoupledError("subcycle: a step of the zones is under way; set it between two",
+                               key=("subcycle",))
+        self.nsub = int(n)
+        self._sync_dt()
+        return self.nsub
 
     @property
     def dt(self) -> float:
@@ -265,9 +445,20 @@ class CoupledModel:
         return float(self.dem.dt)
 
     # ------------------------------------------------------------------ engine hooks
-    def step(self, n: int, drive) -> None:
+    def zone_drive(self, ts, moving: bool, vfull, grav, gdot):
+        """The zones' step inputs of a chunk of the blocks' steps at times ``ts`` when
+        subcycling (None otherwise): the base velocity at ``t + nsub dt / 2`` in place of the
+        blocks' half step (called by :func:`murus.dem.engine._chunk`)."""
+        if self.nsub == 1:
+            return None
+        m = self.dem
+        vh = m.base_velocity(ts + 0.5 * self.nsub * m.dt) if moving else vfull
+        return (vfull, vh, grav, gdot)
+
+    def step(self, n: int, drive, zdrive=None) -> None:
         """``n`` steps of blocks, zones and interface with the blocks' ``drive`` (called by
-        :func:`murus.dem.engine._chunk`)."""
+        :func:`murus.dem.engine._chunk`); ``zdrive``: the zones' inputs when subcycling
+        (:meth:`zone_drive`)."""
         m, z, f = self.dem, self.zones, self.iface
         self._sync_dt()
         dem = (m.P, m.E, m.C, m.S, dkd.pack(dkd.Bodies, m), dkd.pack(dkd.Shapes, m),
@@ -275,7 +466,16 @@ class CoupledModel:
         zon = (z.P, z.E, z.C, z.S, ckd.pack(ckd.Grid, z), ckd.pack(ckd.Zones, z), z.mprops,
                z.part, z.ff)
         itf = (f.P, f.E, f.C, f.geo, f.jprops, f.nodes, f.corners, f.state, f.work)
-        out = run_chunk(n, drive, dem, zon, itf)
+        if self.nsub > 1:
+            if zdrive is None:
+                raise CoupledError("subcycling needs the zones' step inputs (zone_drive)",
+                                   key=("step",))
+            if self._gxs is None or self._gxs.shape != z.gxy.shape:
+                self._gxs = np.array(z.gxy, copy=True)
+            out = run_chunk_sub(n, self.nsub, self._phase, drive, zdrive, dem, zon, itf,
+                                self._gxs)
+        else:
+            out = run_chunk(n, drive, dem, zon, itf)
         for name, a in zip(dkd.Contacts._fields, out[:6], strict=True):
             setattr(m, name, a)
         f._set(out[6:])
@@ -297,8 +497,12 @@ class CoupledModel:
             crit = z.critical_dt()
             if crit <= 0.0:
                 return "a zone has a non-positive area"
-            if z.safety * crit < self.dem.dt:
-                self.set_dt(z.safety * crit)
+            if z.safety * crit < self.dem.dt * self.nsub:
+                if self.nsub == 1:
+                    self.set_dt(z.safety * crit)
+                elif int(self._phase[0]) == 0:  # (else at a later check, between two steps)
+                    self.nsub = max(1, int(math.floor(z.safety * crit / self.dem.dt)))
+                    self._sync_dt()
         return None
 
     def set_damping(self, alocal: float, amass: float, drel: float) -> None:
@@ -485,6 +689,7 @@ class CoupledModel:
             arrays["istate__" + name] = a
         meta["coupled"] = {"zones_time": z.time, "K0": z.K0, "stored0": self.stored0,
                            "since_check": int(self._since_check),
+                           "nsub": int(self.nsub), "phase": int(self._phase[0]),
                            "ng": int(z.ng), "nz": int(z.nz), "nbody": int(m.nbody),
                            "nedge": int(f.geo.ie.shape[0])}
         arrays["meta"] = np.array(json.dumps(meta))
@@ -539,6 +744,9 @@ class CoupledModel:
         z.K0 = float(c["K0"])
         self.stored0 = float(c["stored0"])
         self._since_check = int(c["since_check"])
+        self.nsub = int(c.get("nsub", 1))
+        self._phase[0] = int(c.get("phase", 0))
+        self._sync_dt()
 
 
 def stored_energy_of(iface) -> float:

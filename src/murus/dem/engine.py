@@ -618,6 +618,7 @@ def _chunk(m, n: int, moving: bool) -> None:
     bodies = kd.pack(kd.Bodies, m)
     shapes = kd.pack(kd.Shapes, m)
     joints = kd.pack(kd.Joints, m)
+    zdr = None if cp is None else cp.zone_drive(ts, moving, vfull, grav, gdot)
     s = 0
     try:
         while s < n:
@@ -626,7 +627,8 @@ def _chunk(m, n: int, moving: bool) -> None:
             t0 = _time.perf_counter()
             drive = kd.Drive(vfull[s:s + k], vhalf[s:s + k], grav[s:s + k], gdot[s:s + k])
             if cp is not None:
-                cp.step(k, drive)
+                cp.step(k, drive, None if zdr is None else
+                        kd.Drive(*(a[s:s + k] for a in zdr)))
             else:
                 out = K.run_chunk(k, m.P, m.E, m.C, m.S, drive, bodies, shapes, joints,
                                   kd.pack(kd.Contacts, m))

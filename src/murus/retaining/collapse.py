@@ -304,7 +304,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                  damping_frame: str = "base", backfill: str = "continuum",
                  backfill_options: dict | None = None,
                  progress: Callable | None = None, checkpoint=None,
-                 checkpoint_every: float = 300.0) -> CollapseResult:
+                 checkpoint_every: float = 300.0,
+                 subcycle: int | str | None = None) -> CollapseResult:
     """Run the DEM wall under S2 (or S1 with ``a_peak``) until collapse (module docstring).
 
     Parameters
@@ -398,6 +399,12 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         disc backfill (its relaxation has a state of its own).
     checkpoint_every : float
         Interval between two writes of the checkpoint [s of wall time], > 0.
+    subcycle : int or "auto", optional
+        Continuum backfill: step the zones once every ``subcycle`` steps of the blocks
+        during the shaking (:meth:`murus.continuum.coupled.CoupledModel.set_subcycle`;
+        ``"auto"``: as many as the zones' and the interface's stable steps allow); the
+        blocks' contacts set the time step, and the zones, most of a step's cost, then
+        take a step of their own size. Default: off (one step for all).
 
     Returns
     -------
@@ -464,6 +471,17 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     if bmode not in ("thrust", "discrete", "continuum"):
         raise CollapseError(f"backfill must be 'thrust', 'discrete' or 'continuum', got "
                             f"{backfill!r}")
+    if subcycle is not None:
+        if bmode != "continuum":
+            raise CollapseError(f"subcycle: only with the continuum backfill, not {bmode!r}")
+        if isinstance(subcycle, str):
+            if subcycle.strip().lower() != "auto":
+                raise CollapseError(f"subcycle must be 'auto' or a positive integer, got "
+                                    f"{subcycle!r}")
+        elif isinstance(subcycle, bool) or not isinstance(subcycle, (int, np.integer)) \
+                or subcycle < 1:
+            raise CollapseError(f"subcycle must be 'auto' or a positive integer, got "
+                                f"{subcycle!r}")
     if checkpoint is not None:
         if bmode == "discrete":
             raise CollapseError("checkpoint: not available with the disc backfill (its "
@@ -484,7 +502,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
             sample_dt=sample_dt, motion_dt=motion_dt, thrust_scale=thrust_scale,
             vertical_ratio=vertical_ratio, assumptions=repr(assumptions), build=build,
             damping_frame=damping_frame, backfill=bmode, backfill_options=backfill_options,
-            tail=tail, t_pseudo=t_pseudo))
+            tail=tail, t_pseudo=t_pseudo, **({} if subcycle is None else
+                                             {"subcycle": subcycle})))
         ck_run = _check_checkpoint(ck_path, digest)
     bf = None
     if bmode == "thrust":
@@ -523,6 +542,11 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         if bmode == "continuum" and not st.converged:
             raise CollapseError(f"{wall.name}: the wall and its continuum backfill do not "
                                 f"settle ({st.message})")
+    if subcycle is not None:
+        try:
+            bf.coupled.set_subcycle(subcycle)
+        except ValueError as e:
+            raise CollapseError(str(e)) from None
     m.set_base_motion(gm)
     every = max(1, int(round(update_dt / m.dt)))
     external, ext_every = thrust, every
@@ -657,20 +681,30 @@ def _code_key() -> str:
     return _CODE_KEY
 
 
-def _run_digest(wall: RetainingWall, args: dict) -> str:
-    """The identity of a collapse run: the wall, the arguments, murus's code and the versions
-    of numpy and numba (their arithmetic)."""
+def wall_dict(wall: RetainingWall) -> dict:
+    """The wall's fields and name, for a digest."""
+    return dict(asdict(wall), name=wall.name)
+
+
+def digest(obj) -> str:
+    """20 hex digits of the SHA-256 of ``obj`` as sorted JSON (the identity of a run or a
+    study's case)."""
     import hashlib
     import json
 
+    return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()[:20]
+
+
+def _run_digest(wall: RetainingWall, args: dict) -> str:
+    """The identity of a collapse run: the wall, the arguments, murus's code and the versions
+    of numpy and numba (their arithmetic)."""
     import numba
 
     import murus
 
-    obj = {"wall": dict(asdict(wall), name=wall.name), "args": args, "code": _code_key(),
-           "version": murus.__version__, "numpy": np.__version__, "numba": numba.__version__,
-           "format": 1}
-    return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()[:20]
+    return digest({"wall": wall_dict(wall), "args": args, "code": _code_key(),
+                   "version": murus.__version__, "numpy": np.__version__,
+                   "numba": numba.__version__, "format": 1})
 
 
 def _checkpoint_path(checkpoint) -> Path:

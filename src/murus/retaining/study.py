@@ -75,7 +75,6 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import hashlib
 import json
 import math
 from dataclasses import dataclass, field
@@ -92,6 +91,8 @@ from murus.retaining.collapse import (
     collapse_run,
     pseudo_static_resistance,
 )
+from murus.retaining.collapse import digest as _digest
+from murus.retaining.collapse import wall_dict as _wall_dict
 from murus.retaining.geometry import GeometryError, RetainingWall
 
 __all__ = ["BehaviourStudy", "BehaviourStudyResult", "CaseTask", "load_behaviour_study",
@@ -366,16 +367,6 @@ class BehaviourStudy:
         return _digest({"v": STUDY_FORMAT, "wall": _wall_dict(self.wall),
                         "frequency": case.frequency, "vertical": case.vertical,
                         "kw": self.case_kwargs(case, parent)})
-
-
-def _wall_dict(wall: RetainingWall) -> dict:
-    d = dataclasses.asdict(wall)
-    d["name"] = wall.name
-    return d
-
-
-def _digest(obj) -> str:
-    return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()[:20]
 
 
 def _collapsed(summary: dict | None) -> bool:
