@@ -580,6 +580,63 @@ def _s1_current(rec: dict) -> bool:
     return math.isclose(rec["summary"]["a_peak"], rec["spec"]["ratio"] * acol, rel_tol=1e-12)
 
 
+#: subcycled run -> (its run of one step for all: prefix of the ensemble, label)
+SUB_PAIRS = {"sub_1.7_r0": ("mock_1.7", "mock-up H/B = 1.7 (S), x 1e-2"),
+             "sub_2.7_r0": ("mock_2.7", "mock-up H/B = 2.7 (T), x 1e-2"),
+             "sub_1.7_k1e-1_r0": ("mock_1.7_k1e-1", "mock-up H/B = 1.7, x 1e-1"),
+             "sub_2.7_k1e-1_r0": ("mock_2.7_k1e-1", "mock-up H/B = 2.7, x 1e-1"),
+             "sub_DSRW1_5_r0": ("t7_DSRW1_5_none", "DSRW1, 5 Hz, x 1e-2")}
+
+
+def _speed(rec: dict) -> float:
+    """Wall time per simulated second of a run, its settling included [s/s]."""
+    s = rec["summary"]
+    return s["wall_time"] / s["t_end"]
+
+
+def _sub_text(recs: dict) -> list[str]:
+    """The subcycled runs against one step for all, and the printed stiffness."""
+    rows = []
+    for key, (pre, label) in SUB_PAIRS.items():
+        if key not in recs or f"{pre}_r0" not in recs:
+            continue
+        sub, one, st = recs[key], recs[f"{pre}_r0"], ens_stats(recs, pre)
+        a, b = _acol(sub), _acol(one)
+        inside = st[3] > 1 and st[1] <= a <= st[2]
+        rows.append(f"| {label} | {b:.3f} ({one.get('mode') or '-'}) | {_cell(st)} | "
+                    f"{a:.3f} ({sub.get('mode') or '-'}) | {100 * (a / b - 1):+.2f} % | "
+                    + ("yes" if inside else "-" if st[3] == 1 else "no") + " | "
+                    f"{_speed(one) / _speed(sub):.1f} |")
+    if not rows:
+        return []
+    out = ["#### Subcycling: the zones step once every n steps of the stones", "",
+           "The stones' stiff joints set the time step of the coupled model, 10 to 20 times "
+           "below the zones' and the interface's stable steps, while the zones take most of a "
+           "step's time. With `subcycle=\"auto\"` (`--subcycle auto`) the zones take one step "
+           "of n stones' steps, n as large as their stable steps allow (14 for the mock-ups, "
+           "13 for DSRW1; `murus.continuum.coupled`, module doc). The same runs without and "
+           "with it (nominal time step; A_col; the speed-up is the ratio of wall time per "
+           "simulated second, both runs on the shared machine, so a rough figure: "
+           "BENCHMARKS.md has it on an idle one):", "",
+           "| run | one step for all, nominal [m/s²] | its ensemble | subcycled [m/s²] | "
+           "difference | within the ensemble's range | speed-up |",
+           "|---|---|---|---|---|---|---|"] + rows + [""]
+    k1 = []
+    for sl in (1.7, 2.7):
+        a, b = recs.get(f"sub_{sl:g}_k1_r0"), recs.get(f"sub_{sl:g}_k1e-1_r0")
+        if a and b:
+            txt = (f"H/B {sl:g}: x 1 (as printed) {_acol(a):.2f} ({a.get('mode') or '-'}) "
+                   f"against x 1e-1 {_acol(b):.2f} ({_pct(_acol(b), _acol(a))})")
+            c = recs.get(f"sub_{sl:g}_r0")
+            if c:
+                txt += f", x 1e-2 {_acol(c):.2f} ({_pct(_acol(c), _acol(a))})"
+            k1.append(txt)
+    if k1:
+        out += ["- The printed joint stiffness on the mock-ups (subcycled runs): "
+                + "; ".join(k1) + ".", ""]
+    return out
+
+
 def _text(recs: dict, fig_dir: Path, rel) -> str:
     t7, info = t7_table(recs)
     mt, minfo = mock_table(recs)
@@ -774,6 +831,7 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
                     f"{sum(eu) / len(eu):+.1f} %; at x 1e-2 on the same walls "
                     f"{sum(100 * (lo[0] / e - 1) for _, _, lo, _, e in diffs) / len(diffs):+.1f}"
                     " %.", ""]
+    out += _sub_text(recs)
     fol = following(recs["t7_DSRW1_5_none_r0"]) if "t7_DSRW1_5_none_r0" in recs else None
     if fol is not None:
         out += ["### The backfill follows the wall (Figure 11)", "",

@@ -103,6 +103,11 @@ def test_errors(wall):
         collapse_run(wall, 5.0, signal="S1", **KW)
     with pytest.raises(CollapseError, match="frequency"):
         collapse_run(wall, -1.0, **KW)
+    for bad in (0, -2, 1.5, True, "fast"):
+        with pytest.raises(CollapseError, match="subcycle must be"):
+            collapse_run(wall, 5.0, backfill="continuum", subcycle=bad)
+    with pytest.raises(CollapseError, match="only with the continuum backfill"):
+        collapse_run(wall, 5.0, backfill="thrust", subcycle="auto")
 
 
 def test_cli_collapse_and_errors(tmp_path):

@@ -97,6 +97,9 @@ def test_imports_stay_light():
     (["--backfill", "discrete", "--boundary", "free-field"], "boundary must be one of"),
     (["--backfill", "soil"], "backfill must be 'thrust', 'discrete' or 'continuum'"),
     (["--damping-frame", "relative"], "--damping-frame must be 'base' or 'absolute'"),
+    (["--backfill", "thrust", "--subcycle", "auto"], "--subcycle needs --backfill continuum"),
+    (["--subcycle", "0"], "--subcycle must be 'auto' or a positive integer"),
+    (["--subcycle", "fast"], "--subcycle must be 'auto' or a positive integer"),
 ])
 def test_collapse_backfill_options_bad_input(tmp_path, args, word):
     out = tmp_path / "out"
@@ -104,4 +107,16 @@ def test_collapse_backfill_options_bad_input(tmp_path, args, word):
     assert r.exit_code == 2
     err = _err(r)
     assert len(err.splitlines()) == 1 and err.startswith("error: ") and word in err, err
+    assert not out.exists()
+
+
+def test_collapse_subcycle_beyond_its_limit(tmp_path):
+    """The subcycle's limit needs the built model: the error comes once it is built (after
+    the progress line of the run), one error line, exit 2, nothing written."""
+    out = tmp_path / "out"
+    r = _cli("collapse", "--preset", "DSRW1", "--out", str(out), "--subcycle", "100000")
+    assert r.exit_code == 2
+    err = [x for x in _err(r).splitlines() if x.startswith("error: ")]
+    assert len(err) == 1 and "subcycle = 100000: must be an integer in [1, " in err[0], err
+    assert _err(r).splitlines()[-1] == err[0]
     assert not out.exists()

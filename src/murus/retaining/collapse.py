@@ -535,7 +535,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         thrust = EquivalentThrust(dw, acc=acc_at, assumptions=assumptions, scale=0.0)
         if progress is not None:
             progress(0.0, t_end, "settling")
-        st = bf.settle(dw, external=thrust)
+        st = bf.settle(dw, external=thrust, **({} if subcycle is None else
+                                               {"built": _subcycle_check(subcycle)}))
         if getattr(st, "interrupted", False):
             raise KeyboardInterrupt(f"{wall.name}: {st.message}")
         # (the disc backfill goes on with its dynamic relaxation when its settling stops short)
@@ -679,6 +680,17 @@ def _code_key() -> str:
 
         _CODE_KEY = source_key(*_CODE)
     return _CODE_KEY
+
+
+def _subcycle_check(subcycle):
+    """A check of ``subcycle`` against the built model's limit, before its settling."""
+    def check(bf):
+        lim = bf.coupled.subcycle_limit()
+        if not isinstance(subcycle, str) and subcycle > lim:
+            raise CollapseError(f"subcycle = {subcycle!r}: must be an integer in [1, {lim}] "
+                                f"(the zones' and the interface's stable steps over the time "
+                                f"step)")
+    return check
 
 
 def wall_dict(wall: RetainingWall) -> dict:

@@ -217,7 +217,7 @@ class ContinuumBackfill:
         self.mesh, self.zones, self.interface = mesh, zm, iface
         self.coupled = CoupledModel(m, zm, iface)
 
-    def settle(self, dw, external=None):
+    def settle(self, dw, external=None, built=None):
         """Build the zones and the interface on the wall ``dw``
         (:class:`~murus.retaining.dem_wall.DemWall`, built with ``backstop=False``), set the
         K0 stresses, settle blocks and zones (elastic, then plastic), then put the far side's
@@ -230,12 +230,17 @@ class ContinuumBackfill:
         external : callable, optional
             The blocks' external-force hook during the settling (the collapse protocol's zero
             thrust, for its probes).
+        built : callable, optional
+            Called with this backfill once built, before the settling (a check of the
+            caller's that needs the model, e.g. the subcycle's limit).
 
         Returns
         -------
         murus.dem.engine.SettleResult
         """
         self._build(dw)
+        if built is not None:
+            built(self)
         zm = self.zones
         zm.initial_stress_k0()
         st = self.coupled.settle(elastic_first=True, tol=self.settle_tol,
