@@ -136,6 +136,11 @@ def runs() -> dict[str, dict]:
                                              kw=dict(sc, subcycle="auto"))
     out["sub_DSRW1_5_r0"] = dict(group="sub", wall="DSRW1", f=5.0, vertical="none", run=0,
                                  kw={"subcycle": "auto"})
+    for s in MOCKUP_SLENDERNESS:  # Table 3 at x 1e-1, subcycled: the other walls
+        if s not in (1.7, 2.7):
+            out[f"sub_{s:g}_k1e-1_r0"] = dict(group="sub", wall=f"mockup-{s:g}", f=10.0,
+                                              vertical="none", run=0,
+                                              kw={"stiffness_scale": 1e-1, "subcycle": "auto"})
     for phi in (50.0, 55.0):
         ens("mock_phi", f"mock_2.7_phi{phi:g}", wall="mockup-2.7", f=10.0, vertical="none",
             kw={}, overrides={"backfill_friction_deg": phi})
@@ -634,6 +639,21 @@ def _sub_text(recs: dict) -> list[str]:
     if k1:
         out += ["- The printed joint stiffness on the mock-ups (subcycled runs): "
                 + "; ".join(k1) + ".", ""]
+    t3 = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
+    got = [(sl, recs[f"sub_{sl:g}_k1e-1_r0"]) for sl in _mock_walls()
+           if f"sub_{sl:g}_k1e-1_r0" in recs]
+    if got:
+        em = [100 * (_acol(r) / float(t3[sl]["exp_A_fail_m_s2"]) - 1) for sl, r in got]
+        eu = [100 * (float(t3[sl]["num_A_fail_m_s2"]) / float(t3[sl]["exp_A_fail_m_s2"]) - 1)
+              for sl, _ in got]
+        right = sum((r.get("mode") or "-")[:1] in t3[sl]["exp_mode"] for sl, r in got)
+        out += ["- Table 3 at joint stiffness x 1e-1 (subcycled nominal runs, "
+                f"{len(got)} of {len(_mock_walls())} walls): " + ", ".join(
+                    f"H/B {sl:g} {_acol(r):.2f} ({r.get('mode') or '-'}; "
+                    f"{_pct(_acol(r), float(t3[sl]['exp_A_fail_m_s2']))})" for sl, r in got)
+                + f"; mean error against the experiment {sum(em) / len(em):+.1f} % (UDEC on "
+                f"the same walls {sum(eu) / len(eu):+.1f} %), mode right for {right} of "
+                f"{len(got)}.", ""]
     return out
 
 

@@ -499,3 +499,28 @@ def test_a_rate_option_reaches_collapse_run():
     s2, s1 = st.tasks()[0], st.tasks()[1]
     assert st.case_kwargs(s2)["A_rate"] == 0.1307
     assert st.case_kwargs(s1, {"summary": {"A_col": 2.0, "A_rate": 0.5}})["A_rate"] == 0.5
+
+
+def test_subcycle_in_numerics():
+    """[numerics] subcycle ("auto" or an integer >= 1, continuum backfill only) reaches every
+    run and the study's digest; other values and other backfills are refused with the key;
+    without it the numerics hold no such key, so the digest of a study written before the key
+    existed is unchanged (its stored cases stay valid)."""
+    from murus.config import CaseError
+    from murus.retaining.study import behaviour_study
+
+    base = {"wall": {"preset": "mockup-1.3", "stone_height": 0.011},
+            "cases": {"frequencies": [5.0]}}
+    plain = behaviour_study(dict(base, numerics={"backfill": "continuum"}))
+    assert "subcycle" not in plain.numerics
+    for val in ("auto", 3):
+        st = behaviour_study(dict(base, numerics={"backfill": "continuum", "subcycle": val}))
+        for case in st.tasks():
+            assert st.case_kwargs(case, None if case.signal == "S2" else
+                                  {"summary": {"A_col": 1.0, "A_rate": 1.0}})["subcycle"] == val
+        assert st.digest() != plain.digest()
+    for bad in (0, "fast", 2.5, True):
+        with pytest.raises(CaseError, match="subcycle"):
+            behaviour_study(dict(base, numerics={"backfill": "continuum", "subcycle": bad}))
+    with pytest.raises(CaseError, match="subcycle needs backfill = 'continuum'"):
+        behaviour_study(dict(base, numerics={"backfill": "thrust", "subcycle": "auto"}))

@@ -59,6 +59,7 @@ Case file (TOML, ``examples/retaining/``)::
     # [numerics.backfill_options] W = 5.0, boundary = "absorbing", radius, spread, seed, rolling
     # backfill = "continuum"     # Mohr-Coulomb zones, the paper's model, with
     # [numerics.backfill_options] W = 5.0, size = 0.2, boundary = "free-field" | "fixed" | "quiet"
+    # subcycle = "auto"          # continuum: the zones step once every n steps of the stones
 
     [executor]                   # the CLI's --executor/--workers/--scheduler win
     kind = "process"             # serial | process | dask
@@ -79,7 +80,7 @@ import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
+from typing import Annotated, Literal
 
 import numpy as np
 from pydantic import Field, ValidationError, field_validator, model_validator
@@ -234,11 +235,14 @@ class NumericsCfg(Strict):
     vertical_ratio: float | None = Field(default=None, gt=0, **_FLOAT)
     damping_frame: Literal["base", "absolute"] | None = None
     backfill: Literal["thrust", "discrete", "continuum"] | None = None
+    subcycle: Literal["auto"] | Annotated[int, Field(ge=1, strict=True)] | None = None
     build: BuildCfg = BuildCfg()
     backfill_options: BackfillCfg = BackfillCfg()
 
     @model_validator(mode="after")
     def _backfill_options(self):
+        if self.subcycle is not None and self.backfill != "continuum":
+            raise ValueError("subcycle needs backfill = 'continuum'")
         given = self.backfill_options.model_dump(exclude_none=True)
         if not given:
             return self
