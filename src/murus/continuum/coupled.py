@@ -406,6 +406,13 @@ class CoupledModel:
     def set_subcycle(self, n: int | str = "auto") -> int:
         """Step the zones once every ``n`` steps of the blocks (module doc, *Subcycling*).
 
+        The blocks' time step and time are unchanged; the zones' step is ``n`` times it.
+        Between two steps of the zones the gridpoints are already at the end of the current
+        one (a probe of a gridpoint or a zone then leads the blocks by up to ``n - 1`` of
+        their steps; the energy balance is meant at the zones' steps). A checkpoint
+        (:meth:`save`) holds ``n`` and the blocks' step within the zones' step. The settling
+        keeps one step for all unless this is set before it.
+
         Parameters
         ----------
         n : int or "auto"
