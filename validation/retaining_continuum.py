@@ -146,11 +146,15 @@ def runs() -> dict[str, dict]:
                                       run=0, kw={"stiffness_scale": 1e-1, "subcycle": 7})
     out["sub_DSRW1_5_r0"] = dict(group="sub", wall="DSRW1", f=5.0, vertical="none", run=0,
                                  kw={"subcycle": "auto"})
-    for s in MOCKUP_SLENDERNESS:  # Table 3 at x 1e-1, subcycled: the other walls
+    for s in MOCKUP_SLENDERNESS:  # Table 3 at x 1e-1 and at x 1, subcycled: the other walls
         if s not in (1.7, 2.7):
-            out[f"sub_{s:g}_k1e-1_r0"] = dict(group="sub", wall=f"mockup-{s:g}", f=10.0,
-                                              vertical="none", run=0,
-                                              kw={"stiffness_scale": 1e-1, "subcycle": "auto"})
+            for tag, sc in (("_k1e-1", 1e-1), ("_k1", 1.0)):
+                out[f"sub_{s:g}{tag}_r0"] = dict(group="sub", wall=f"mockup-{s:g}", f=10.0,
+                                                 vertical="none", run=0,
+                                                 kw={"stiffness_scale": sc, "subcycle": "auto"})
+    # the printed stiffness with one step for all (about two hours): subcycling checked there
+    out["mock_2.7_k1_r0"] = dict(group="mock_k1", wall="mockup-2.7", f=10.0, vertical="none",
+                                 run=0, kw={"stiffness_scale": 1.0})
     for phi in (50.0, 55.0):
         ens("mock_phi", f"mock_2.7_phi{phi:g}", wall="mockup-2.7", f=10.0, vertical="none",
             kw={}, overrides={"backfill_friction_deg": phi})
@@ -268,8 +272,8 @@ def main(argv=None) -> None:
     ap.add_argument("--jobs", type=int, default=1, help="Parallel runs (processes).")
     ap.add_argument("--group", nargs="*", default=None, help="Compute the runs of these "
                     "groups only (no Markdown): t7, t7_thrust, t7_discs, mesh, width, boundary, "
-                    "scale, s1, mock, mock_thrust, mock_discs, mock_k1e-3, mock_k1e-1, sub, "
-                    "sub_ens, mock_phi, mock30, slow.")
+                    "scale, s1, mock, mock_thrust, mock_discs, mock_k1e-3, mock_k1e-1, mock_k1, "
+                    "sub, sub_ens, mock_phi, mock30, slow.")
     ap.add_argument("--recompute", action="store_true", help="Run again, ignoring the cache.")
     ap.add_argument("--keys", nargs="*", default=None, help="Compute these runs only, in this "
                     "order (no Markdown).")
@@ -600,6 +604,7 @@ SUB_PAIRS = {"sub_1.7_r0": ("mock_1.7", "mock-up H/B = 1.7 (S), x 1e-2"),
              "sub_2.7_r0": ("mock_2.7", "mock-up H/B = 2.7 (T), x 1e-2"),
              "sub_1.7_k1e-1_r0": ("mock_1.7_k1e-1", "mock-up H/B = 1.7, x 1e-1"),
              "sub_2.7_k1e-1_r0": ("mock_2.7_k1e-1", "mock-up H/B = 2.7, x 1e-1"),
+             "sub_2.7_k1_r0": ("mock_2.7_k1", "mock-up H/B = 2.7, x 1 (as printed)"),
              "sub_DSRW1_5_r0": ("t7_DSRW1_5_none", "DSRW1, 5 Hz, x 1e-2")}
 
 
@@ -642,7 +647,7 @@ def _sub_text(recs: dict) -> list[str]:
            "speed-up |",
            "|---|---|---|---|---|---|---|---|"] + rows + [""]
     k1 = []
-    for sl in (1.7, 2.7):
+    for sl in _mock_walls():
         a, b = recs.get(f"sub_{sl:g}_k1_r0"), recs.get(f"sub_{sl:g}_k1e-1_r0")
         if a and b:
             txt = (f"H/B {sl:g}: x 1 (as printed) {_acol(a):.2f} ({a.get('mode') or '-'}) "
@@ -666,14 +671,23 @@ def _sub_text(recs: dict) -> list[str]:
         out += ["- The printed joint stiffness on the mock-ups (subcycled runs): "
                 + "; ".join(k1) + ".", ""]
     t3 = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
-    got = [(sl, recs[f"sub_{sl:g}_k1e-1_r0"]) for sl in _mock_walls()
-           if f"sub_{sl:g}_k1e-1_r0" in recs]
+    for tag, name in (("_k1e-1", "x 1e-1"), ("_k1", "x 1, as printed")):
+        out += _t3_line(recs, t3, tag, name)
+    return out
+
+
+def _t3_line(recs: dict, t3: dict, tag: str, name: str) -> list[str]:
+    """Table 3 from the subcycled nominal runs at one joint stiffness: A_fail, mode, mean
+    error against the experiment and UDEC's on the same walls."""
+    out = []
+    got = [(sl, recs[f"sub_{sl:g}{tag}_r0"]) for sl in _mock_walls()
+           if f"sub_{sl:g}{tag}_r0" in recs]
     if got:
         em = [100 * (_acol(r) / float(t3[sl]["exp_A_fail_m_s2"]) - 1) for sl, r in got]
         eu = [100 * (float(t3[sl]["num_A_fail_m_s2"]) / float(t3[sl]["exp_A_fail_m_s2"]) - 1)
               for sl, _ in got]
         right = sum((r.get("mode") or "-")[:1] in t3[sl]["exp_mode"] for sl, r in got)
-        out += ["- Table 3 at joint stiffness x 1e-1 (subcycled nominal runs, "
+        out += [f"- Table 3 at joint stiffness {name} (subcycled nominal runs, "
                 f"{len(got)} of {len(_mock_walls())} walls): " + ", ".join(
                     f"H/B {sl:g} {_acol(r):.2f} ({r.get('mode') or '-'}; "
                     f"{_pct(_acol(r), float(t3[sl]['exp_A_fail_m_s2']))})" for sl, r in got)
