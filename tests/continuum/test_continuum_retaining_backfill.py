@@ -140,3 +140,23 @@ def test_the_shipped_command_reproduces_the_validated_a_col():
     assert res.collapsed and a[0] <= res.A_col <= a[-1], (res.A_col, a)
     # the nominal run is the cached one, bit for bit: the validation is of this engine
     assert res.A_col == recs[0]["summary"]["A_col"]
+
+
+def test_settling_budget_follows_the_time_step():
+    """The settling's step budget grows as the time step falls with the joints' stiffness
+    (dt ~ 1 / sqrt(k)): x 100 stiffer, 10 times the steps; never below the budget of
+    x 1e-2. A stage that runs out says which (the elastic one here), and bad budgets are
+    one-line errors."""
+    wall = preset("DSRW1")
+    dts = {k: build_wall(wall, stiffness_scale=k, backstop=False).model.stable_dt()
+           for k in (1e-2, 1.0)}
+    steps = {k: ContinuumBackfill(wall, stiffness_scale=k).settle_steps
+             for k in (1e-3, 1e-2, 1.0)}
+    assert steps[1.0] / steps[1e-2] == pytest.approx(dts[1e-2] / dts[1.0], rel=1e-6)
+    assert steps[1e-3] == steps[1e-2]
+    for bad in (0, -5, 2.5, True):
+        with pytest.raises(ContinuumBackfillError, match="settle_steps"):
+            ContinuumBackfill(wall, settle_steps=bad)
+    bf = ContinuumBackfill(wall, size=0.5, stiffness_scale=1e-3, settle_steps=100)
+    st = bf.settle(build_wall(wall, stiffness_scale=1e-3, backstop=False))
+    assert not st.converged and st.message.startswith("elastic stage: not settled after 100 ")

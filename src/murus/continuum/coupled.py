@@ -62,6 +62,43 @@ class CoupledError(MurusError, ValueError):
     """Blocks and zones that cannot be coupled (thickness, gravity, shared gridpoints)."""
 
 
+def check_subcycle(n, limit: int | None = None):
+    """``n`` checked as a subcycle (:meth:`CoupledModel.set_subcycle`): ``"auto"`` or a
+    positive integer, at most ``limit`` when given.
+
+    Parameters
+    ----------
+    n : int or str
+        The subcycle asked for.
+    limit : int, optional
+        The model's :meth:`CoupledModel.subcycle_limit`; None: the type only.
+
+    Returns
+    -------
+    int or str
+        ``n`` (``"auto"`` as given when ``limit`` is None), or with ``limit``: the number of
+        blocks' steps per zones' step (``"auto"``: the limit).
+
+    Raises
+    ------
+    CoupledError
+        Neither "auto" nor a positive integer, or above ``limit``.
+    """
+    if isinstance(n, str):
+        if n.strip().lower() != "auto":
+            raise CoupledError(f"subcycle must be 'auto' or a positive integer, got {n!r}",
+                               key=("subcycle",))
+        return n if limit is None else int(limit)
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise CoupledError(f"subcycle must be 'auto' or a positive integer, got {n!r}",
+                           key=("subcycle",))
+    if limit is not None and n > limit:
+        raise CoupledError(f"subcycle = {n!r}: must be an integer in [1, {limit}] (the zones' "
+                           f"and the interface's stable steps over the time step)",
+                           key=("subcycle",))
+    return int(n)
+
+
 @njit(cache=True, error_model="numpy", inline="always")
 def _chunk_start(P, C, bodies, shapes, c, ZP, zones):
     """The work arrays of a chunk of steps and the blocks' state it starts from (the pair
@@ -429,16 +466,7 @@ class CoupledModel:
         CoupledError
             ``n`` out of range, or a zones' step under way (set it between two).
         """
-        lim = self.subcycle_limit()
-        if isinstance(n, str):
-            if n.strip().lower() != "auto":
-                raise CoupledError(f"subcycle must be a positive integer or 'auto', got {n!r}",
-                                   key=("subcycle",))
-            n = lim
-        elif isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= lim:
-            raise CoupledError(f"subcycle = {n!r}: must be an integer in [1, {lim}] (the zones' "
-                               f"and the interface's stable steps over the time step)",
-                               key=("subcycle",))
+        n = check_subcycle(n, self.subcycle_limit())
         if int(self._phase[0]) != 0:
             raise CoupledError("subcycle: a step of the zones is under way; set it between two",
                                key=("subcycle",))
@@ -637,7 +665,8 @@ class CoupledModel:
             first = self.dem.settle(**dict(kw, reset=False))
         finally:
             self._plastic = 1.0
-        if not first.converged:
+        if not first.converged:  # said of the elastic stage (its message counts its steps)
+            first.message = "elastic stage: " + first.message
             return first
         res = self.dem.settle(**kw)
         res.steps += first.steps

@@ -474,14 +474,12 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     if subcycle is not None:
         if bmode != "continuum":
             raise CollapseError(f"subcycle: only with the continuum backfill, not {bmode!r}")
-        if isinstance(subcycle, str):
-            if subcycle.strip().lower() != "auto":
-                raise CollapseError(f"subcycle must be 'auto' or a positive integer, got "
-                                    f"{subcycle!r}")
-        elif isinstance(subcycle, bool) or not isinstance(subcycle, (int, np.integer)) \
-                or subcycle < 1:
-            raise CollapseError(f"subcycle must be 'auto' or a positive integer, got "
-                                f"{subcycle!r}")
+        from murus.continuum.coupled import CoupledError, check_subcycle
+
+        try:
+            check_subcycle(subcycle)
+        except CoupledError as e:
+            raise CollapseError(str(e)) from None
     if checkpoint is not None:
         if bmode == "discrete":
             raise CollapseError("checkpoint: not available with the disc backfill (its "
@@ -684,12 +682,13 @@ def _code_key() -> str:
 
 def _subcycle_check(subcycle):
     """A check of ``subcycle`` against the built model's limit, before its settling."""
+    from murus.continuum.coupled import CoupledError, check_subcycle
+
     def check(bf):
-        lim = bf.coupled.subcycle_limit()
-        if not isinstance(subcycle, str) and subcycle > lim:
-            raise CollapseError(f"subcycle = {subcycle!r}: must be an integer in [1, {lim}] "
-                                f"(the zones' and the interface's stable steps over the time "
-                                f"step)")
+        try:
+            check_subcycle(subcycle, bf.coupled.subcycle_limit())
+        except CoupledError as e:
+            raise CollapseError(str(e)) from None
     return check
 
 
