@@ -702,8 +702,8 @@ def _sub_text(recs: dict) -> list[str]:
         out += ["- The printed joint stiffness on the mock-ups (subcycled runs): "
                 + "; ".join(k1) + ".", ""]
     t3 = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
-    for tag, name in (("_k1e-1", "x 1e-1"), ("_k1", "x 1, as printed")):
-        out += _t3_line(recs, t3, tag, name)
+    # (the printed stiffness's: Table 3 above, its reference column)
+    out += _t3_line(recs, t3, "_k1e-1", "x 1e-1")
     return out
 
 
@@ -923,7 +923,7 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
                     "printed stiffness: " + "; ".join(
                         f"H/B {sl:g}: {h[0]:.2f} against UDEC {u:.2f} ({_pct(h[0], u)}; "
                         f"experiment {e:.2f})" for sl, h, lo, u, e in diffs)
-                    + ". The table above is at x 1e-2; "
+                    + ". The table above gives x 1e-2 beside the printed stiffness; "
                     + ("x 1e-1 against the printed stiffness: *Subcycling* below (the printed "
                        "stiffness needs about 2 hours per run of a mock-up with one step for "
                        "all, half an hour subcycled)."
@@ -960,6 +960,16 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
                      _fig_collapse(recs["t7_DSRW1_5_none_r0"], fig_dir,
                                    "savalle2022_continuum_collapse.png",
                                    "DSRW1, 5 Hz, continuum backfill: at collapse")))
+    for sl, how in ((1.7, "slides"), (2.7, "topples")):  # the mock-ups' two failure modes
+        k = f"sub_{sl:g}_k1_r0"
+        if k in recs:
+            figs.append((f"Mock-up H/B = {sl:g} at failure (d_top = 5 % H), joints as printed: "
+                         f"it {how}; stones coloured by their displacement, zones by their "
+                         "plastic state during the shaking",
+                         _fig_collapse(recs[k], fig_dir,
+                                       f"savalle2022_continuum_mockup_{sl:g}.png",
+                                       f"Mock-up H/B = {sl:g}, continuum, joints as printed: "
+                                       "at failure")))
     figs.append(("W against 2W (cf. Figure 10)", _fig_width(recs, fig_dir)))
     for cap, name in figs:
         if name:
