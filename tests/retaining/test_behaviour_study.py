@@ -453,9 +453,8 @@ def test_continuum_backfill_options_reach_collapse_run():
                                   "mockup_2.7_phi55"])
 def test_table3_case_files_are_the_validated_runs(name):
     """The case files of examples/retaining/savalle2022_table3/ (issue 18, item 7) resolve to
-    the nominal runs of the continuum validation's reference column (validation/
-    retaining_continuum.py: the joints as printed, subcycled): the same wall (preset,
-    courses, backfill friction) and the same keywords of collapse_run."""
+    the nominal runs of the continuum validation (validation/retaining_continuum.py): the
+    same wall (preset, courses, backfill friction) and the same keywords of collapse_run."""
     import sys
 
     sys.path.insert(0, str(EXAMPLE.parents[2] / "validation"))
@@ -464,13 +463,12 @@ def test_table3_case_files_are_the_validated_runs(name):
     finally:
         sys.path.pop(0)
     spec = rc.runs()
-    key = {"mockup_2.7_phi50": "sub_2.7_k1_phi50_r0",
-           "mockup_2.7_phi55": "sub_2.7_k1_phi55_r0"}.get(name, name.replace("mockup", "sub")
-                                                          + "_k1_r0")
+    key = {"mockup_2.7_phi50": "mock_2.7_phi50_r0",
+           "mockup_2.7_phi55": "mock_2.7_phi55_r0"}.get(name, name.replace("mockup", "mock")
+                                                        + "_r0")
     s = spec[key]
     wall = rc._wall(s)
-    printed = {"stiffness_scale": 1.0, "subcycle": "auto"}
-    assert s["kw"] == printed and s["run"] == 0  # the nominal run, joints as printed, and
+    assert s["kw"] == {} and s["run"] == 0  # the nominal run: collapse_run's defaults, and
     kw = {"A_rate": rc.A_MOCK, "t_max": rc.MOCK_TMAX}  # the mock-ups' slope and length
     st = load_behaviour_study(EXAMPLE.parent / "savalle2022_table3" / f"{name}.toml")
     assert st.wall.name == wall.name
@@ -480,16 +478,14 @@ def test_table3_case_files_are_the_validated_runs(name):
     # Figure 7 (30 Hz) is the H/B = 2.3 wall's second case, the validation's mock30 run
     assert [c[0] for c in st.cases] == ([10.0, 30.0] if name == "mockup_2.3" else [10.0])
     if name == "mockup_2.3":
-        s30 = spec["sub_2.3_k1_30Hz_r0"]
-        assert s30["wall"] == s["wall"] and s30["f"] == 30.0 and s30["kw"] == printed
+        s30 = spec["mock_2.3_30Hz_r0"]
+        assert s30["wall"] == s["wall"] and s30["f"] == 30.0 and s30["kw"] == {}
     got = st.case_kwargs(st.tasks()[0])
     for k in ("A_rate", "t_max"):
         assert got[k] == pytest.approx(kw[k], rel=1e-12)
-    for k, v in printed.items():
-        assert got[k] == v
     # the rest are collapse_run's defaults in both
     assert got["backfill"] == "continuum" and got["xi"] == 0.05
-    assert set(got) - {"A_rate", "t_max", "backfill", "xi", "A_pseudo", *printed} == set()
+    assert set(got) - {"A_rate", "t_max", "backfill", "xi", "A_pseudo"} == set()
 
 
 def test_a_rate_option_reaches_collapse_run():

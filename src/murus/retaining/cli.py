@@ -274,7 +274,8 @@ def collapse(
                                         "continuum: step the zones once every N steps of the "
                                         "stones ('auto': as many as their stable step allows; "
                                         "about 3 times faster for the mock-ups; "
-                                        "VALIDATION.md gives its effect on A_col)."),
+                                        "VALIDATION.md gives its effect on A_col; not with "
+                                        "--stiffness-scale 1, where the interface chatters)."),
 ) -> None:
     """S2 collapse run of the DEM wall on the continuum backfill of the paper (the default),
     the equivalent thrust or a disc backfill (Savalle et al. (2022), §4.2): writes d_top.csv
