@@ -443,6 +443,12 @@ class CoupledModel:
     def set_subcycle(self, n: int | str = "auto") -> int:
         """Step the zones once every ``n`` steps of the blocks (module doc, *Subcycling*).
 
+        **Not stable at a stiff interface that opens and closes**: on the scaled-down mock-ups
+        at the printed joint and interface stiffness (3e10 Pa/m) the interface chatters and
+        the wall creeps at a quarter of its resistance (VALIDATION.md, *Subcycling*;
+        ``validation/subcycle_chatter.py``): the gridpoints feel the interface once per
+        zones' step, the blocks at every step.
+
         The blocks' time step and time are unchanged; the zones' step is ``n`` times it.
         Between two steps of the zones the gridpoints are already at the end of the current
         one (a probe of a gridpoint or a zone then leads the blocks by up to ``n - 1`` of

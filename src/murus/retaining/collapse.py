@@ -404,7 +404,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         during the shaking (:meth:`murus.continuum.coupled.CoupledModel.set_subcycle`;
         ``"auto"``: as many as the zones' and the interface's stable steps allow); the
         blocks' contacts set the time step, and the zones, most of a step's cost, then
-        take a step of their own size. Default: off (one step for all).
+        take a step of their own size. Default: off (one step for all). Not at the printed
+        stiffness of the mock-ups, where the interface chatters (``set_subcycle``).
 
     Returns
     -------
