@@ -146,9 +146,11 @@ def runs() -> dict[str, dict]:
                                       run=0, kw={"stiffness_scale": 1e-1, "subcycle": 7})
     out["sub_DSRW1_5_r0"] = dict(group="sub", wall="DSRW1", f=5.0, vertical="none", run=0,
                                  kw={"subcycle": "auto"})
-    for s in MOCKUP_SLENDERNESS:  # Table 3 at x 1e-1 and at x 1, subcycled: the other walls
-        if s not in (1.7, 2.7):
+    for s in MOCKUP_SLENDERNESS:  # Table 3 at x 1e-1, subcycled: the other walls; at x 1
+        if s not in (1.7, 2.7):  # only the two kept as evidence of the chatter (VALIDATION.md)
             for tag, sc in (("_k1e-1", 1e-1), ("_k1", 1.0)):
+                if tag == "_k1" and s not in (1.3, 3.3):
+                    continue
                 out[f"sub_{s:g}{tag}_r0"] = dict(group="sub", wall=f"mockup-{s:g}", f=10.0,
                                                  vertical="none", run=0,
                                                  kw={"stiffness_scale": sc, "subcycle": "auto"})
@@ -157,18 +159,6 @@ def runs() -> dict[str, dict]:
     for s in (2.7, 1.7):
         out[f"mock_{s:g}_k1_r0"] = dict(group="mock_k1", wall=f"mockup-{s:g}", f=10.0,
                                         vertical="none", run=0, kw={"stiffness_scale": 1.0})
-    # the mock-ups at the printed stiffness (item 1's rule: x 1e-2 and x 1e-1 do not give its
-    # A_col within 3 %), subcycled: Table 3's ensembles (r0 is the nominal run above), Table 4
-    # (the backfill's friction) and Figure 7 (30 Hz), about 30 minutes a run on one core
-    k1 = {"stiffness_scale": 1.0, "subcycle": "auto"}
-    for s in MOCKUP_SLENDERNESS:
-        for i in range(1, NRUNS):
-            out[f"sub_{s:g}_k1_r{i}"] = dict(group="t3_k1", wall=f"mockup-{s:g}", f=10.0,
-                                             vertical="none", run=i, kw=dict(k1))
-    for phi in (50.0, 55.0):
-        ens("t4_k1", f"sub_2.7_k1_phi{phi:g}", wall="mockup-2.7", f=10.0, vertical="none",
-            kw=dict(k1), overrides={"backfill_friction_deg": phi})
-    ens("f7_k1", "sub_2.3_k1_30Hz", wall="mockup-2.3", f=30.0, vertical="none", kw=dict(k1))
     for phi in (50.0, 55.0):
         ens("mock_phi", f"mock_2.7_phi{phi:g}", wall="mockup-2.7", f=10.0, vertical="none",
             kw={}, overrides={"backfill_friction_deg": phi})
@@ -287,7 +277,7 @@ def main(argv=None) -> None:
     ap.add_argument("--group", nargs="*", default=None, help="Compute the runs of these "
                     "groups only (no Markdown): t7, t7_thrust, t7_discs, mesh, width, boundary, "
                     "scale, s1, mock, mock_thrust, mock_discs, mock_k1e-3, mock_k1e-1, mock_k1, "
-                    "sub, sub_ens, t3_k1, t4_k1, f7_k1, mock_phi, mock30, slow.")
+                    "sub, sub_ens, mock_phi, mock30, slow.")
     ap.add_argument("--recompute", action="store_true", help="Run again, ignoring the cache.")
     ap.add_argument("--keys", nargs="*", default=None, help="Compute these runs only, in this "
                     "order (no Markdown).")
@@ -441,8 +431,8 @@ def _mock_walls():
 
 #: the continuum's runs of the mock-ups: (prefix of a wall's ensemble, column title); the
 #: first is the reference (x 1e-2, the default), the second the printed joint stiffness with
-#: one step for all (item 1 of issue 18: x 1e-2 and x 1e-1 do not reproduce its A_fail within
-#: 3 % on the mock-ups; its subcycled runs chatter: *Subcycling* below)
+#: one step for all (item 1 of issue 18: x 1e-2 and x 1e-1 differ by 9-12 % on the mock-ups;
+#: its subcycled runs chatter: *Subcycling* below)
 MOCK_COLUMNS = (("mock_{s}", "**continuum, joints x 1e-2** (default)"),
                 ("mock_{s}_k1", "continuum, joints as printed (x 1, one step for all)"))
 
@@ -867,9 +857,10 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
             "equivalent-thrust validation above (A = 2.6 / 19.9 m/s³, courses of about 10 mm), "
             "10 Hz, failure at d_top = 5 % H. The joints at x 1e-2 (the default, the case "
             "files of `examples/retaining/savalle2022_table3/`); beside them the printed "
-            "stiffness with one step for all (about 2 to 3.5 hours a run on one core), which "
-            "x 1e-2 does not reproduce within 3 % here (below), so that item 1 of issue 18 asks "
-            "for it: its runs are under way.", "", *mt, ""]
+            "stiffness with one step for all (about 2 to 3.5 hours a run on one core): x 1e-2 "
+            "and x 1e-1 differ by 9 to 12 % here (below), so at least one of them is not "
+            "converged and item 1 of issue 18 asks for the printed stiffness; its runs are "
+            "under way.", "", *mt, ""]
     for pre, title in MOCK_COLUMNS:
         g = minfo[pre]
         if g["errs"]:
@@ -885,21 +876,16 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
             "experiment's 3.2) | mode |", "|---|---|---|---|---|"]
     for r in _rows("savalle2022_table4.csv"):
         phi = float(r["backfill_friction_deg"])
-        tag = "" if phi == 45 else f"_phi{phi:g}"
-        cells = " | ".join(f"{_cell(ens_stats(recs, pre), 3.2)} | {_modes(recs, pre)}"
-                           for pre in (f"mock_2.7{tag}",))
+        pre = "mock_2.7" if phi == 45 else f"mock_2.7_phi{phi:g}"
         out.append(f"| {phi:g} | {float(r['error_pct']):+.0f} % | {r['num_A_fail_m_s2']} | "
-                   f"{cells} |")
-    out.append("")
-    for pre30, pre10, name in (("mock_2.3_30Hz", "mock_2.3", "joints x 1e-2"),):
-        f30, f10 = ens_stats(recs, pre30), ens_stats(recs, pre10)
-        line = (f"- H/B = 2.3 at 30 Hz (Figure 7), {name}: {_cell(f30)}, mode "
-                f"{_modes(recs, pre30)}; at 10 Hz {_cell(f10)}")
-        if f30 and f10 and math.isfinite(f30[0]) and math.isfinite(f10[0]):
-            line += f" ({_pct(f30[0], f10[0])} at 30 Hz)"
-        out.append(line + ".")
-    out += ["- The paper prints no number for Figure 7 (its text: UDEC's A_fail at 30 Hz within "
-            "1 % of the experiment's).", ""]
+                   f"{_cell(ens_stats(recs, pre), 3.2)} | {_modes(recs, pre)} |")
+    f30, f10 = ens_stats(recs, "mock_2.3_30Hz"), ens_stats(recs, "mock_2.3")
+    line = (f"- H/B = 2.3 at 30 Hz (Figure 7), joints x 1e-2: {_cell(f30)}, mode "
+            f"{_modes(recs, 'mock_2.3_30Hz')}; at 10 Hz {_cell(f10)}")
+    if f30 and f10 and math.isfinite(f30[0]) and math.isfinite(f10[0]):
+        line += f" ({_pct(f30[0], f10[0])} at 30 Hz)"
+    out += ["", line + ". The paper prints no number for Figure 7 (its text: UDEC's A_fail at "
+            "30 Hz within 1 % of the experiment's).", ""]
     k3m = [(sl, ens_stats(recs, f"mock_{sl:g}_k1e-3"), ens_stats(recs, f"mock_{sl:g}"))
            for sl in _mock_walls()]
     k3m = [(sl, a, b) for sl, a, b in k3m if a and b and math.isfinite(a[0])
@@ -949,14 +935,10 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
                     "printed stiffness: " + "; ".join(
                         f"H/B {sl:g}: {h[0]:.2f} against UDEC {u:.2f} ({_pct(h[0], u)}; "
                         f"experiment {e:.2f})" for sl, h, lo, u, e in diffs)
-                    + ". The table above gives x 1e-2 beside the printed stiffness; "
-                    + ("x 1e-1 against the printed stiffness: *Subcycling* below (the printed "
-                       "stiffness needs about 2 hours per run of a mock-up with one step for "
-                       "all, half an hour subcycled)."
-                       if any(f"sub_{sl:g}_k1_r0" in recs for sl in _mock_walls()) else
-                       "whether x 1e-1 is itself converged is not measured (the printed "
-                       "stiffness needs about 3.5 hours per run of a mock-up, x 1e-1 about "
-                       "one hour)."), ""]
+                    + ". The table above gives x 1e-2 beside the printed stiffness with one "
+                    "step for all (2 to 3.5 hours a run of a mock-up): whether x 1e-1 is "
+                    "itself converged is measured once those runs are in (the subcycled runs "
+                    "at x 1 do not count: *Subcycling* below).", ""]
         if diffs:
             em = [100 * (h[0] / e - 1) for _, h, _, _, e in diffs]
             eu = [100 * (u / e - 1) for _, _, _, u, e in diffs]
