@@ -96,9 +96,10 @@ def _update(n, drive, dem):
 def _grid(n, drive, zon):
     ZP, ZE, ZC, ZS, grid, zones, mprops, part, ff = zon
     par = zones.zg.shape[0] >= ZP[ZK.P_PARMIN]
+    allg = np.zeros(0, np.int64)
     for i in range(n):
         fr = DK._frame(i % drive.vfull.shape[0], drive)
-        ZK.grid_update(ZP, ZE, ZC, ZS, fr, grid, zones.zf, (part, ff, mprops), par)
+        ZK.grid_update(ZP, ZE, ZC, ZS, fr, grid, zones.zf, (part, ff, mprops, allg), par)
     return 0
 
 

@@ -83,6 +83,20 @@ def test_restamp_rekeys_only_the_old_engines_records(tmp_path):
     assert (tmp_path / "c.json").read_text() == "{not json"
 
 
+def test_restamp_leaves_the_records_a_change_does_change(tmp_path):
+    """``skip`` names the records the engine's change does change (the subcycled runs of a
+    change of the subcycled scheme alone): they keep the old key, so they are recomputed."""
+    recs = {"a": {"spec": {"kw": {}}}, "s": {"spec": {"kw": {"subcycle": "auto"}}},
+            "one": {"spec": {"kw": {"subcycle": 1}}}}
+    for k, r in recs.items():
+        r[runcache.ENGINE_FIELD] = "old"
+        (tmp_path / f"{k}.json").write_text(json.dumps(r))
+    done = runcache.restamp(tmp_path, "old", "new", "a recomputed",
+                            skip=lambda r: (r["spec"]["kw"].get("subcycle") or 1) != 1)
+    assert done == ["a", "one"]
+    assert json.loads((tmp_path / "s.json").read_text()) == recs["s"]
+
+
 def test_an_s1_check_at_another_median_is_stale():
     """An S1 check (Figure 14) is made at a ratio of the median A_col of the cached runs of
     DSRW1 at 5 Hz: a record made when that median was another (fewer runs then) is made again

@@ -12,6 +12,7 @@ every run is identical are the records of the old engine re-keyed to the new one
 Usage::
 
     python validation/restamp_check.py OLD_KEY t7_DSRW1_5_none_r0 mock_3.3_r0 [--apply]
+        [--except-subcycled]
 """
 
 from __future__ import annotations
@@ -35,6 +36,9 @@ def main(argv=None) -> int:
     ap.add_argument("old", help="engine key of the cached records to re-key")
     ap.add_argument("keys", nargs="+", help="runs to recompute and compare")
     ap.add_argument("--apply", action="store_true", help="re-key when every run is identical")
+    ap.add_argument("--except-subcycled", action="store_true",
+                    help="leave the subcycled runs (spec kw subcycle set) at the old key: a "
+                         "change of the subcycled scheme only (they are recomputed)")
     args = ap.parse_args(argv)
     new = runcache.source_key(*rc.ENGINE)
     cache = rc.CACHE
@@ -60,7 +64,13 @@ def main(argv=None) -> int:
     if args.apply:
         ev = (f"{', '.join(args.keys)} recomputed bit for bit by engine {new} "
               "(validation/restamp_check.py)")
-        keys = runcache.restamp(cache, args.old, new, ev)
+        skip = None
+        if args.except_subcycled:
+            ev += "; the subcycled runs left to be recomputed"
+
+            def skip(rec):
+                return (rec.get("spec", {}).get("kw", {}).get("subcycle") or 1) != 1
+        keys = runcache.restamp(cache, args.old, new, ev, skip=skip)
         print(f"re-keyed {len(keys)} records {args.old} -> {new}")
     return 0
 

@@ -91,11 +91,12 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
     return {k: json.loads((cache / f"{k}.json").read_text()) for k in keys}
 
 
-def restamp(cache: Path, old: str, new: str, evidence: str) -> list[str]:
+def restamp(cache: Path, old: str, new: str, evidence: str, skip=None) -> list[str]:
     """Re-key the records of ``cache`` computed by the engine ``old`` to the engine ``new``,
     when a change of the engine's source is shown not to change a run: ``evidence`` (kept in
     each record, with ``_restamped_from``) must name the runs recomputed bit for bit by the new
-    engine (``validation/restamp_check.py``). Returns the keys re-keyed."""
+    engine (``validation/restamp_check.py``); ``skip(record)`` true: a record the change does
+    change (left at ``old``, so recomputed). Returns the keys re-keyed."""
     done = []
     for path in sorted(Path(cache).glob("*.json")):
         try:
@@ -103,6 +104,8 @@ def restamp(cache: Path, old: str, new: str, evidence: str) -> list[str]:
         except (OSError, ValueError):
             continue
         if not isinstance(rec, dict) or rec.get(ENGINE_FIELD) != old:
+            continue
+        if skip is not None and skip(rec):
             continue
         rec[ENGINE_FIELD] = new
         rec["_restamped_from"] = old

@@ -17,21 +17,28 @@ One time step for all: the smallest of the blocks' stable step, the zones' criti
 the interface's (each with its safety factor).
 
 Subcycling (:meth:`CoupledModel.set_subcycle`, :func:`run_chunk_sub`): when the blocks' stiff
-joints set the step (the stones of a dry-stone wall: 10 to 20 times below the zones' and the
-interface's stable steps), the zones, most of a step's cost, may take one step of ``n`` blocks'
-steps (a nodal partition in the manner of Belytschko, Yen & Mullen (1979), *Mixed methods for
-time integration*, Comput. Methods Appl. Mech. Engrg. 17/18, 259-275: each partition with its
-own step, the slow nodes' motion interpolated for the fast ones). In the zones' step at t: the
-zones' stresses at t; the interface at t (the gridpoints at x(t), their velocities those of the
-half step before) gives its force on the gridpoints, applied over the zones' whole step; the
-gridpoints move to ``x(t + n dt)`` with their new half-step velocity v; in the blocks' steps
-``t + j dt`` (j = 1 .. n-1) the interface sees the gridpoints on that straight path,
-``x(t) + j dt v`` (exactly the path central differences give them), and acts on the blocks at
-every step. The blocks' time step and everything about them is unchanged; the zones' stable
-step bounds ``n dt``. What this costs in accuracy is measured (tests; VALIDATION.md: the A_col
-of the mock-ups with and without). Units: the blocks' forces are for their model's
-thickness ``t``; the continuum is per metre of thickness, so the interface forces on gridpoints
-are divided by ``t``.
+joints set the step (the stones of a dry-stone wall: 10 to 20 times below the zones' stable
+step), the zones, most of a step's cost, may mostly take one step of ``n`` blocks' steps: a
+nodal partition in the manner of Belytschko, Yen & Mullen (1979), *Mixed methods for time
+integration*, Comput. Methods Appl. Mech. Engrg. 17/18, 259-275 (each partition with its own
+step, the slow nodes' motion interpolated for the fast elements). The fast partition is the
+interface's gridpoints and the zones touching them ("fast zones"): they step with the blocks,
+so every contact force between a stone and a gridpoint acts on both at every step and the
+impact of a stone on the backfill conserves momentum within the step. The slow partition is
+every other gridpoint and zone, stepped once every ``n`` blocks' steps. In the zones' step at
+t: every zone's stresses at t (the slow zones' increments over ``n dt``, the fast zones' over
+``dt``); the slow gridpoints move to ``x(t + n dt)`` under the corner forces at t; in the
+blocks' steps ``t + j dt`` (j = 1 .. n-1) the fast zones see their slow corners on that
+straight path, ``x(t) + j dt v`` (exactly the path central differences give them). The
+zones' stable step bounds ``n dt``, and so does the interface's: its fastest motion reaches
+the slow gridpoints through the fast zones, sampled once per zones' step
+(:meth:`CoupledModel.subcycle_limit`). What this costs in accuracy is measured (tests;
+VALIDATION.md: the A_col of the mock-ups with and without). Until session 15 the interface's
+gridpoints were slow, the interface's force on them taken once per zones' step while the
+stones felt it at every step: at the printed stiffness of the mock-ups the interface chattered
+and the wall crept (``validation/subcycle_chatter.py``). Units: the blocks' forces are for
+their model's thickness ``t``; the continuum is per metre of thickness, so the interface
+forces on gridpoints are divided by ``t``.
 
 References
 ----------
@@ -211,6 +218,7 @@ def run_chunk(nsteps, drive, dem, zon, itf):
     gfix = grid.gfix
     v0 = np.zeros((ig.size, 2))
     cdamp = DK.damped(joints.jprops)
+    allg = np.zeros(0, np.int64)
     for i in range(nsteps):
         c, pw, nact, dpar = DK.step_forces(P, E, C, S, bodies, shapes, joints, c,
                                            (pw, nact, fb))
@@ -230,49 +238,53 @@ def run_chunk(nsteps, drive, dem, zon, itf):
             g = ig[k]
             v0[k, 0] = gvel[g, 0]
             v0[k, 1] = gvel[g, 1]
-        ZK.grid_update(ZP, ZE, ZC, ZS, fr, grid, zones.zf, (part, ff, mprops), zpar)
+        ZK.grid_update(ZP, ZE, ZC, ZS, fr, grid, zones.zf, (part, ff, mprops, allg), zpar)
         _zones_work(IE, ig, gfix, fg, v0, gvel, ZP[ZK.P_DT])
     return _chunk_end(S, c, nodes, corners)
 
 
 @njit(cache=True, error_model="numpy")
-def run_chunk_sub(nsteps, nsub, phase, drive, zdrive, dem, zon, itf, gxs):
-    """Advance ``nsteps`` steps of the blocks, the zones taking one step of ``nsub`` blocks'
-    steps (subcycling; module doc, *Subcycling*).
+def run_chunk_sub(nsteps, sub, drive, zdrive, dem, zon, itf):
+    """Advance ``nsteps`` steps of the blocks with the zones subcycled: the fast partition
+    (the interface's gridpoints and the zones touching them) at every step with the blocks,
+    the slow partition (the other gridpoints and zones) once every ``nsub`` steps (module
+    doc, *Subcycling*).
 
     Parameters
     ----------
     nsteps : int
         Steps of the blocks (of ``P_DT``; the zones' ``P_DT`` is ``nsub`` times it).
-    nsub : int
-        Blocks' steps per zones' step, >= 2.
-    phase : ndarray (1,) int64
-        The blocks' step within the zones' step at the start (0: the zones step first),
-        advanced in place.
+    sub : tuple
+        ``(nsub, phase, fz, sz, sg, sc, ZPf, ZEf, ZSf, gxs)``: blocks' steps per zones' step
+        (>= 2); the blocks' step within the zones' step at the start (ndarray (1,) int64, 0:
+        the slow partition steps first; advanced in place); the fast zones, the slow zones,
+        the slow gridpoints, the slow corners of the fast zones (int64 arrays); the fast
+        partition's parameters (the zones' with the blocks' ``P_DT``), energy accumulators and
+        statistics; scratch coordinates ``(ng, 2)`` (the fast zones' corners as they are at
+        each blocks' step).
     drive : murus.dem._kdata.Drive
-        The blocks' step inputs.
+        The blocks' step inputs (also the fast gridpoints').
     zdrive : murus.dem._kdata.Drive
-        The zones' step inputs, row i read when the zones' step starts at the blocks' step i:
-        base velocity and gravity at t_i, base velocity at t_i + nsub dt / 2.
+        The slow gridpoints' step inputs, row i read when their step starts at the blocks'
+        step i: base velocity and gravity at t_i, base velocity at t_i + nsub dt / 2.
     dem, zon, itf : tuple
         As :func:`run_chunk`.
-    gxs : ndarray (ng, 2)
-        Scratch coordinates of the gridpoints as the interface sees them between two steps of
-        the zones (its rows of the interface's gridpoints written here).
 
     Returns
     -------
     tuple
         As :func:`run_chunk`.
     """
+    nsub, phase, fz, sz, sg, sc, ZPf, ZEf, ZSf, gxs = sub
     P, E, C, S, bodies, shapes, joints, c = dem
     ZP, ZE, ZC, ZS, grid, zones, mprops, part, ff = zon
     IP, IE, IC, geo, jprops, nodes, corners, state, work = itf
     fb, pw, nact, bpart, bsp, bsh, zpar = _chunk_start(P, C, bodies, shapes, c, ZP, zones)
+    spar = sz.size >= ZP[ZK.P_PARMIN]
+    fpar = fz.size >= ZP[ZK.P_PARMIN]
     gxy = grid.gxy
     gvel = grid.gvel
-    now = IF.GridSide(gxy, gvel)
-    between = IF.GridSide(gxs, gvel)
+    side = IF.GridSide(gxy, gvel)
     gff = grid.gff
     fg = work.fg
     ig = geo.ig
@@ -285,36 +297,41 @@ def run_chunk_sub(nsteps, nsub, phase, drive, zdrive, dem, zon, itf, gxs):
         j = (phase[0] + i) % nsub
         c, pw, nact, dpar = DK.step_forces(P, E, C, S, bodies, shapes, joints, c,
                                            (pw, nact, fb))
-        side = now
-        if j == 0:
-            ZK.zone_forces(ZP, grid, zones, mprops, zpar)
-        else:  # the gridpoints on their straight path of the zones' step: x(t) + j dt v
-            side = between
+        if j == 0:  # every gridpoint at t: the slow zones over the zones' step, the fast ones
+            ZK.zone_forces_sel(ZP, gxy, grid, zones, mprops, sz, spar)
+            ZK.zone_forces_sel(ZPf, gxy, grid, zones, mprops, fz, fpar)
+        else:  # the slow corners on their straight path of the zones' step: x(t) + j dt v
             back = (nsub - j) * dts
-            for k in range(ig.size):
-                g = ig[k]
+            for k in range(sc.size):
+                g = sc[k]
                 gxs[g, 0] = gxy[g, 0] - back * gvel[g, 0]
                 gxs[g, 1] = gxy[g, 1] - back * gvel[g, 1]
+            for k in range(ig.size):
+                g = ig[k]
+                gxs[g, 0] = gxy[g, 0]
+                gxs[g, 1] = gxy[g, 1]
+            ZK.zone_forces_sel(ZPf, gxs, grid, zones, mprops, fz, fpar)
         nodes, corners = _interface_step(IP, IE, IC, geo, side, bodies, shapes, jprops, nodes,
                                          corners, state, work, fb)
+        for k in range(ig.size):
+            g = ig[k]
+            gff[g, 0] = fg[g, 0] * inv_t
+            gff[g, 1] = fg[g, 1] * inv_t
         fr = DK._frame(i, drive)
         DK.step_update(P, E, C, S, fr, fb, bodies, shapes, bpart, (bsp, bsh), dpar)
         if cdamp:
             E[DK.E_DDASH] += DK.dashpot_work(c, nact, pw, joints.jprops, shapes.sbody, bodies,
                                              dts)
-        if j != 0:
-            continue
-        # the zones' step: the interface's force at t on the gridpoints (its work in the
-        # zones' form, as run_chunk), their update over nsub blocks' steps
+        # the fast gridpoints (the interface's) step with the blocks
         for k in range(ig.size):
             g = ig[k]
-            gff[g, 0] = fg[g, 0] * inv_t
-            gff[g, 1] = fg[g, 1] * inv_t
             v0[k, 0] = gvel[g, 0]
             v0[k, 1] = gvel[g, 1]
-        ZK.grid_update(ZP, ZE, ZC, ZS, DK._frame(i, zdrive), grid, zones.zf,
-                       (part, ff, mprops), zpar)
-        _zones_work(IE, ig, gfix, fg, v0, gvel, ZP[ZK.P_DT])
+        ZK.grid_update_sel(ZPf, ZEf, ZSf, fr, grid, zones.zf, part, ig)
+        _zones_work(IE, ig, gfix, fg, v0, gvel, dts)
+        if j == 0:  # the slow gridpoints over the zones' step
+            ZK.grid_update(ZP, ZE, ZC, ZS, DK._frame(i, zdrive), grid, zones.zf,
+                           (part, ff, mprops, sg), zpar)
     phase[0] = (phase[0] + nsteps) % nsub
     return _chunk_end(S, c, nodes, corners)
 
@@ -382,7 +399,8 @@ class CoupledModel:
         self._plastic = 1.0  # 0 during the elastic stage of settle(elastic_first=True)
         self.nsub = 1  # blocks' steps per zones' step (set_subcycle)
         self._phase = np.zeros(1, np.int64)
-        self._gxs = None
+        self._part = None  # the partition of subcycling (_partition)
+        self.fastE = np.zeros(ZK.NE)  # energy accumulators of the fast gridpoints
         dem.coupled = self
         self.set_dt()
         self.reset_reference()
@@ -427,10 +445,32 @@ class CoupledModel:
     def _sync_dt(self) -> None:
         self.zones.P[ZK.P_DT] = self.dem.dt * self.nsub
         self.iface.P[IF.IP_DT] = self.dem.dt
+        self.zones.fast = (self.iface.geo.ig, self.dem.dt) if self.nsub > 1 else None
+
+    def _partition(self) -> tuple:
+        """The partition of subcycling (module doc, *Subcycling*): the fast zones (touching
+        an interface gridpoint), the slow zones, the slow gridpoints, the slow corners of the
+        fast zones."""
+        if self._part is None:
+            z = self.zones
+            fast = np.zeros(z.ng, bool)
+            fast[self.iface.geo.ig] = True
+            fz_mask = fast[z.zg].any(axis=1)
+            fz = np.flatnonzero(fz_mask).astype(np.int64)
+            corners = np.unique(z.zg[fz])
+            self._part = (fz, np.flatnonzero(~fz_mask).astype(np.int64),
+                          np.flatnonzero(~fast).astype(np.int64),
+                          corners[~fast[corners]].astype(np.int64))
+        return self._part
 
     def subcycle_limit(self) -> int:
-        """The largest stable number of blocks' steps per zones' step: the zones' and the
-        interface's stable steps over the time step, rounded down (at least 1).
+        """The largest number of blocks' steps per zones' step: the zones' and the
+        interface's stable steps over the time step, rounded down (at least 1). The
+        interface steps with the blocks, but its fastest motion (a gridpoint on the
+        interface's springs) reaches the slow gridpoints through the fast zones, sampled once
+        per zones' step: a longer zones' step would alias it (measured: the slide of
+        ``test_subcycling_closes_the_energy_balance_within_the_time_step_error`` moves by
+        1.3 % at 4.6 times this limit, by 0.1 % at it).
 
         Returns
         -------
@@ -441,13 +481,8 @@ class CoupledModel:
         return max(1, int(math.floor(min(z, i) / self.dem.dt * (1 + 1e-12))))
 
     def set_subcycle(self, n: int | str = "auto") -> int:
-        """Step the zones once every ``n`` steps of the blocks (module doc, *Subcycling*).
-
-        **Not stable at a stiff interface that opens and closes**: on the scaled-down mock-ups
-        at the printed joint and interface stiffness (3e10 Pa/m) the interface chatters and
-        the wall creeps at a quarter of its resistance (VALIDATION.md, *Subcycling*;
-        ``validation/subcycle_chatter.py``): the gridpoints feel the interface once per
-        zones' step, the blocks at every step.
+        """Step the zones once every ``n`` steps of the blocks, but the interface's
+        gridpoints and the zones touching them with the blocks (module doc, *Subcycling*).
 
         The blocks' time step and time are unchanged; the zones' step is ``n`` times it.
         Between two steps of the zones the gridpoints are already at the end of the current
@@ -511,10 +546,11 @@ class CoupledModel:
             if zdrive is None:
                 raise CoupledError("subcycling needs the zones' step inputs (zone_drive)",
                                    key=("step",))
-            if self._gxs is None or self._gxs.shape != z.gxy.shape:
-                self._gxs = np.array(z.gxy, copy=True)
-            out = run_chunk_sub(n, self.nsub, self._phase, drive, zdrive, dem, zon, itf,
-                                self._gxs)
+            fast_p = np.array(z.P, copy=True)
+            fast_p[ZK.P_DT] = m.dt
+            sub = (self.nsub, self._phase, *self._partition(), fast_p, self.fastE,
+                   np.zeros(ZK.NS), np.array(z.gxy, copy=True))
+            out = run_chunk_sub(n, sub, drive, zdrive, dem, zon, itf)
         else:
             out = run_chunk(n, drive, dem, zon, itf)
         for name, a in zip(dkd.Contacts._fields, out[:6], strict=True):
@@ -582,6 +618,7 @@ class CoupledModel:
         """Take the current state of the zones and the interface as the reference of their
         displacements and energies (called by the blocks' ``reset_reference``)."""
         self.zones.reset_reference()
+        self.fastE[:] = 0.0
         self.iface.E[:] = 0.0
         self.stored0 = stored_energy_of(self.iface)
 
@@ -601,8 +638,14 @@ class CoupledModel:
         z = self.zones
         t = float(self.iface.P[IF.IP_THICK])
         e = z.energy()
+        fe = self.fastE  # the fast gridpoints' works (subcycling), done to their last step
+        for key, w, h in (("damping_work", ZK.E_WDAMP, ZK.E_TDAMP),
+                          ("base_work", ZK.E_WBASE, ZK.E_TBASE),
+                          ("external_work", ZK.E_WEXT, ZK.E_TEXT),
+                          ("dashpot_work", ZK.E_WDASH, ZK.E_TDASH)):
+            e[key] += float(fe[w] - fe[h])
         free = z.gfix == 0
-        u = z.gdisp - z.dt * z.gvel
+        u = z.gdisp - z.gdt() * z.gvel
         pe = -float((z.gmass[:, None] * u * np.asarray(g, float)[None, :] * free).sum())
         fE = self.iface.E
         wz = float(fE[IF.IE_WZONE] - fE[IF.IE_TZONE])
@@ -724,6 +767,7 @@ class CoupledModel:
             arrays["ff__" + name] = a
         for name in ("P", "E", "C"):
             arrays["iface__" + name] = getattr(f, name)
+        arrays["coupled__fastE"] = self.fastE
         for pre, cc in (("nodes", f.nodes), ("corners", f.corners)):
             for name, a in zip(dkd.Contacts._fields, cc, strict=True):
                 arrays[f"{pre}__{name}"] = a
@@ -788,6 +832,8 @@ class CoupledModel:
         self._since_check = int(c["since_check"])
         self.nsub = int(c.get("nsub", 1))
         self._phase[0] = int(c.get("phase", 0))
+        self.fastE = (np.array(arrays["coupled__fastE"], copy=True)
+                      if "coupled__fastE" in arrays else np.zeros(ZK.NE))
         self._sync_dt()
 
 

@@ -617,11 +617,12 @@ def _zones_ser(zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _grid_block(blk, P, fr, grid, zf, part):
+def _grid_block(blk, P, fr, grid, zf, part, gsel):
     """Central-difference update of the gridpoints of block ``blk`` (of ``NBLK``): gather of
     the corner forces, gravity and applied forces, damping, fixities, move (module doc);
     ``fr`` the step's base velocities and gravity (:class:`murus.dem._kdata.Frame`);
-    ``part[blk, Q_*]`` the block's partial sums."""
+    ``part[blk, Q_*]`` the block's partial sums; ``gsel`` the gridpoints updated (empty:
+    all)."""
     gxy = grid[IG_GXY]
     gvel = grid[IG_GVEL]
     gacc = grid[IG_GACC]
@@ -633,7 +634,8 @@ def _grid_block(blk, P, fr, grid, zf, part):
     gff = grid.gff
     gsp = grid.gsp
     gzc = grid.gzc
-    ng = gmass.size
+    full = gsel.size == 0
+    ng = gmass.size if full else gsel.size
     dt = P[P_DT]
     alocal = P[P_ALOCAL]
     amass = P[P_AMASS]
@@ -655,7 +657,8 @@ def _grid_block(blk, P, fr, grid, zf, part):
     tbase = 0.0
     text = 0.0
     tdash = 0.0
-    for g in range(lo, hi):
+    for kg in range(lo, hi):
+        g = kg if full else gsel[kg]
         fix_x = gfix[g, 0]
         fix_y = gfix[g, 1]
         fx = 0.0
@@ -741,17 +744,17 @@ def _grid_block(blk, P, fr, grid, zf, part):
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
-def _grid_par(P, fr, grid, zf, part):
+def _grid_par(P, fr, grid, zf, part, gsel):
     """:func:`_grid_block` of every block, parallel over the blocks."""
     for blk in prange(NBLK):
-        _grid_block(blk, P, fr, grid, zf, part)
+        _grid_block(blk, P, fr, grid, zf, part, gsel)
 
 
 @njit(cache=True, error_model="numpy")
-def _grid_ser(P, fr, grid, zf, part):
+def _grid_ser(P, fr, grid, zf, part, gsel):
     """:func:`_grid_par` on one thread."""
     for blk in range(NBLK):
-        _grid_block(blk, P, fr, grid, zf, part)
+        _grid_block(blk, P, fr, grid, zf, part, gsel)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -810,41 +813,9 @@ def quiet_reference(fr, gdash, gff):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def grid_update(P, E, C, S, fr, grid, zf, work, par):
-    """The second half of a step: the free-field columns (their action written to
-    ``grid.gff``), then the gridpoints under the corner forces ``zf`` and every other force
-    (:func:`_grid_block`), their partial sums combined in block order into the energies and
-    statistics.
-
-    Parameters
-    ----------
-    P, E, C, S : ndarray
-        Parameters, energy accumulators, counters, statistics.
-    fr : murus.dem._kdata.Frame
-        The step's base velocities and gravity.
-    grid : Grid
-        Gridpoints, updated in place.
-    zf : ndarray (4 nz, 2)
-        Corner forces of the zones [N].
-    work : tuple
-        ``(part, ff, mprops)``: the partial sums ``(NBLK, NQ)``, the free-field columns
-        (:mod:`murus.continuum.freefield`) and the material rows.
-    par : bool
-        Run the gridpoint loop in parallel.
-
-    Returns
-    -------
-    None
-    """
-    part, ff, mprops = work
-    if P[P_QFRAME] > 0.0:
-        quiet_reference(fr, grid.gdash, grid.gff)
-    if ff.fy.size > 0:
-        freefield_step(P, fr, ff, mprops, grid.gff)
-    if par:
-        _grid_par(P, fr, grid, zf, part)
-    else:
-        _grid_ser(P, fr, grid, zf, part)
+def _combine(E, S, part):
+    """The gridpoint blocks' partial sums ``part`` combined in block order into the energy
+    accumulators ``E`` (the last step's shares ``E_T*`` replaced) and the statistics ``S``."""
     unbal = 0.0
     fsum = 0.0
     nfree = 0.0
@@ -866,7 +837,134 @@ def grid_update(P, E, C, S, fr, grid, zf, work, par):
         E[E_TDASH] += part[blk, Q_TDASH]
     S[S_UNBAL] = unbal
     S[S_MEANF] = fsum / nfree if nfree > 0.0 else 0.0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def grid_update(P, E, C, S, fr, grid, zf, work, par):
+    """The second half of a step: the free-field columns (their action written to
+    ``grid.gff``), then the gridpoints under the corner forces ``zf`` and every other force
+    (:func:`_grid_block`), their partial sums combined in block order into the energies and
+    statistics.
+
+    Parameters
+    ----------
+    P, E, C, S : ndarray
+        Parameters, energy accumulators, counters, statistics.
+    fr : murus.dem._kdata.Frame
+        The step's base velocities and gravity.
+    grid : Grid
+        Gridpoints, updated in place.
+    zf : ndarray (4 nz, 2)
+        Corner forces of the zones [N].
+    work : tuple
+        ``(part, ff, mprops, gsel)``: the partial sums ``(NBLK, NQ)``, the free-field columns
+        (:mod:`murus.continuum.freefield`), the material rows and the gridpoints updated
+        (int64; empty: all).
+    par : bool
+        Run the gridpoint loop in parallel.
+
+    Returns
+    -------
+    None
+    """
+    part, ff, mprops, gsel = work
+    if P[P_QFRAME] > 0.0:
+        quiet_reference(fr, grid.gdash, grid.gff)
+    if ff.fy.size > 0:
+        freefield_step(P, fr, ff, mprops, grid.gff)
+    if par:
+        _grid_par(P, fr, grid, zf, part, gsel)
+    else:
+        _grid_ser(P, fr, grid, zf, part, gsel)
+    _combine(E, S, part)
     C[C_STEP] += 1
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def grid_update_sel(P, E, S, fr, grid, zf, part, gsel):
+    """The gridpoints ``gsel`` alone (none of them on a free-field side), on one thread: the
+    fast partition of a subcycled step (:func:`murus.continuum.coupled.run_chunk_sub`), with
+    its own energy accumulators ``E`` and statistics ``S``; the zones' step counter is not
+    advanced.
+
+    Parameters
+    ----------
+    P, E, S : ndarray
+        Parameters (``P_DT`` the step of these gridpoints), energy accumulators, statistics.
+    fr : murus.dem._kdata.Frame
+        The step's base velocities and gravity.
+    grid : Grid
+        Gridpoints, the rows ``gsel`` updated in place.
+    zf : ndarray (4 nz, 2)
+        Corner forces of the zones [N] (those of every zone touching ``gsel`` current).
+    part : ndarray (NBLK, NQ)
+        Work array of the partial sums.
+    gsel : ndarray int64
+        The gridpoints (not empty).
+
+    Returns
+    -------
+    None
+    """
+    if P[P_QFRAME] > 0.0:
+        gdash = grid.gdash
+        gff = grid.gff
+        for k in range(gsel.size):
+            g = gsel[k]
+            if gdash[g, 0] != 0.0 or gdash[g, 2] != 0.0:
+                gff[g, 2] = fr.vx
+                gff[g, 3] = fr.vy
+    _grid_ser(P, fr, grid, zf, part, gsel)
+    _combine(E, S, part)
+
+
+@njit(cache=True, error_model="numpy", parallel=True)
+def _zones_sel_par(sel, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
+    """:func:`_zone` of the zones ``sel``, parallel."""
+    for k in prange(sel.size):
+        _zone(sel[k], zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
+
+
+@njit(cache=True, error_model="numpy")
+def _zones_sel_ser(sel, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
+    """:func:`_zones_sel_par` on one thread."""
+    for k in range(sel.size):
+        _zone(sel[k], zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def zone_forces_sel(P, gxy, grid, zones, mprops, sel, par):
+    """:func:`zone_forces` of the zones ``sel`` only, reading the gridpoints' coordinates from
+    ``gxy`` (those of the subcycled step's fast zones: their slow corners on their straight
+    path, :func:`murus.continuum.coupled.run_chunk_sub`) and their velocities from ``grid``.
+
+    Parameters
+    ----------
+    P : ndarray
+        Parameters (``P_DT`` the step of these zones).
+    gxy : ndarray (ng, 2)
+        Coordinates of the gridpoints [m] (rows of the zones' corners read).
+    grid : Grid
+        Gridpoints (read: half-step velocities).
+    zones : Zones
+        Zones, the rows ``sel`` updated in place.
+    mprops : ndarray (nmat, NM)
+        Material rows.
+    sel : ndarray int64
+        The zones.
+    par : bool
+        Run the loop in parallel.
+
+    Returns
+    -------
+    None
+    """
+    if par:
+        _zones_sel_par(sel, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork,
+                       zones.zf, gxy, grid.gvel, mprops, P)
+    else:
+        _zones_sel_ser(sel, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork,
+                       zones.zf, gxy, grid.gvel, mprops, P)
 
 
 @njit(cache=True, error_model="numpy")
@@ -906,9 +1004,10 @@ def run_chunk(nsteps, P, E, C, S, drive, grid, zones, mprops, part, ff):
     scheme, mixed discretisation).
     """
     par = zones.zg.shape[0] >= P[P_PARMIN]
+    allg = np.zeros(0, np.int64)
     for i in range(nsteps):
         zone_forces(P, grid, zones, mprops, par)
-        grid_update(P, E, C, S, _frame(i, drive), grid, zones.zf, (part, ff, mprops), par)
+        grid_update(P, E, C, S, _frame(i, drive), grid, zones.zf, (part, ff, mprops, allg), par)
     return 0
 
 

@@ -234,6 +234,21 @@ class ContinuumModel:
         """Current time step [s]."""
         return float(self.P[K.P_DT])
 
+    def gdt(self):
+        """The last step of each gridpoint [s], as a column ``(ng, 1)``: the time step, but
+        the blocks' step for the fast partition of a subcycled coupled model (``fast``,
+        :meth:`murus.continuum.coupled.CoupledModel.set_subcycle`).
+
+        Returns
+        -------
+        ndarray (ng, 1)
+        """
+        d = np.full((self.ng, 1), self.dt)
+        fast = self.__dict__.get("fast")
+        if fast is not None:
+            d[fast[0]] = fast[1]
+        return d
+
     # ------------------------------------------------------------------ time step
     def critical_dt(self) -> float:
         """The zones' critical time step ``min_z A / (Cp L)`` [s] at the current geometry
@@ -705,7 +720,7 @@ class ContinuumModel:
         ke = self._kinetic()
         g = np.array([0.0, -self.gravity])
         # displacement at the time of the stresses (one step behind the gridpoints)
-        u = self.gdisp - self.dt * self.gvel
+        u = self.gdisp - self.gdt() * self.gvel
         pe = -float((m * u * g * free).sum())
         plastic = float(self.zwork[:, 0].sum())
         se = float(self.zwork[:, 1].sum()) - plastic
@@ -723,7 +738,7 @@ class ContinuumModel:
         """Kinetic energy at the time of the stresses, ``m v(t - dt/2) . v(t + dt/2) / 2``
         over the free directions (the leapfrog's conserved form)."""
         free = self.gfix == 0
-        vm = self.gvel - self.dt * self.gacc
+        vm = self.gvel - self.gdt() * self.gacc
         return 0.5 * float((self.gmass[:, None] * self.gvel * vm * free).sum())
 
     def stored_strain_energy(self) -> float:

@@ -86,6 +86,13 @@ __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES"
 #: cost; the equivalent thrust and the disc backfill, validated at 1e-3, keep it.
 STIFFNESS_SCALE = {"thrust": 1e-3, "discrete": 1e-3, "continuum": 1e-2}
 
+#: The largest joint stiffness scale at which subcycling is allowed: at the printed stiffness
+#: (x 1) the subcycled mock-ups creep from a quarter of their resistance while the interface
+#: chatters, with either partition of the zones tried (sessions 14 and 15; VALIDATION.md,
+#: *Subcycling*; ``validation/subcycle_chatter.py``); at x 1e-1 and below the subcycled runs
+#: agree with one step for all.
+SUBCYCLE_MAX_SCALE = 0.1
+
 #: Mass-proportional damping of Savalle et al. (2022), fraction of critical at the input frequency
 #: (§3.1 and §4.1: 5 %, given to UDEC as 10 % because the mass term alone gives half of it).
 XI_SAVALLE = 0.05
@@ -404,8 +411,9 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         during the shaking (:meth:`murus.continuum.coupled.CoupledModel.set_subcycle`;
         ``"auto"``: as many as the zones' and the interface's stable steps allow); the
         blocks' contacts set the time step, and the zones, most of a step's cost, then
-        take a step of their own size. Default: off (one step for all). Not at the printed
-        stiffness of the mock-ups, where the interface chatters (``set_subcycle``).
+        take a step of their own size. Default: off (one step for all). Refused above
+        ``stiffness_scale`` :data:`SUBCYCLE_MAX_SCALE` (0.1): at the printed stiffness the
+        subcycled mock-ups creep (VALIDATION.md, *Subcycling*).
 
     Returns
     -------
@@ -491,6 +499,12 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                                 f"{checkpoint_every!r}")
     if stiffness_scale is None:
         stiffness_scale = STIFFNESS_SCALE[bmode]
+    if subcycle not in (None, 1) and stiffness_scale > SUBCYCLE_MAX_SCALE * (1 + 1e-12):
+        raise CollapseError(f"subcycle = {subcycle!r} at stiffness_scale = "
+                            f"{stiffness_scale:g}: subcycling is not trusted above x "
+                            f"{SUBCYCLE_MAX_SCALE:g} (the mock-ups creep subcycled at the "
+                            f"printed stiffness, VALIDATION.md, Subcycling); use one step "
+                            f"for all")
     ck_path = ck_run = digest = None
     if checkpoint is not None:  # checked before any computation
         ck_path = _checkpoint_path(checkpoint)
