@@ -210,6 +210,27 @@ def test_elastic_first_settling_runs_an_elastic_then_a_plastic_stage():
 
 
 # ---------------------------------------------------------------------- subcycling
+def _stack_on(mat, width, friction_deg, tol):
+    """Two ``width`` x 0.25 m blocks stacked on a 2 m x 1 m layer of ``mat`` (8 x 4 zones,
+    rollers on its sides, fixed base), their joint 100 times stiffer than the interface
+    (``friction_deg``), settled to ``tol``."""
+    xy, zones = rect_mesh(8, 4, W, H)
+    zm = ContinuumModel(xy, zones, mat, gravity=G_ACC)
+    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
+    zm.set_base(left, x=True, y=False)
+    zm.set_base(right, x=True, y=False)
+    zm.set_base(bottom)
+    stiff = Joint(kn=100 * KN, ks=100 * KN, friction_deg=35.0)
+    dm = Model(thickness=1.0, gravity=G_ACC, joint=stiff, rounding=1e-3)
+    for k in range(2):
+        dm.add_rectangle(width, 0.25, center=(1.0, H + 0.125 + 0.25 * k), density=RHO)
+    edges = [e for e in zm.boundary_edges() if np.isin(e, top).all()]
+    iface = Interface(zm, np.array(edges), dm, Joint(kn=KN, ks=KN, friction_deg=friction_deg))
+    cm = CoupledModel(dm, zm, iface)
+    assert cm.settle(tol=tol).converged
+    return cm, dm, zm
+
+
 def _stack_on_a_shaken_mohr_coulomb_layer():
     """Two 0.8 m x 0.25 m blocks stacked on the shaken Mohr-Coulomb layer of
     :func:`_block_on_a_shaken_mohr_coulomb_layer`, their joint 100 times stiffer than the
@@ -220,20 +241,7 @@ def _stack_on_a_shaken_mohr_coulomb_layer():
 
     mat = MohrCoulomb(density=RHO, E=2e7, nu=0.3, friction_deg=30.0, cohesion=2e3,
                       dilation_deg=0.0)
-    xy, zones = rect_mesh(8, 4, W, H)
-    zm = ContinuumModel(xy, zones, mat, gravity=G_ACC)
-    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
-    zm.set_base(left, x=True, y=False)
-    zm.set_base(right, x=True, y=False)
-    zm.set_base(bottom)
-    stiff = Joint(kn=100 * KN, ks=100 * KN, friction_deg=35.0)
-    dm = Model(thickness=1.0, gravity=G_ACC, joint=stiff, rounding=1e-3)
-    for k in range(2):
-        dm.add_rectangle(0.8, 0.25, center=(1.0, H + 0.125 + 0.25 * k), density=RHO)
-    edges = [e for e in zm.boundary_edges() if np.isin(e, top).all()]
-    iface = Interface(zm, np.array(edges), dm, Joint(kn=KN, ks=KN, friction_deg=25.0))
-    cm = CoupledModel(dm, zm, iface)
-    assert cm.settle(tol=1e-6).converged
+    cm, dm, zm = _stack_on(mat, 0.8, 25.0, 1e-6)
     dm.set_base_motion(velocity=lambda t: 0.3 * np.sin(2 * np.pi * 4.0 * t))
     dm.bext[:, 0] = 0.3 * dm.bmass * G_ACC
     return cm, dm, zm
@@ -307,20 +315,7 @@ def _rocking_stack(n=1, dt_factor=1.0):
     corners lift off the interface and land again, an impact at every half cycle. Returns the
     model after 0.2 s, its energy balance's error gained since the first step over the energy
     given, and the upper block's largest uplift."""
-    xy, zones = rect_mesh(8, 4, W, H)
-    zm = ContinuumModel(xy, zones, Elastic(density=RHO, E=2e7, nu=0.3), gravity=G_ACC)
-    left, right, bottom, top = (np.flatnonzero(s) for s in sides(xy))
-    zm.set_base(left, x=True, y=False)
-    zm.set_base(right, x=True, y=False)
-    zm.set_base(bottom)
-    dm = Model(thickness=1.0, gravity=G_ACC, rounding=1e-3,
-               joint=Joint(kn=100 * KN, ks=100 * KN, friction_deg=35.0))
-    for k in range(2):
-        dm.add_rectangle(0.4, 0.25, center=(1.0, H + 0.125 + 0.25 * k), density=RHO)
-    edges = [e for e in zm.boundary_edges() if np.isin(e, top).all()]
-    iface = Interface(zm, np.array(edges), dm, Joint(kn=KN, ks=KN, friction_deg=35.0))
-    cm = CoupledModel(dm, zm, iface)
-    assert cm.settle(tol=1e-7).converged
+    cm, dm, zm = _stack_on(Elastic(density=RHO, E=2e7, nu=0.3), 0.4, 35.0, 1e-7)
     if dt_factor != 1.0:
         cm.set_dt(dt_factor * dm.dt)
     cm.set_subcycle(n)
