@@ -3,7 +3,9 @@
 side in one run, on an idle machine: the H/B = 2.7 mock-up of Savalle et al. (2022) (§3; zones
 of H / 12, courses of about 10 mm, the mesh of Table 3) under its S2 ramp at 10 Hz for
 ``--seconds`` simulated seconds (default 0.5), at the joint stiffness of Table 1 times 1e-2 (the
-default), 1e-1 and 1 (as printed), and DSRW1 (§4) at 5 Hz, 1 simulated second.
+default) and 1e-1, and DSRW1 (§4) at 5 Hz, 1 simulated second. Not at the printed stiffness
+(x 1): ``collapse_run`` refuses subcycling there (the mock-ups creep subcycled, VALIDATION.md,
+*Subcycling*).
 
 Reported: the wall time per simulated second of each, the ratio, the subcycle n (``"auto"``:
 the zones' and the interface's stable steps over the stones'), and the largest difference of
@@ -80,7 +82,7 @@ def main(argv=None) -> None:
     _run("mock", 1e-2, "auto", 0.01)
     rows = []
     cases = [("mock", 1e-2, args.seconds), ("mock", 1e-1, args.seconds),
-             ("mock", 1.0, args.seconds), ("DSRW1", 1e-2, 1.0)]
+             ("DSRW1", 1e-2, 1.0)]
     for case, scale, secs in cases:
         one, t_one = _run(case, scale, None, secs)
         sub, t_sub = _run(case, scale, "auto", secs)
