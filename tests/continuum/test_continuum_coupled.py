@@ -331,19 +331,21 @@ def _rocking_stack(n=1, dt_factor=1.0):
 
 
 def test_a_subcycled_impact_on_a_stiff_interface_gains_no_energy():
-    """The rocking stack lands on the interface at every half cycle (the impact that made the
-    first subcycled scheme chatter at the mock-ups' printed stiffness: the interface's force
-    on the gridpoints was taken once per zones' step, on the stones at every step, so the
-    impact gained energy: +2.8 % of the energy given, in 0.2 s, the stack lifting 32 %
+    """The rocking stack lands on the interface at every half cycle (in the first subcycled
+    scheme the interface's force on the gridpoints was taken once per zones' step, on the
+    stones at every step, so the impact gained energy: +2.8 % of the energy given, in 0.2 s, the stack lifting 32 %
     higher; measured on session 14's code, b6870b2). With the interface's gridpoints stepped
     with the blocks, subcycled at the limit (n = 9) the energy balance's error stays within
-    the time discretisation's (one step for all: -0.3 %, -0.4 % at half the step; bound: 1 %;
-    subcycled: -0.1 %), and the uplift changes by less than halving the time step of one step
-    for all changes it (1.4e-7 m against 4.3e-6 m of 1.45e-4 m)."""
+    the time discretisation's (one step for all: -0.3 %, -0.4 % at half the step; bound:
+    twice the larger; subcycled: -0.1 %; old partition +2.8 %), and the uplift changes by less
+    than halving the time step of one step for all changes it (1.4e-7 m against 4.3e-6 m of
+    1.45e-4 m)."""
     _, err1, up1 = _rocking_stack(1)
     _, err_half, up_half = _rocking_stack(1, dt_factor=0.5)
     cm, err_n, up_n = _rocking_stack("auto")
     assert cm.nsub >= 8
-    assert abs(err1) < 0.01 and abs(err_n) < 0.01, (err1, err_n)
+    # energy conserved as well as central differences conserve it with one step for all
+    # (at dt and dt / 2: their impacts' own balance error), within a factor 2
+    assert abs(err_n) <= 2 * max(abs(err1), abs(err_half)), (err_n, err1, err_half)
     assert up1 > 1e-4  # it rocks: the corner lifts by a tenth of a millimetre
     assert abs(up_n - up1) <= abs(up1 - up_half), (up_n, up1, up_half)
