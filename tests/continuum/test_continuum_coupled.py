@@ -333,8 +333,8 @@ def _rocking_stack(n=1, dt_factor=1.0):
 def test_a_subcycled_impact_on_a_stiff_interface_gains_no_energy():
     """The rocking stack lands on the interface at every half cycle (in the first subcycled
     scheme the interface's force on the gridpoints was taken once per zones' step, on the
-    stones at every step, so the impact gained energy: +2.8 % of the energy given, in 0.2 s, the stack lifting 32 %
-    higher; measured on session 14's code, b6870b2). With the interface's gridpoints stepped
+    stones at every step, so the impact gained energy: +2.8 % of the energy given, in 0.2 s,
+    the stack lifting 32 % higher; measured on session 14's code, b6870b2). With the interface's gridpoints stepped
     with the blocks, subcycled at the limit (n = 9) the energy balance's error stays within
     the time discretisation's (one step for all: -0.3 %, -0.4 % at half the step; bound:
     twice the larger; subcycled: -0.1 %; old partition +2.8 %), and the uplift changes by less
