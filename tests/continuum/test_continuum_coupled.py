@@ -334,12 +334,12 @@ def test_a_subcycled_impact_on_a_stiff_interface_gains_no_energy():
     """The rocking stack lands on the interface at every half cycle (in the first subcycled
     scheme the interface's force on the gridpoints was taken once per zones' step, on the
     stones at every step, so the impact gained energy: +2.8 % of the energy given, in 0.2 s,
-    the stack lifting 32 % higher; measured on session 14's code, b6870b2). With the interface's gridpoints stepped
-    with the blocks, subcycled at the limit (n = 9) the energy balance's error stays within
-    the time discretisation's (one step for all: -0.3 %, -0.4 % at half the step; bound:
-    twice the larger; subcycled: -0.1 %; old partition +2.8 %), and the uplift changes by less
-    than halving the time step of one step for all changes it (1.4e-7 m against 4.3e-6 m of
-    1.45e-4 m)."""
+    the stack lifting 32 % higher; measured on session 14's code, b6870b2). With the
+    interface's gridpoints stepped with the blocks, subcycled at the limit (n = 9) the energy
+    balance's error stays within the time discretisation's (one step for all: -0.3 %, -0.4 %
+    at half the step; bound: twice the larger; subcycled: -0.1 %), and the uplift changes by
+    less than halving the time step of one step for all changes it (1.4e-7 m against 4.3e-6 m
+    of 1.45e-4 m)."""
     _, err1, up1 = _rocking_stack(1)
     _, err_half, up_half = _rocking_stack(1, dt_factor=0.5)
     cm, err_n, up_n = _rocking_stack("auto")
