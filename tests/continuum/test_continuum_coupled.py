@@ -307,6 +307,14 @@ def test_subcycle_is_checked():
         with pytest.raises(CoupledError, match="subcycle"):
             cm.set_subcycle(bad)
     assert cm.set_subcycle("auto") == lim and cm.set_subcycle(1) == 1
+    # a model whose every gridpoint were on the interface would have no slow partition
+    cm, dm, zm = _stack_on_a_shaken_mohr_coulomb_layer()
+    fz, sz, sg, sc = cm._partition()
+    cm._part = (fz, sz, sg[:0], sc)
+    assert cm.subcycle_limit() >= 2
+    with pytest.raises(CoupledError, match="every gridpoint is on the interface"):
+        cm.set_subcycle(2)
+    assert cm.nsub == 1 and cm.set_subcycle(1) == 1
 
 
 def _rocking_stack(n=1, dt_factor=1.0):

@@ -509,9 +509,14 @@ class CoupledModel:
         Raises
         ------
         CoupledError
-            ``n`` out of range, or a zones' step under way (set it between two).
+            ``n`` out of range, a zones' step under way (set it between two), or no gridpoint
+            off the interface.
         """
         n = check_subcycle(n, self.subcycle_limit())
+        if n > 1 and self._partition()[2].size == 0:
+            raise CoupledError("subcycle: every gridpoint is on the interface (no slow "
+                               "partition to step less often); use one step for all",
+                               key=("subcycle",))
         if int(self._phase[0]) != 0:
             raise CoupledError("subcycle: a step of the zones is under way; set it between two",
                                key=("subcycle",))

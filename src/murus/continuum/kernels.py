@@ -788,7 +788,7 @@ def zone_forces(P, grid, zones, mprops, par):
 
 
 @njit(cache=True, error_model="numpy")
-def quiet_reference(fr, gdash, gff):
+def quiet_reference(fr, gdash, gff, gsel):
     """The velocity that quiet dashpots act against, when it is the base's (``P_QFRAME`` = 1):
     ``gff[g, 2:4]`` of every gridpoint with dashpots set to the base velocity at t, ``fr.vx``,
     ``fr.vy`` (the free-field columns, stepped after, overwrite their own sides').
@@ -801,12 +801,16 @@ def quiet_reference(fr, gdash, gff):
         Dashpot matrices of the gridpoints.
     gff : ndarray (ng, 4)
         The free field's action; columns 2 and 3 written here.
+    gsel : ndarray int64
+        The gridpoints concerned (empty: all).
 
     Returns
     -------
     None
     """
-    for g in range(gdash.shape[0]):
+    n = gsel.size if gsel.size > 0 else gdash.shape[0]
+    for k in range(n):
+        g = gsel[k] if gsel.size > 0 else k
         if gdash[g, 0] != 0.0 or gdash[g, 2] != 0.0:
             gff[g, 2] = fr.vx
             gff[g, 3] = fr.vy
@@ -869,7 +873,7 @@ def grid_update(P, E, C, S, fr, grid, zf, work, par):
     """
     part, ff, mprops, gsel = work
     if P[P_QFRAME] > 0.0:
-        quiet_reference(fr, grid.gdash, grid.gff)
+        quiet_reference(fr, grid.gdash, grid.gff, gsel)
     if ff.fy.size > 0:
         freefield_step(P, fr, ff, mprops, grid.gff)
     if par:
@@ -907,13 +911,7 @@ def grid_update_sel(P, E, S, fr, grid, zf, part, gsel):
     None
     """
     if P[P_QFRAME] > 0.0:
-        gdash = grid.gdash
-        gff = grid.gff
-        for k in range(gsel.size):
-            g = gsel[k]
-            if gdash[g, 0] != 0.0 or gdash[g, 2] != 0.0:
-                gff[g, 2] = fr.vx
-                gff[g, 3] = fr.vy
+        quiet_reference(fr, grid.gdash, grid.gff, gsel)
     _grid_ser(P, fr, grid, zf, part, gsel)
     _combine(E, S, part)
 

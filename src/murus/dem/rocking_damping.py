@@ -143,7 +143,7 @@ def _block(width, height, zeta, theta0, kn, friction_deg, rounding, density):
 def free_rocking(width: float, height: float, zeta: float, *, theta0_over_alpha: float = 0.5,
                  n_impacts: int = 5, kn: float = KN, friction_deg: float = FRICTION_DEG,
                  rounding: float = ROUNDING, density: float = DENSITY,
-                 duration: float | None = None) -> FreeRocking:
+                 duration: float | None = None, sample_dt: float = 1e-4) -> FreeRocking:
     """Release a ``width`` x ``height`` block tilted onto its right corner by
     ``theta0_over_alpha`` alpha on a fixed base, with joint contact damping ``zeta``, and
     record its rocking until ``n_impacts`` impacts (or ``duration`` [s]).
@@ -165,6 +165,13 @@ def free_rocking(width: float, height: float, zeta: float, *, theta0_over_alpha:
         with e = 0.99 (above the undamped DEM block's 0.97-0.98), plus one and a half swings:
         the elastic contacts lengthen the DEM block's swings a little (with kn = 1e9 Pa/m the
         third impact of the undamped block comes after the rigid block's with e = 0.97).
+    sample_dt : float
+        Interval of the recorded history [s] (whole time steps, at least one): the
+        restitutions are medians over the swings and the peaks sit where the rotation is
+        stationary, so the default 1e-4 s changes them by less than 2e-6 and 1e-7 of their
+        values against a history of every step (measured on the 0.25 x 1.0 m block, kn = 1e9
+        and 1e10 Pa/m, zeta = 0, 0.5 and 1), in a quarter of the time (each sample pauses the
+        engine).
 
     Returns
     -------
@@ -186,7 +193,7 @@ def free_rocking(width: float, height: float, zeta: float, *, theta0_over_alpha:
                          if ti.size > n_impacts + 1 else 30.0)
     m, base, blk = _block(width, height, zeta, th0, kn, friction_deg, rounding, density)
     res = m.run(duration, probes={"a": E.body_probe(blk, "angle"),
-                                  "w": E.body_probe(blk, "omega")}, every=1)
+                                  "w": E.body_probe(blk, "omega")}, sample_dt=sample_dt)
     theta = np.asarray(res["a"]) - th0
     omega = np.asarray(res["w"])
     R = 0.5 * math.hypot(width, height)

@@ -78,7 +78,8 @@ from murus.retaining.geometry import RetainingWall
 __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES",
            "pseudo_static_resistance", "ramp_rate", "collapse_run", "peak_ratio_check",
            "failure_mode", "plot_collapse", "behaviour_factor", "SEED_TABLE7", "XI_SAVALLE",
-           "DT_FACTORS", "CollapseEnsemble", "collapse_ensemble", "STIFFNESS_SCALE"]
+           "DT_FACTORS", "CollapseEnsemble", "collapse_ensemble", "STIFFNESS_SCALE",
+           "SUBCYCLE_MAX_SCALE", "subcycle_refused"]
 
 #: Default factor on the joint stiffness of Savalle et al. (2022), Tables 1 and 6, per backfill
 #: model. Continuum: 1e-2, whose A_col is that of the stiffness as printed within 0.3 % (DSRW1 at
@@ -92,6 +93,31 @@ STIFFNESS_SCALE = {"thrust": 1e-3, "discrete": 1e-3, "continuum": 1e-2}
 #: *Subcycling*; ``validation/subcycle_chatter.py``); at x 1e-1 and below the subcycled runs
 #: agree with one step for all.
 SUBCYCLE_MAX_SCALE = 0.1
+
+def subcycle_refused(subcycle, stiffness_scale: float | None) -> str | None:
+    """Why ``subcycle`` is refused at ``stiffness_scale`` (above :data:`SUBCYCLE_MAX_SCALE`),
+    or None (allowed; also when the scale is not given yet).
+
+    Parameters
+    ----------
+    subcycle : int, "auto" or None
+        As :func:`collapse_run`'s.
+    stiffness_scale : float or None
+        The joints' stiffness scale.
+
+    Returns
+    -------
+    str or None
+    """
+    if subcycle in (None, 1) or stiffness_scale is None:
+        return None
+    if stiffness_scale > SUBCYCLE_MAX_SCALE * (1 + 1e-12):
+        return (f"subcycle = {subcycle!r} at stiffness_scale = {stiffness_scale:g}: "
+                f"subcycling is not trusted above x {SUBCYCLE_MAX_SCALE:g} (the mock-ups creep "
+                f"subcycled at the printed stiffness, VALIDATION.md, Subcycling); use one step "
+                f"for all")
+    return None
+
 
 #: Mass-proportional damping of Savalle et al. (2022), fraction of critical at the input frequency
 #: (§3.1 and §4.1: 5 %, given to UDEC as 10 % because the mass term alone gives half of it).
@@ -499,12 +525,9 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                                 f"{checkpoint_every!r}")
     if stiffness_scale is None:
         stiffness_scale = STIFFNESS_SCALE[bmode]
-    if subcycle not in (None, 1) and stiffness_scale > SUBCYCLE_MAX_SCALE * (1 + 1e-12):
-        raise CollapseError(f"subcycle = {subcycle!r} at stiffness_scale = "
-                            f"{stiffness_scale:g}: subcycling is not trusted above x "
-                            f"{SUBCYCLE_MAX_SCALE:g} (the mock-ups creep subcycled at the "
-                            f"printed stiffness, VALIDATION.md, Subcycling); use one step "
-                            f"for all")
+    refused = subcycle_refused(subcycle, stiffness_scale)
+    if refused:
+        raise CollapseError(refused)
     ck_path = ck_run = digest = None
     if checkpoint is not None:  # checked before any computation
         ck_path = _checkpoint_path(checkpoint)

@@ -243,13 +243,11 @@ class NumericsCfg(Strict):
     def _backfill_options(self):
         if self.subcycle is not None and self.backfill != "continuum":
             raise ValueError("subcycle needs backfill = 'continuum'")
-        from murus.retaining.collapse import SUBCYCLE_MAX_SCALE
+        from murus.retaining.collapse import subcycle_refused
 
-        if (self.subcycle not in (None, 1) and self.stiffness_scale is not None
-                and self.stiffness_scale > SUBCYCLE_MAX_SCALE * (1 + 1e-12)):
-            raise ValueError(f"subcycle at stiffness_scale = {self.stiffness_scale:g}: "
-                             f"subcycling is not trusted above {SUBCYCLE_MAX_SCALE:g} (the "
-                             f"mock-ups creep subcycled at the printed stiffness)")
+        refused = subcycle_refused(self.subcycle, self.stiffness_scale)
+        if refused:
+            raise ValueError(refused)
         given = self.backfill_options.model_dump(exclude_none=True)
         if not given:
             return self
