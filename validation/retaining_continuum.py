@@ -739,9 +739,10 @@ def _sub_text(recs: dict) -> list[str]:
                 f"in the control, and it feeds {diss * 1e3:.1f} mJ of slip and plastic "
                 f"work (the balance closes to {ec['error'] * 1e3:+.3f} mJ, which is why the "
                 "energy checks did not see it). So the printed stiffness's runs, either "
-                "scheme, are not trustworthy until the interface forms its contacts without "
-                "gaining energy; the x 1 runs with one step for all in the tables are single "
-                "trajectories that escaped the creep, and the x 1 ensembles are not computed.",
+                "scheme, are not trustworthy until the interface's contacts stop gaining "
+                "energy; the x 1 runs with one step for all in these tables (DSRW1 at 5 Hz, "
+                "item 1's evidence) are single trajectories, which may or may not sit near "
+                "such an edge, and no x 1 ensemble is computed.",
                 ""]
     t3 = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
     # (the printed stiffness's: Table 3 above, its reference column)
