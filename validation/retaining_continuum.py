@@ -715,6 +715,7 @@ def _sub_text(recs: dict) -> list[str]:
 
         ec = r["p_hdem"]["energy_change_J"]
         c0b = r["c0"]["energy_change_J"]["interface_breaking"]
+        sp = json.loads(pt.read_text())["interface_break_split_J"]["p_hdem"]
         diss = ec["slip"] + ec["zones_plastic"] + ec["interface_slip"]
         out += ["- **Subcycling is not the cause either: the run with one step for all is the "
                 "exception** (session 16; `validation/results/retaining_continuum_x1_"
@@ -731,18 +732,20 @@ def _sub_text(recs: dict) -> list[str]:
                 "creep at this instant; the one-step run to 9.5 s escaped it by chance. "
                 "Its energy comes from the interface: over the creeping window the "
                 "interface's 'breaking' term is "
-                f"{ec['interface_breaking'] * 1e3:+.1f} mJ (energy gained by its contacts: "
-                "formed already pressed, or re-stiffened when their tributary length changes; "
-                "which of the two is not measured yet; `murus.continuum.interface`, module "
-                "doc), against "
+                f"{ec['interface_breaking'] * 1e3:+.1f} mJ (energy gained by its contacts), "
+                f"of which {sp['carry_stiffness_change'] * 1e3:+.2f} mJ when a pressed "
+                "contact's stiffness changes with its tributary length (`_carry`: the normal "
+                "force follows the new stiffness at the old gap) and only "
+                f"{sp['formed_already_pressed'] * 1e6:+.1f} µJ from contacts formed already "
+                "pressed (`murus.continuum.interface`, module doc), against "
                 f"{c0b * 1e6:+.3f} µJ "
                 f"in the control, and it feeds {diss * 1e3:.1f} mJ of slip and plastic "
                 f"work (the balance closes to {ec['error'] * 1e3:+.3f} mJ, which is why the "
                 "energy checks did not see it). So the printed stiffness's runs, either "
-                "scheme, are not trustworthy until the interface's contacts stop gaining "
-                "energy; the x 1 runs with one step for all in these tables (DSRW1 at 5 Hz, "
-                "item 1's evidence) are single trajectories, which may or may not sit near "
-                "such an edge, and no x 1 ensemble is computed.",
+                "scheme, are not trustworthy until a change of a contact's tributary length "
+                "stops giving energy; the x 1 runs with one step for all in these tables "
+                "(DSRW1 at 5 Hz, item 1's evidence) are single trajectories, which may or "
+                "may not sit near such an edge, and no x 1 ensemble is computed.",
                 ""]
     t3 = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
     # (the printed stiffness's: Table 3 above, its reference column)

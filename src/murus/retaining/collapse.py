@@ -91,8 +91,9 @@ STIFFNESS_SCALE = {"thrust": 1e-3, "discrete": 1e-3, "continuum": 1e-2}
 #: (x 1) the subcycled mock-ups creep from a quarter of their resistance while the interface
 #: chatters (sessions 14 and 15; ``validation/subcycle_chatter.py``). Session 16 found that
 #: one step for all creeps the same way under any small perturbation (a 0.78 time step, a
-#: 3.5e-12 m shift of the stones), fed by energy the interface's contacts gain (booked as a
-#: negative "breaking" term; VALIDATION.md, *Subcycling*): the refusal stays until mended, as
+#: 3.5e-12 m shift of the stones), fed by energy the interface's pressed contacts gain when
+#: their stiffness follows their tributary length (``interface._carry``; VALIDATION.md,
+#: *Subcycling*): the refusal stays until mended, as
 #: the x 1 runs are not trustworthy with either scheme. At x 1e-1 and below the subcycled runs
 #: agree with one step for all.
 SUBCYCLE_MAX_SCALE = 0.1
