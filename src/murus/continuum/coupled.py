@@ -37,12 +37,14 @@ VALIDATION.md: the A_col of the mock-ups with and without). Until session 15 the
 gridpoints were slow, the interface's force on them taken once per zones' step while the
 stones felt it at every step, and an impact gained energy (a test measures it). At the printed
 stiffness of the mock-ups the wall creeps subcycled with either partition
-(``validation/subcycle_chatter.py``), for a cause not found yet, so
+(``validation/subcycle_chatter.py``), and so does one step for all under any small
+perturbation (a shorter time step, a 1e-12 m shift of the stones): the energy comes from the
+interface's pressed contacts whose stiffness follows their tributary length (``_carry`` of
+:mod:`murus.continuum.interface`; VALIDATION.md, *Subcycling*). Until that is mended
 :func:`murus.retaining.collapse.collapse_run` refuses subcycling above joint stiffness x 1e-1.
 The model needs gridpoints outside the fast partition (any with a base does). Units: the
-blocks' forces are for
-their model's thickness ``t``; the continuum is per metre of thickness, so the interface
-forces on gridpoints are divided by ``t``.
+blocks' forces are for their model's thickness ``t``; the continuum is per metre of
+thickness, so the interface forces on gridpoints are divided by ``t``.
 
 References
 ----------

@@ -275,8 +275,9 @@ def collapse(
                                         "stones ('auto': as many as their stable step allows; "
                                         "about 3 times faster for the mock-ups; "
                                         "VALIDATION.md gives its effect on A_col; refused "
-                                        "above --stiffness-scale 0.1, where the mock-ups "
-                                        "creep subcycled)."),
+                                        "above --stiffness-scale 0.1: at the printed "
+                                        "stiffness the mock-ups creep, from an energy gain "
+                                        "of the interface not mended yet)."),
 ) -> None:
     """S2 collapse run of the DEM wall on the continuum backfill of the paper (the default),
     the equivalent thrust or a disc backfill (Savalle et al. (2022), §4.2): writes d_top.csv
