@@ -4,9 +4,11 @@ one step for all and subcycled (``subcycle="auto"``), recording d_top and, after
 steps, the wall-backfill interface's normal force. Subcycled, the interface starts to chatter
 at t = 7.74 s (its normal force jumps between 0 and about 100 N within a millisecond, against
 6-15 N before) and the wall creeps 1.1 mm at an input of about 1 m/s², far below its
-pseudo-static resistance (3.88 m/s²); with one step for all it does not (VALIDATION.md,
-*Subcycling*). About 15 minutes subcycled and 50 minutes with one step for all on one idle
-core.
+pseudo-static resistance (3.88 m/s²); with one step for all it does not, but only by chance:
+continued from the same state at 7.5 s with a shorter step or a 1e-12 m shift of the stones,
+one step for all creeps as well, on energy the interface's contacts gain
+(``results/retaining_continuum_x1_perturbation.json``; VALIDATION.md, *Subcycling*). About
+15 minutes subcycled and 50 minutes with one step for all on one idle core.
 
 Usage::
 
