@@ -1,5 +1,5 @@
 """Subcycling at the printed joint stiffness: the sliding mock-up H/B = 1.7 (the validation's
-run ``sub_1.7_k1_r0``: joints and interface as printed, 10 Hz, the S2 ramp) to t = 9.5 s with
+run ``mock_1.7_k1_r0``: joints and interface as printed, 10 Hz, the S2 ramp) to t = 9.5 s with
 one step for all and subcycled (``subcycle="auto"``), recording d_top and, after every chunk of
 steps, the wall-backfill interface's normal force. Subcycled, the interface starts to chatter
 at t = 7.74 s (its normal force jumps between 0 and about 100 N within a millisecond, against
@@ -54,7 +54,7 @@ def run(subcycle: str | None) -> dict:
     limit = col.SUBCYCLE_MAX_SCALE
     col.SUBCYCLE_MAX_SCALE = float("inf")  # the evidence of why subcycling is refused at x 1
     try:
-        wall = rc._wall(rc.runs()["sub_1.7_k1_r0"])
+        wall = rc._wall(rc.runs()["mock_1.7_k1_r0"])  # (its subcycled twin is withdrawn)
         kw = dict(stiffness_scale=1.0, A_rate=rc.A_MOCK, t_max=T_MAX, safety=0.2,
                   backfill="continuum", backfill_options={}, progress=prog)
         if subcycle is not None:
