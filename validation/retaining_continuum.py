@@ -129,8 +129,8 @@ def runs() -> dict[str, dict]:
                                                f=10.0, vertical="none",
                                                kw={"stiffness_scale": 1e-1}, run=0)
     # subcycling (the zones step once every n steps of the stones): against the runs of one
-    # step for all at both stiffnesses, and DSRW1 (refused at the printed stiffness, where
-    # the mock-ups creep subcycled: validation/subcycle_chatter.py)
+    # step for all at both stiffnesses, and DSRW1 (refused at the printed stiffness, not
+    # validated there: validation/subcycle_chatter.py)
     for s in (1.7, 2.7):
         for tag, sc in (("", {}), ("_k1e-1", {"stiffness_scale": 1e-1})):
             out[f"sub_{s:g}{tag}_r0"] = dict(group="sub", wall=f"mockup-{s:g}", f=10.0,
@@ -197,7 +197,7 @@ def compute(key: str) -> dict:
     wall = _wall(spec)
     kw = dict(spec["kw"])
     bmode = kw.pop("backfill", "continuum")
-    opts = {k: kw.pop(k) for k in ("size", "W", "boundary") if k in kw}
+    opts = {k: kw.pop(k) for k in ("size", "W", "boundary", "corner_share") if k in kw}
     mock = wall.name.lower().startswith("mockup")
     if mock:
         kw.update(A_rate=A_MOCK, t_max=MOCK_TMAX)

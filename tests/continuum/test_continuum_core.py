@@ -47,7 +47,8 @@ def test_patch_uniform_velocity_gradient_gives_the_elastic_stress():
     L = np.array([[2e-3, 5e-4], [-1e-3, -3e-3]])  # velocity gradient dv_i/dx_j [1/s]
     m.gvel[:] = m.gxy @ L.T
     dt = m.dt
-    K._zones_ser(m.zg, m.zmat, m.zsig, m.zstate, m.zwork, m.zf, m.gxy, m.gvel, m.mprops, m.P)
+    K._zones_ser(K._ALL, m.zg, m.zmat, m.zsig, m.zstate, m.zwork, m.zf, m.gxy, m.gvel, m.mprops,
+                 m.P)
     exx, eyy = L[0, 0] * dt, L[1, 1] * dt
     exy = 0.5 * (L[0, 1] + L[1, 0]) * dt
     k, g = mat.bulk, mat.shear
@@ -468,8 +469,8 @@ def test_large_strain_rotates_the_stress_with_the_body():
     for _ in range(nsteps):
         r = m.gxy - c
         m.gvel[:] = omega * np.column_stack([-r[:, 1], r[:, 0]])
-        K._zones_ser(m.zg, m.zmat, m.zsig, m.zstate, m.zwork, m.zf, m.gxy, m.gvel, m.mprops,
-                     m.P)
+        K._zones_ser(K._ALL, m.zg, m.zmat, m.zsig, m.zstate, m.zwork, m.zf, m.gxy, m.gvel,
+                     m.mprops, m.P)
         ang = omega * dt  # exact rigid rotation of the coordinates over the step
         R = np.array([[math.cos(ang), -math.sin(ang)], [math.sin(ang), math.cos(ang)]])
         m.gxy[:] = c + (m.gxy - c) @ R.T

@@ -524,6 +524,6 @@ def test_subcycle_in_numerics():
             behaviour_study(dict(base, numerics={"backfill": "continuum", "subcycle": bad}))
     with pytest.raises(CaseError, match="subcycle needs backfill = 'continuum'"):
         behaviour_study(dict(base, numerics={"backfill": "thrust", "subcycle": "auto"}))
-    with pytest.raises(CaseError, match="not trusted above x 0.1"):
+    with pytest.raises(CaseError, match="not validated above x 0.1"):
         behaviour_study(dict(base, numerics={"backfill": "continuum", "subcycle": "auto",
                                              "stiffness_scale": 1.0}))

@@ -111,7 +111,7 @@ def test_errors(wall):
     # refused above x 1e-1 (VALIDATION.md, Subcycling), before anything is built; n = 1 is off
     nowhere = "/no/such/folder/ck.npz"  # the next check, also before anything is built
     for scale in (1.0, 0.2):
-        with pytest.raises(CollapseError, match="not trusted above x 0.1"):
+        with pytest.raises(CollapseError, match="not validated above x 0.1"):
             collapse_run(wall, 5.0, backfill="continuum", subcycle="auto",
                          stiffness_scale=scale, checkpoint=nowhere)
     for n, scale in ((1, 1.0), ("auto", 0.1)):

@@ -51,9 +51,14 @@ law is the same code as block-block joints; Savalle et al. (2022), eqs. 3-4; Ita
    corner's stiffness on and off, and a block sliding or shaken over the zones gained
    hundreds of joules, 0.3 to 0.6 of the input work, that fed spurious plastic flow.) A
    gridpoint whose nearest core point is a vertex covers both edges at that vertex. A disc
-   gets ``2 R`` (the disc-polygon tributary of the blocks) unless a gridpoint touches it. Of
-   the vertices of a shape within reach of an edge, the two of least gap are kept (a convex
-   shape touches a straight edge with two vertices at most).
+   gets ``2 R`` (the disc-polygon tributary of the blocks) unless a gridpoint touches it. The
+   rule sets the tributary length of a corner contact when it forms or carries no force; a
+   loaded one follows it up and down, or with ``corner_share="shrink"`` down only
+   (:func:`_kept_trib`: the coverage jumps when a gridpoint next to the corner starts or
+   stops touching the face, and a stiffness that jumps up under load pumps energy into a
+   rocking block). Of the vertices of a shape
+   within reach of an edge, the two of least gap are kept (a convex shape touches a straight
+   edge with two vertices at most).
 
 The reach (largest positive gap at which a contact is kept, ``IP_REACH``) is by default twice
 the joint's ``T / kn``: a bond pulled beyond its tensile strength then breaks through the joint
@@ -138,9 +143,10 @@ from murus.dem.kernels import (
 from murus.errors import MurusError
 
 __all__ = ["GridSide", "IfaceGeom", "IfaceState", "IfaceWork", "Interface", "InterfaceError",
-           "interface_forces", "step", "rebuild", "candidates", "transfer", "moved",
+           "CORNER_SHARES", "interface_forces", "step", "rebuild", "candidates", "transfer",
+           "moved",
            "node_contacts", "corner_contacts", "stored_energy",
-           "IP_DT", "IP_THICK", "IP_MARGIN", "IP_REACH", "IP_DEPTH", "NIP",
+           "IP_DT", "IP_THICK", "IP_MARGIN", "IP_REACH", "IP_DEPTH", "IP_SHRINK", "NIP",
            "IE_DSLIP", "IE_DBREAK", "IE_WZONE", "IE_TZONE", "NIE", "IC_STEP", "IC_REBUILD",
            "IC_NEED_REBUILD",
            "IC_NODES", "IC_CORNERS", "NIC"]
@@ -151,7 +157,8 @@ IP_THICK = 1  # out-of-plane thickness [m]
 IP_MARGIN = 2  # broad-phase margin [m]
 IP_REACH = 3  # largest positive gap at which a contact is kept [m] (max T / kn)
 IP_DEPTH = 4  # deepest penetration of a block corner behind a zone edge that is a contact [m]
-NIP = 5
+IP_SHRINK = 5  # 1: a loaded corner's share of a face may shrink, not grow (_kept_trib); 0: both
+NIP = 6
 
 # ---- energy accumulators ---------------------------------------------------------------------
 IE_DSLIP = 0  # frictional (slip) dissipation [J]
@@ -167,6 +174,10 @@ IC_NEED_REBUILD = 2  # 1: rebuild the candidate pairs at the next step
 IC_NODES = 3  # active gridpoint contacts at the last step
 IC_CORNERS = 4  # active corner contacts at the last step
 NIC = 5
+
+#: How a loaded corner contact's share of a block face follows the coverage rule (module doc):
+#: "follow", up and down; "shrink", down only (:func:`_kept_trib`).
+CORNER_SHARES = ("follow", "shrink")
 
 GridSide = namedtuple("GridSide", ["gxy", "gvel"])
 GridSide.__doc__ = """The zone side read by the interface kernels (a
@@ -564,6 +575,32 @@ def _carry(k, o, sf, nx, ny, ksa, kn_ratio):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _kept_trib(k, v, sid, sf, knt):
+    """Tributary length [m] of the corner contact of vertex ``v`` in pair k if it carries a
+    force (normal or shear), 0 otherwise (``knt``: the joint's normal stiffness times the
+    thickness [N/m²]): the most that the contact may take this step with
+    ``corner_share="shrink"``.
+
+    A corner's share of a block face follows the coverage rule (module doc) when its contact
+    forms or carries no force. The coverage jumps when a gridpoint next to the corner starts
+    or stops touching the face, and a stiffness that jumps up under load (the stress kept)
+    gives the contact energy: a rocking corner takes energy on every cycle, its stiffness
+    growing when it is deep in the zone edge (the face lifted off the gridpoint) and
+    shrinking when it is shallow. With the rule followed up and down ("follow") this gave
+    all of the -14.6 mJ that the interface gained in 0.5 s of the H/B = 1.7 mock-up at the
+    printed joint stiffness and set off a creep (VALIDATION.md, *Subcycling*). With
+    "shrink", a shrinking stiffness releases energy (booked as breaking) and a growing one
+    waits until the contact is unloaded, so the discretisation never gives energy to a
+    loaded corner. The price: while the face next to a loaded corner lifts off a gridpoint,
+    the corner carries only what it carried with the gridpoint touching (it presses in
+    deeper, and a block rocking on the zones lifts less)."""
+    for o in range(2):
+        if sid[k, o] == v and (sf[k, o, F_FN] != 0.0 or sf[k, o, F_FS] != 0.0):
+            return sf[k, o, F_KNA] / knt
+    return 0.0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _corner_trib(wv, a0, na, k, tx, ty, nzx, nzy, eflag):
     """Tributary length [m] of core vertex ``a0 + k`` against a zone edge of unit direction
     (tx, ty) and outward normal (nzx, nzy): for each of its two adjacent core edges that faces
@@ -852,6 +889,7 @@ def corner_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
     thick = P[IP_THICK]
     reach = P[IP_REACH]
     depth = P[IP_DEPTH]
+    shrink = P[IP_SHRINK] > 0.0
     cst = (thick, reach, dt)
     d_slip = 0.0
     d_break = 0.0
@@ -895,6 +933,11 @@ def corner_contacts(P, E, geo, side, bodies, shapes, jprops, c, work):
                 w = _corner_trib(wv, a0, na, j, tx, ty, nzx, nzy, eflag)
             else:
                 w = 0.0 if eflag[a0, 0] >= 0.0 else 2.0 * r
+            if shrink:  # a loaded contact's tributary length may shrink (by more than a
+                # part in 1e6: not with the rounding of a block's turn), not grow
+                wk = _kept_trib(k, a0 + j, sid, sf, jprops[c.pj[k], J_KN] * thick)
+                if wk > 0.0 and w > wk * (1.0 - 1e-6):
+                    w = wk
             if w <= 0.0:
                 continue
             if v0 < 0 or gap < gp0:
@@ -1163,6 +1206,12 @@ class Interface:
     bond_initial : bool
         Contacts present at the first call start bonded (the joint's cohesion and tension), as
         the blocks' (default True).
+    corner_share : {"follow", "shrink"}
+        How a loaded corner contact's share of a block face follows the coverage rule (module
+        doc): "follow" (default), up and down, as a contact that forms; "shrink", down only,
+        which gives a loaded corner no energy (:func:`_kept_trib`: with "follow" a block
+        rocking on a corner next to a gridpoint gains energy at every cycle, the creep of the
+        mock-ups at the printed joint stiffness; VALIDATION.md, *Subcycling*).
 
     Attributes
     ----------
@@ -1182,7 +1231,7 @@ class Interface:
 
     def __init__(self, grid, edges, dem, joint=None, *, margin: float | None = None,
                  reach: float | None = None, depth: float | None = None,
-                 bond_initial: bool = True) -> None:
+                 bond_initial: bool = True, corner_share: str = "follow") -> None:
         from murus.dem import _kdata as dkd
         from murus.dem import kernels as DK
         from murus.dem.materials import Joint
@@ -1240,6 +1289,11 @@ class Interface:
         self.P[IP_REACH] = float(2.0 * self.jprops[0, J_T] / self.jprops[0, J_KN]
                                  if reach is None else reach)
         self.P[IP_DEPTH] = float(0.1 * L.min() if depth is None else depth)
+        if corner_share not in CORNER_SHARES:
+            raise InterfaceError(f"corner_share must be one of {', '.join(CORNER_SHARES)}, "
+                                 f"got {corner_share!r}", key=("corner_share",))
+        self.corner_share = corner_share
+        self.P[IP_SHRINK] = float(corner_share == "shrink")
         for name, i in (("margin", IP_MARGIN), ("depth", IP_DEPTH)):
             if not (math.isfinite(self.P[i]) and self.P[i] > 0):
                 raise InterfaceError(f"{name} must be positive [m], got {self.P[i]!r}",

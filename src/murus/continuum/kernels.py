@@ -602,17 +602,30 @@ def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     zf[r + 3, 1] = 0.25 * fy3
 
 
+#: No selection: every zone (:func:`_zones_par`).
+_ALL = np.zeros(0, np.int64)
+
+
 @njit(cache=True, error_model="numpy", parallel=True)
-def _zones_par(zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
-    """:func:`_zone` of every zone, parallel (each zone writes only its own rows)."""
-    for z in prange(zg.shape[0]):
+def _zones_par(sel, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
+    """:func:`_zone` of the zones ``sel`` (empty: every zone), parallel (each zone writes only
+    its own rows)."""
+    n = sel.size if sel.size > 0 else zg.shape[0]
+    for k in prange(n):
+        z = np.int64(k)
+        if sel.size > 0:
+            z = sel[k]
         _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
 
 
 @njit(cache=True, error_model="numpy")
-def _zones_ser(zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
+def _zones_ser(sel, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     """:func:`_zones_par` on one thread."""
-    for z in range(zg.shape[0]):
+    n = sel.size if sel.size > 0 else zg.shape[0]
+    for k in range(n):
+        z = np.int64(k)
+        if sel.size > 0:
+            z = sel[k]
         _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
 
 
@@ -780,10 +793,10 @@ def zone_forces(P, grid, zones, mprops, par):
     None
     """
     if par:
-        _zones_par(zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
+        _zones_par(_ALL, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
                    grid.gxy, grid.gvel, mprops, P)
     else:
-        _zones_ser(zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
+        _zones_ser(_ALL, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
                    grid.gxy, grid.gvel, mprops, P)
 
 
@@ -916,20 +929,6 @@ def grid_update_sel(P, E, S, fr, grid, zf, part, gsel):
     _combine(E, S, part)
 
 
-@njit(cache=True, error_model="numpy", parallel=True)
-def _zones_sel_par(sel, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
-    """:func:`_zone` of the zones ``sel``, parallel."""
-    for k in prange(sel.size):
-        _zone(sel[k], zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
-
-
-@njit(cache=True, error_model="numpy")
-def _zones_sel_ser(sel, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
-    """:func:`_zones_sel_par` on one thread."""
-    for k in range(sel.size):
-        _zone(sel[k], zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P)
-
-
 @njit(cache=True, error_model="numpy", inline="always")
 def zone_forces_sel(P, gxy, grid, zones, mprops, sel, par):
     """:func:`zone_forces` of the zones ``sel`` only, reading the gridpoints' coordinates from
@@ -949,7 +948,7 @@ def zone_forces_sel(P, gxy, grid, zones, mprops, sel, par):
     mprops : ndarray (nmat, NM)
         Material rows.
     sel : ndarray int64
-        The zones.
+        The zones (not empty).
     par : bool
         Run the loop in parallel.
 
@@ -958,11 +957,11 @@ def zone_forces_sel(P, gxy, grid, zones, mprops, sel, par):
     None
     """
     if par:
-        _zones_sel_par(sel, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork,
-                       zones.zf, gxy, grid.gvel, mprops, P)
+        _zones_par(sel, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork,
+                   zones.zf, gxy, grid.gvel, mprops, P)
     else:
-        _zones_sel_ser(sel, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork,
-                       zones.zf, gxy, grid.gvel, mprops, P)
+        _zones_ser(sel, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork,
+                   zones.zf, gxy, grid.gvel, mprops, P)
 
 
 @njit(cache=True, error_model="numpy")

@@ -176,6 +176,9 @@ class ContinuumModel:
         self.gext = np.zeros((ng, 2))
         self.gdash = np.zeros((ng, 3))
         self.gff = np.zeros((ng, 4))
+        #: The fast gridpoints and their step ``(indices, dt)`` of a subcycled coupled model
+        #: (:meth:`murus.continuum.coupled.CoupledModel.set_subcycle`), or None.
+        self.fast = None
         from murus.continuum.freefield import empty as _no_free_field
 
         self.ff = _no_free_field()
@@ -244,9 +247,8 @@ class ContinuumModel:
         ndarray (ng, 1)
         """
         d = np.full((self.ng, 1), self.dt)
-        fast = self.__dict__.get("fast")
-        if fast is not None:
-            d[fast[0]] = fast[1]
+        if self.fast is not None:
+            d[self.fast[0]] = self.fast[1]
         return d
 
     # ------------------------------------------------------------------ time step

@@ -275,9 +275,16 @@ def collapse(
                                         "stones ('auto': as many as their stable step allows; "
                                         "about 3 times faster for the mock-ups; "
                                         "VALIDATION.md gives its effect on A_col; refused "
-                                        "above --stiffness-scale 0.1: at the printed "
-                                        "stiffness the mock-ups creep, from an energy gain "
-                                        "of the interface not mended yet)."),
+                                        "above --stiffness-scale 0.1, where it is not "
+                                        "validated yet)."),
+    corner_share: str | None = typer.Option(None, "--corner-share", help="With --backfill "
+                                            "continuum: how a loaded stone corner's share "
+                                            "of the backfill's face follows the "
+                                            "interface's coverage rule, 'follow' (default, "
+                                            "the validated runs) or 'shrink' (down only: no "
+                                            "energy given to a rocking corner; for the "
+                                            "printed stiffness, VALIDATION.md, "
+                                            "Subcycling)."),
 ) -> None:
     """S2 collapse run of the DEM wall on the continuum backfill of the paper (the default),
     the equivalent thrust or a disc backfill (Savalle et al. (2022), §4.2): writes d_top.csv
@@ -317,7 +324,15 @@ def collapse(
         elif bmode == "continuum":
             if "radius" in opts:
                 raise ValueError("--radius needs --backfill discrete")
+            if corner_share is not None:
+                cs = corner_share.strip().lower()
+                if cs not in ("follow", "shrink"):
+                    raise ValueError(f"--corner-share must be 'follow' or 'shrink', got "
+                                     f"{corner_share!r}")
+                opts["corner_share"] = cs
             kw["backfill_options"] = opts
+        if corner_share is not None and bmode != "continuum":
+            raise ValueError("--corner-share needs --backfill continuum")
         if subcycle is not None:
             if bmode != "continuum":
                 raise ValueError("--subcycle needs --backfill continuum")

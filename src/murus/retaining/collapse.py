@@ -88,15 +88,14 @@ __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES"
 STIFFNESS_SCALE = {"thrust": 1e-3, "discrete": 1e-3, "continuum": 1e-2}
 
 #: The largest joint stiffness scale at which subcycling is allowed: at the printed stiffness
-#: (x 1) the subcycled mock-ups creep from a quarter of their resistance while the interface
-#: chatters (sessions 14 and 15; ``validation/subcycle_chatter.py``). Session 16 found that
-#: one step for all creeps the same way under any small perturbation (a 0.78 time step, a
-#: 3.5e-12 m shift of the stones), fed by energy the interface's pressed contacts gain when
-#: their stiffness follows their tributary length (``interface._carry``; VALIDATION.md,
-#: *Subcycling*): the refusal stays until mended, as the x 1 runs are not trustworthy with
-#: either scheme. At x 1e-1 and below the subcycled runs agree with one step for all (within
-#: 1.4 % at x 1e-2; +3.9 % on the one H/B = 2.7 run recomputed at x 1e-1, its ensemble not
-#: computed yet).
+#: (x 1) the subcycled mock-ups crept from a quarter of their resistance while the interface
+#: chattered (sessions 14 and 15; ``validation/subcycle_chatter.py``), and so did one step for
+#: all under any small perturbation (session 16), fed by energy a rocking stone's corner
+#: gained from the interface when its stiffness followed the coverage rule up under load
+#: (mended in session 17: ``interface._kept_trib``; VALIDATION.md, *Subcycling*). The refusal
+#: stays until subcycling is measured against one step for all at x 1 with the mended
+#: interface. At x 1e-1 and below the subcycled runs agreed with one step for all (within 1.4
+#: % at x 1e-2; +3.9 % on the one H/B = 2.7 run at x 1e-1, its ensemble not computed).
 SUBCYCLE_MAX_SCALE = 0.1
 
 
@@ -119,9 +118,8 @@ def subcycle_refused(subcycle, stiffness_scale: float | None) -> str | None:
         return None
     if stiffness_scale > SUBCYCLE_MAX_SCALE * (1 + 1e-12):
         return (f"subcycle = {subcycle!r} at stiffness_scale = {stiffness_scale:g}: "
-                f"subcycling is not trusted above x {SUBCYCLE_MAX_SCALE:g} (the mock-ups creep "
-                f"subcycled at the printed stiffness, VALIDATION.md, Subcycling); use one step "
-                f"for all")
+                f"subcycling is not validated above x {SUBCYCLE_MAX_SCALE:g} (VALIDATION.md, "
+                f"Subcycling); use one step for all")
     return None
 
 
@@ -444,8 +442,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         ``"auto"``: as many as the zones' and the interface's stable steps allow); the
         blocks' contacts set the time step, and the zones, most of a step's cost, then
         take a step of their own size. Default: off (one step for all). Refused above
-        ``stiffness_scale`` :data:`SUBCYCLE_MAX_SCALE` (0.1): at the printed stiffness the
-        subcycled mock-ups creep (VALIDATION.md, *Subcycling*).
+        ``stiffness_scale`` :data:`SUBCYCLE_MAX_SCALE` (0.1), where it is not validated yet
+        (VALIDATION.md, *Subcycling*).
 
     Returns
     -------

@@ -121,6 +121,11 @@ class ContinuumBackfill:
         stiffness while the backfill's slowest mode keeps its period, so the steps that
         settling needs grow alike (the H/B = 3.3 mock-up at x 1, subcycled: its elastic stage
         was still at the ratio 2.7e-4 after 200 000 steps).
+    corner_share : {"follow", "shrink"}
+        How a loaded stone corner's share of the backfill's face follows the coverage rule
+        of the interface (:class:`murus.continuum.interface.Interface`): "follow" (default,
+        the validated runs) or "shrink" (down only: no energy given to a rocking corner; the
+        printed joint stiffness needs it, VALIDATION.md, *Subcycling*).
 
     Raises
     ------
@@ -137,7 +142,7 @@ class ContinuumBackfill:
                  stiffness_scale: float = 1e-2, crust_cohesion: float | None = None,
                  crust_depth: float | None = None,
                  E: float | None = None, nu: float | None = None, settle_tol: float = 1e-4,
-                 settle_steps: int | None = None) -> None:
+                 settle_steps: int | None = None, corner_share: str = "follow") -> None:
         from murus.retaining.backfill import SEED_ELASTIC, SEED_INTERFACE_K, _is_mock
 
         b = str(boundary).strip().lower()
@@ -184,6 +189,12 @@ class ContinuumBackfill:
             raise ContinuumBackfillError(f"settle_steps must be a positive integer, got "
                                          f"{settle_steps!r}")
         self.settle_steps = int(settle_steps)
+        from murus.continuum.interface import CORNER_SHARES
+
+        if corner_share not in CORNER_SHARES:
+            raise ContinuumBackfillError(f"corner_share must be one of "
+                                         f"{', '.join(CORNER_SHARES)}, got {corner_share!r}")
+        self.corner_share = corner_share
         self.mesh = None
         self.zones = None
         self.interface = None
@@ -227,7 +238,7 @@ class ContinuumBackfill:
         joint = Joint(kn=self.k_interface, ks=self.k_interface,
                       friction_deg=wall.interface_friction_deg)
         back = mesh.side("backfill.left")
-        iface = Interface(zm, mesh.edges_of(back), m, joint)
+        iface = Interface(zm, mesh.edges_of(back), m, joint, corner_share=self.corner_share)
         self.mesh, self.zones, self.interface = mesh, zm, iface
         self.coupled = CoupledModel(m, zm, iface)
 
@@ -288,9 +299,12 @@ class ContinuumBackfill:
     def summary(self) -> dict:
         """JSON-ready description and measured values."""
         zm = self.zones
-        return {"model": "continuum", "W": self.W, "size": self.size,
-                "boundary": self.boundary, "n_zones": None if zm is None else int(zm.nz),
-                "E": self.E, "nu": self.nu, "crust_cohesion": self.crust_cohesion,
-                "crust_depth": self.crust_depth, "crust_row_cohesion": self.crust_row_cohesion,
-                "k_interface": self.k_interface,
-                "settle": None if self.settle_result is None else self.settle_result.message}
+        out = {"model": "continuum", "W": self.W, "size": self.size,
+               "boundary": self.boundary, "n_zones": None if zm is None else int(zm.nz),
+               "E": self.E, "nu": self.nu, "crust_cohesion": self.crust_cohesion,
+               "crust_depth": self.crust_depth, "crust_row_cohesion": self.crust_row_cohesion,
+               "k_interface": self.k_interface,
+               "settle": None if self.settle_result is None else self.settle_result.message}
+        if self.corner_share != "follow":  # (the default is not listed: older summaries)
+            out["corner_share"] = self.corner_share
+        return out
