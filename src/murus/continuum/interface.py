@@ -56,9 +56,8 @@ law is the same code as block-block joints; Savalle et al. (2022), eqs. 3-4; Ita
    loaded one follows it up and down, or with ``corner_share="shrink"`` down only
    (:func:`_kept_trib`: the coverage jumps when a gridpoint next to the corner starts or
    stops touching the face, and a stiffness that jumps up under load pumps energy into a
-   rocking block). Of the vertices of a shape
-   within reach of an edge, the two of least gap are kept (a convex shape touches a straight
-   edge with two vertices at most).
+   rocking block). Of the vertices of a shape within reach of an edge, the two of least gap
+   are kept (a convex shape touches a straight edge with two vertices at most).
 
 The reach (largest positive gap at which a contact is kept, ``IP_REACH``) is by default twice
 the joint's ``T / kn``: a bond pulled beyond its tensile strength then breaks through the joint
