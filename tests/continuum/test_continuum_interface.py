@@ -210,58 +210,53 @@ def test_flat_face_on_a_row_of_gridpoints():
     assert ifc.C[I.IC_NODES] == 4 and ifc.C[I.IC_CORNERS] == 0
 
 
-def test_a_face_sliding_over_gridpoints_is_carried_once_everywhere():
-    """The coverage rule: a block's flat face (length 1.1 m less the two roundings) pressed by
-    delta on a row of gridpoints (spacing 0.25 m) and moved across a whole spacing in steps of
-    1 cm: wherever its ends are (over a gridpoint's tributary or between gridpoints, where the
-    corners take what the gridpoints leave), the face carries ``kn t delta`` times its length;
-    the moment about the centroid is only that of lumping each end's segment at a gridpoint or
-    a corner, at most ``kn t delta h`` times ``h / 2`` at either end."""
-    delta = 1e-4
-    h = 0.25
+def _slide_a_face(corner_share="follow"):
+    """A block's flat face (length 1.1 m less the two roundings) pressed by delta on a row of
+    gridpoints (spacing h = 0.25 m) and moved across a whole spacing in steps of 1 cm: yields
+    the step, the forces on the block, ``kn t delta`` and the face's carried length if whole."""
+    delta, h, w = 1e-4, 0.25, 1.1
     grid, edges = _surface(12, h=h)
     m = _model()
-    w = 1.1
     m.add_rectangle(w, 0.3, center=(1.0, 0.15 - delta))
-    ifc = I.Interface(grid, edges, m)
-    want = KN * T * delta * (w - 2 * R_ROUND)
+    ifc = I.Interface(grid, edges, m, corner_share=corner_share)
     for k in range(26):
         m.bpos[0, 0] = 1.0 + 0.01 * k
-        fg, fb = ifc.forces(0.0)
-        assert fb[0, 1] == pytest.approx(want, rel=1e-9), k
-        assert abs(fb[0, 2]) <= KN * T * delta * h * h, k
+        yield k, ifc.forces(0.0)[1][0], KN * T * delta, w - 2 * R_ROUND
+
+
+def test_a_face_sliding_over_gridpoints_is_carried_once_everywhere():
+    """The coverage rule (:func:`_slide_a_face`): wherever the face's ends are (over a
+    gridpoint's tributary or between gridpoints, where the corners take what the gridpoints
+    leave), the face carries ``kn t delta`` times its length; the moment about the centroid
+    is only that of lumping each end's segment at a gridpoint or a corner, at most ``kn t
+    delta h`` times ``h / 2`` at either end."""
+    h = 0.25
+    for k, fb, unit, length in _slide_a_face():
+        assert fb[1] == pytest.approx(unit * length, rel=1e-9), k
+        assert abs(fb[2]) <= unit * h * h, k
 
 
 def test_a_face_sliding_over_gridpoints_with_shrinking_corners_is_never_carried_twice():
-    """The coverage rule with ``corner_share="shrink"``: the face of the test above moved
-    the same way: where its corners' contacts form (the start, and wherever a corner's share is what
-    the gridpoints leave) the face carries ``kn t delta`` times its length, and it never
-    carries more. A loaded corner's share follows the rule down, not up (the interface gives
-    no energy to a loaded corner): as the gridpoint next to the trailing corner falls behind,
-    the corner keeps its share and the face carries less, by at most ``kn t delta h / 2`` (a
-    flat face on a row of gridpoints leaves at most half a spacing next to a corner), until
-    the corner's contact is renewed (here when the gridpoint behind it has left the face: 10 %
-    less at most, 20 cm into the move). The moment about the centroid is that of lumping each
-    end's segment at a gridpoint or a corner, at most ``kn t delta h`` times ``h / 2`` at either
-    end, and of the missing segment at the face's end."""
-    delta = 1e-4
-    h = 0.25
-    grid, edges = _surface(12, h=h)
-    m = _model()
-    w = 1.1
-    m.add_rectangle(w, 0.3, center=(1.0, 0.15 - delta))
-    ifc = I.Interface(grid, edges, m, corner_share="shrink")
-    want = KN * T * delta * (w - 2 * R_ROUND)
+    """The coverage rule with ``corner_share="shrink"`` (:func:`_slide_a_face`): where the
+    corners' contacts form (the start, and wherever a corner's share is what the gridpoints
+    leave) the face carries ``kn t delta`` times its length, and it never carries more. A
+    loaded corner's share follows the rule down, not up (the interface gives no energy to a
+    loaded corner): as the gridpoint next to the trailing corner falls behind, the corner
+    keeps its share and the face carries less, by at most ``kn t delta h / 2`` (a flat face on
+    a row of gridpoints leaves at most half a spacing next to a corner), until the corner's
+    contact is renewed (here when the gridpoint behind it has left the face: 10 % less at
+    most, 20 cm into the move). The moment about the centroid is that of lumping each end's
+    segment at a gridpoint or a corner, at most ``kn t delta h`` times ``h / 2`` at either
+    end, and of the missing segment at the face's end (lever half the face)."""
+    h, w = 0.25, 1.1
     short = []
-    for k in range(26):
-        m.bpos[0, 0] = 1.0 + 0.01 * k
-        fg, fb = ifc.forces(0.0)
-        assert fb[0, 1] <= want * (1 + 1e-9), k
-        assert fb[0, 1] >= want - KN * T * delta * h / 2, k
-        short.append(want - fb[0, 1])
-        assert abs(fb[0, 2]) <= KN * T * delta * h * (h + w / 2), k
-    assert short[0] <= 1e-9 * want and short[-1] <= 1e-9 * want
-    assert max(short) > 0.05 * want  # the trailing corner's share was held
+    for k, fb, unit, length in _slide_a_face("shrink"):
+        assert fb[1] <= unit * length * (1 + 1e-9), k
+        assert fb[1] >= unit * (length - h / 2), k
+        short.append(1 - fb[1] / (unit * length))
+        assert abs(fb[2]) <= unit * h * (h + w / 2), k
+    assert short[0] <= 1e-9 and short[-1] <= 1e-9
+    assert max(short) > 0.05  # the trailing corner's share was held
 
 
 def test_a_corner_rocking_next_to_a_gridpoint_gains_no_energy():
