@@ -115,6 +115,36 @@ def test_cli_refuses_options_of_another_backfill(tmp_path, args, msg):
     assert not out.exists()
 
 
+@pytest.mark.parametrize("args, msg", [
+    (["--corner-share", "grow"], "--corner-share must be 'follow' or 'shrink'"),
+    (["--backfill", "thrust", "--corner-share", "shrink"], "--corner-share needs --backfill "
+     "continuum")])
+def test_cli_checks_the_corner_share(tmp_path, args, msg):
+    from typer.testing import CliRunner
+
+    from murus.cli import app
+
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["retaining", "collapse", "--preset", "DSRW1", *args,
+                                 "--out", str(out)])
+    assert r.exit_code == 2 and msg in r.output
+    assert not out.exists()
+
+
+def test_the_corner_share_is_an_option_of_the_backfill():
+    """``backfill_options={"corner_share": "shrink"}`` (what ``--corner-share shrink``
+    passes) is kept and listed in the backfill's summary (the default "follow" is not, so
+    that the summaries of the runs made before the option compare equal); an unknown value is
+    a one-line error."""
+    from murus.retaining.continuum_backfill import ContinuumBackfill, ContinuumBackfillError
+
+    wall = preset("DSRW1")
+    assert "corner_share" not in ContinuumBackfill(wall).summary()
+    assert ContinuumBackfill(wall, corner_share="shrink").summary()["corner_share"] == "shrink"
+    with pytest.raises(ContinuumBackfillError, match="follow, shrink"):
+        ContinuumBackfill(wall, corner_share="grow")
+
+
 def test_the_shipped_command_reproduces_the_validated_a_col():
     """Issue 18, items 3 and 6: DSRW1 at 5 Hz on the continuum backfill at its defaults (what
     ``murus retaining collapse --preset DSRW1 --frequency 5 --backfill continuum`` runs) gives
