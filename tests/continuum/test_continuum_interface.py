@@ -325,6 +325,35 @@ def test_a_corner_rocking_next_to_a_gridpoint_gains_no_energy():
     assert abs(second2[0] - second[0]) <= 0.1 * bound  # converged: not the trapezoid sum's
 
 
+@pytest.mark.parametrize("share", ["follow", "shrink"])
+@pytest.mark.parametrize("h", [0.0625, 0.25 / 6])
+def test_a_tilted_face_carries_the_winkler_force(share, h):
+    """A block's face (0.25 m, flat length L = 0.23 m) pressed by delta = 1e-4 m at its middle
+    into a row of gridpoints of spacing h (4 or 6 to the face; the zones held, so the
+    interface's springs alone: a Winkler foundation of modulus kn) and tilted about its
+    middle, step by step, to just below uplift (theta < 2 delta / L): the normal force is the
+    Winkler integral ``kn t L delta`` (a linear penetration over the whole face). Each
+    gridpoint carries its tributary length at its own penetration, exact for a linear one when
+    the tributary is centred on it; at either end of the face a corner's share (at most h / 2)
+    or a gridpoint's tributary cut by the face's end is lumped at the vertex or the gridpoint
+    instead of its middle, off by at most ``kn t theta h² / 8``: within ``kn t theta h² / 4``
+    in all, with either corner rule (a monotonic tilt lifts no gridpoint next to a loaded
+    corner, so the rules agree)."""
+    delta, B, x0 = 1e-4, 0.25, 0.0137
+    n = int(math.ceil((x0 + B) / h)) + 3
+    grid, edges = _surface(n, h=h, x0=-h)
+    m = _model()
+    xc = x0 + B / 2
+    m.add_rectangle(B, 0.3, center=(xc, 0.15 - delta))
+    ifc = I.Interface(grid, edges, m, corner_share=share)
+    L = B - 2 * R_ROUND
+    for th in np.linspace(0.0, 0.95 * 2 * delta / L, 20):
+        m.bang[0] = -th
+        m.bpos[0] = (xc - 0.15 * math.sin(-th), -delta + 0.15 * math.cos(th))
+        fb = ifc.forces(0.0)[1][0]
+        assert abs(fb[1] - KN * T * L * delta) <= KN * T * th * h * h / 4 + 1e-9 * fb[1], th
+
+
 @pytest.mark.parametrize("s", [0.3, 0.75])
 def test_corner_between_two_gridpoints_of_a_coarse_mesh(s):
     """A square block standing on a corner (rotated 45°) poking into a zone edge of length L
