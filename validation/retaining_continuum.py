@@ -797,8 +797,10 @@ def _sub_text(recs: dict) -> list[str]:
                 st = ens_stats(recs, pre)
                 if key in recs and st is not None:
                     a = _acol(recs[key])
+                    rng = (f"[{st[1]:.3f}-{st[2]:.3f}], {st[3]} runs" if st[3] > 1
+                           else "one run")
                     cmp.append(f"{name} {a:.3f} m/s² ({recs[key]['mode']}) against "
-                               f"{st[0]:.3f} [{st[1]:.3f}-{st[2]:.3f}] with 'follow' "
+                               f"{st[0]:.3f} ({rng}) with 'follow' "
                                f"({100 * (a / st[0] - 1):+.1f} %)")
             out[-1] += (" With 'shrink' at x 1e-2 (the nominal run of each case, group "
                         "`shrink`): " + "; ".join(cmp) + "." if cmp else
