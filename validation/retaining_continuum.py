@@ -806,6 +806,15 @@ def _sub_text(recs: dict) -> list[str]:
                         "`shrink`): " + "; ".join(cmp) + "." if cmp else
                         " Whether 'shrink' changes their A_col at x 1e-2 is not measured yet "
                         "(group `shrink`).")
+            k11 = [(s, recs[f"mock_{s:g}_k1e-1_r0"]) for s in (1.7, 2.7)
+                   if f"mock_{s:g}_k1e-1_r0" in recs and f"shrink_{s:g}_r0" in recs]
+            if k11:
+                tab = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
+                out[-1] += (" For comparison, 'follow' at x 1e-1 (ten times stiffer joints): "
+                            + "; ".join(f"H/B = {s:g} {_acol(r):.3f} m/s² ({r['mode']}; "
+                                        f"Table 3: UDEC {tab[s]['num_A_fail_m_s2']}, the "
+                                        f"test {tab[s]['exp_A_fail_m_s2']})" for s, r in k11)
+                            + ".")
             k1 = [k for k in ("shrink_1.7_k1_r0", "shrink_2.7_k1_r0") if k in recs]
             out[-1] += (" At the printed stiffness with 'shrink' (one step for all): "
                         + "; ".join(f"H/B = {k.split('_')[1]} {_acol(recs[k]):.3f} m/s² "
