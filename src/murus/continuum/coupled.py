@@ -38,9 +38,10 @@ gridpoints were slow, the interface's force on them taken once per zones' step w
 stones felt it at every step, and an impact gained energy (a test measures it). At the printed
 stiffness of the mock-ups the wall creeps subcycled with either partition
 (``validation/subcycle_chatter.py``), and so does one step for all under any small
-perturbation (a shorter time step, a 1e-12 m shift of the stones): the energy comes from the
-interface's pressed contacts whose stiffness follows their tributary length (``_carry`` of
-:mod:`murus.continuum.interface`; VALIDATION.md, *Subcycling*). Until that is mended
+perturbation (a shorter time step, a 1e-12 m shift of the stones): the energy comes from a
+rocking stone's corner whose share of its face jumps up and down under load (the coverage rule
+of :mod:`murus.continuum.interface`; ``corner_share="shrink"`` stops it; VALIDATION.md,
+*Subcycling*). Until subcycling is measured against one step for all with it
 :func:`murus.retaining.collapse.collapse_run` refuses subcycling above joint stiffness x 1e-1.
 The model needs gridpoints outside the fast partition (any with a base does). Units: the
 blocks' forces are for their model's thickness ``t``; the continuum is per metre of

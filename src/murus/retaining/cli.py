@@ -325,9 +325,12 @@ def collapse(
             if "radius" in opts:
                 raise ValueError("--radius needs --backfill discrete")
             if corner_share is not None:
+                from murus.continuum.interface import CORNER_SHARES
+
                 cs = corner_share.strip().lower()
-                if cs not in ("follow", "shrink"):
-                    raise ValueError(f"--corner-share must be 'follow' or 'shrink', got "
+                if cs not in CORNER_SHARES:
+                    raise ValueError(f"--corner-share must be "
+                                     f"{' or '.join(repr(c) for c in CORNER_SHARES)}, got "
                                      f"{corner_share!r}")
                 opts["corner_share"] = cs
             kw["backfill_options"] = opts
