@@ -165,19 +165,29 @@ def runs() -> dict[str, dict]:
     out["scale_DSRW1_5_k1_r0"] = dict(group="slow", wall="DSRW1", f=5.0, vertical="none",
                                       run=0, kw={"stiffness_scale": 1.0})
     # the interface's corner_share = "shrink" (no energy given to a rocking corner; the cure
-    # of the creep at x 1, VALIDATION.md, Subcycling) against the default at x 1e-2, and at
-    # the printed stiffness with one step for all
-    for s in (1.7, 2.7, 3.3):
-        out[f"shrink_{s:g}_r0"] = dict(group="shrink", wall=f"mockup-{s:g}", f=10.0,
-                                       vertical="none", run=0,
-                                       kw={"corner_share": "shrink"})
-    out["shrink_DSRW1_5_r0"] = dict(group="shrink", wall="DSRW1", f=5.0, vertical="none",
-                                    run=0, kw={"corner_share": "shrink"})
-    for s in (1.7, 2.7):
-        out[f"shrink_{s:g}_k1_r0"] = dict(group="shrink_k1", wall=f"mockup-{s:g}", f=10.0,
-                                          vertical="none", run=0,
-                                          kw={"stiffness_scale": 1.0, "corner_share": "shrink"})
+    # of the creep at x 1, VALIDATION.md, Subcycling), the candidate default: a twin of every
+    # run of the continuum backfill, so that the tables can change over to it when complete
+    for key, sp in list(out.items()):
+        if sp["group"] in SHRINK_GROUPS:
+            out[shrink_key(key)] = dict(sp, group="shrink_" + sp["group"],
+                                        kw=dict(sp["kw"], corner_share="shrink"))
     return out
+
+
+#: groups of runs with a twin of ``corner_share="shrink"`` (group ``shrink_<group>``)
+SHRINK_GROUPS = ("t7", "mesh", "width", "boundary", "scale", "mock", "mock_k1e-3", "mock_k1e-1",
+                 "mock_k1", "mock_phi", "mock30")
+
+
+def shrink_key(key: str) -> str:
+    """The key of the ``corner_share="shrink"`` twin of a run: ``shrink_`` and the key without
+    its ``t7_`` or ``mock_`` prefix and a ``_none`` vertical component (``t7_DSRW1_5_none_r0``
+    -> ``shrink_DSRW1_5_r0``, ``mock_1.7_k1_r0`` -> ``shrink_1.7_k1_r0``)."""
+    if key.startswith("t7_"):
+        key = key[3:].replace("_none_", "_")
+    elif key.startswith("mock_"):
+        key = key[5:]
+    return "shrink_" + key
 
 
 def _wall(spec):
@@ -286,7 +296,7 @@ def main(argv=None) -> None:
     ap.add_argument("--group", nargs="*", default=None, help="Compute the runs of these "
                     "groups only (no Markdown): t7, t7_thrust, t7_discs, mesh, width, boundary, "
                     "scale, s1, mock, mock_thrust, mock_discs, mock_k1e-3, mock_k1e-1, mock_k1, "
-                    "shrink, shrink_k1, "
+                    "shrink_<group> (the twins of corner_share='shrink'), "
                     "sub, sub_ens, mock_phi, mock30, slow.")
     ap.add_argument("--recompute", action="store_true", help="Run again, ignoring the cache.")
     ap.add_argument("--keys", nargs="*", default=None, help="Compute these runs only, in this "
@@ -621,6 +631,10 @@ def section(recompute: bool = False, jobs: int = 1, fig_dir: Path | None = None)
     if stale and not recompute:
         recs.update(ensure(stale, True, jobs))
     recs.update(cached([k for k, v in spec.items() if v["group"] == "slow"]))
+    import interface_winkler
+
+    if interface_winkler.cached() is None or recompute:  # about 10 s
+        interface_winkler.compute()
     return _text(recs, fig_dir, rel)
 
 
@@ -789,42 +803,99 @@ def _sub_text(recs: dict) -> list[str]:
                     "the face next to a loaded corner lifts off a gridpoint, the corner "
                     "carries only what it carried with the gridpoint touching (a stack rocking "
                     "on an elastic layer lifts 2.6e-5 m instead of 1.45e-4 m). 'follow' stays "
-                    "the default: every run in these tables is computed with it."]
-            cmp = []
-            for key, pre, name in [("shrink_DSRW1_5_r0", "t7_DSRW1_5_none", "DSRW1 at 5 Hz")] \
-                    + [(f"shrink_{s:g}_r0", f"mock_{s:g}", f"H/B = {s:g}")
-                       for s in (1.7, 2.7, 3.3)]:
-                st = ens_stats(recs, pre)
-                if key in recs and st is not None:
-                    a = _acol(recs[key])
-                    rng = (f"[{st[1]:.3f}-{st[2]:.3f}], {st[3]} runs" if st[3] > 1
-                           else "one run")
-                    cmp.append(f"{name} {a:.3f} m/s² ({recs[key]['mode']}) against "
-                               f"{st[0]:.3f} ({rng}) with 'follow' "
-                               f"({100 * (a / st[0] - 1):+.1f} %)")
-            out[-1] += (" With 'shrink' at x 1e-2 (the nominal run of each case, group "
-                        "`shrink`): " + "; ".join(cmp) + "." if cmp else
-                        " Whether 'shrink' changes their A_col at x 1e-2 is not measured yet "
-                        "(group `shrink`).")
-            k11 = [(s, recs[f"mock_{s:g}_k1e-1_r0"]) for s in (1.7, 2.7)
-                   if f"mock_{s:g}_k1e-1_r0" in recs and f"shrink_{s:g}_r0" in recs]
-            if k11:
-                tab = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
-                out[-1] += (" For comparison, 'follow' at x 1e-1 (ten times stiffer joints): "
-                            + "; ".join(f"H/B = {s:g} {_acol(r):.3f} m/s² ({r['mode']}; "
-                                        f"Table 3: UDEC {tab[s]['num_A_fail_m_s2']}, the "
-                                        f"test {tab[s]['exp_A_fail_m_s2']})" for s, r in k11)
-                            + ".")
-            k1 = [k for k in ("shrink_1.7_k1_r0", "shrink_2.7_k1_r0") if k in recs]
-            out[-1] += (" At the printed stiffness with 'shrink' (one step for all): "
-                        + "; ".join(f"H/B = {k.split('_')[1]} {_acol(recs[k]):.3f} m/s² "
-                                    f"({recs[k]['mode']})" for k in k1) + "."
-                        if k1 else " The runs at the printed stiffness with 'shrink' "
-                        "(group `shrink_k1`, 2-3.5 h each) are not finished yet.")
+                    "the default: every run in these tables is computed with it; each has a "
+                    "twin with 'shrink' (*The corner rule* below)."]
             out.append("")
     t3 = {float(r["slenderness"]): r for r in _rows("savalle2022_table3.csv")}
     # (the printed stiffness's: Table 3 above, its reference column)
     out += _t3_line(recs, t3, "_k1e-1", "x 1e-1")
+    return out
+
+
+def _label(sp: dict) -> str:
+    """A run's case in words: wall, frequency, vertical component and its options."""
+    kw = dict(sp["kw"])
+    kw.pop("corner_share", None)
+    wall = sp["wall"].replace("mockup-", "mock-up H/B = ")
+    bits = [f"{wall}, {sp['f']:g} Hz"]
+    if sp["vertical"] != "none":
+        bits.append(f"vertical {sp['vertical'].replace('_', '-')}")
+    if "stiffness_scale" in kw:
+        bits.append(f"joints x {kw.pop('stiffness_scale'):g}")
+    if "size" in kw:
+        bits.append(f"zones H / {2.5 / kw.pop('size'):.0f}")
+    if "W" in kw:
+        bits.append(f"W = {kw.pop('W'):g} m")
+    if "boundary" in kw:
+        bits.append(f"far side {kw.pop('boundary')}")
+    for k, v in {**kw, **sp.get("overrides", {})}.items():
+        bits.append(f"{k} = {v:g}" if isinstance(v, float) else f"{k} = {v}")
+    return ", ".join(bits)
+
+
+def _winkler_text(fig_dir: Path, rel) -> list[str]:
+    """The free-rocking check of the interface against the Winkler model
+    (validation/interface_winkler.py; its cached results only)."""
+    import interface_winkler as iw
+
+    rec = iw.cached()
+    if rec is None:
+        return iw.text(None)
+    iw.figure(rec, fig_dir / "interface_winkler.png")
+    return iw.text(rec, f"{rel}/interface_winkler.png")
+
+
+def _shrink_text(recs: dict, fig_dir: Path, rel) -> list[str]:
+    """Every case with a run of ``corner_share="shrink"``: its ensemble against the default's
+    ('follow'), with the modes and whether the ranges meet."""
+    spec = runs()
+    rows, ch = [], []
+    seen = set()
+    for key, sp in spec.items():
+        if sp["group"] not in SHRINK_GROUPS:
+            continue
+        pre = key.rsplit("_r", 1)[0]
+        if pre in seen:
+            continue
+        seen.add(pre)
+        tw = shrink_key(f"{pre}_r0").rsplit("_r", 1)[0]
+        b = ens_stats(recs, tw)
+        if b is None:
+            continue
+        a = ens_stats(recs, pre)
+
+        def cell(st, p):
+            if st is None:
+                return "not run"
+            n = (f" ({st[3]} run{'s' if st[3] > 1 else ''} of {NRUNS})" if st[3] < NRUNS
+                 else "")
+            mode = recs[f"{p}_r0"]["mode"] if f"{p}_r0" in recs else "-"
+            return f"{st[0]:.3f} [{st[1]:.3f}-{st[2]:.3f}]{n} ({mode})"
+
+        if a is None:
+            rows.append(f"| {_label(sp)} | not run | {cell(b, tw)} | - | - |")
+            continue
+        c = 100 * (b[0] / a[0] - 1)
+        meet = ("-" if min(a[3], b[3]) < 2 else  # a single run has no range
+                "yes" if b[1] <= a[2] and a[1] <= b[2] else "no")
+        ch.append((c, meet, _label(sp)))
+        rows.append(f"| {_label(sp)} | {cell(a, pre)} | {cell(b, tw)} | {c:+.1f} % | {meet} |")
+    out = ["#### The corner rule: 'shrink' against the default 'follow'", ""]
+    out += _winkler_text(fig_dir, rel)
+    if not rows:
+        return out
+    out += [
+           "The runs of every case repeated with `corner_share=\"shrink\"` (the twins `shrink_*` "
+           "of `validation/retaining_continuum.py`; the same time steps and meshes), A_col "
+           "[m/s²], median [range] and mode of the nominal run:", "",
+           "| case | 'follow' (default) | 'shrink' | change of the medians | ranges meet |",
+           "|---|---|---|---|---|", *rows, ""]
+    if ch:
+        big = [f"{lab} ({c:+.1f} %)" for c, meet, lab in ch if meet == "no"]
+        mean = statistics.mean(c for c, *_ in ch)
+        out += [f"- {len(ch)} cases with both: mean change {mean:+.1f} %, largest "
+                f"{max(ch, key=lambda x: abs(x[0]))[0]:+.1f} %; ranges apart (both with at "
+                "least two runs): " + ("; ".join(big) if big else "none") + ".", ""]
     return out
 
 
@@ -1052,6 +1123,7 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
                     f"{sum(100 * (lo[0] / e - 1) for _, _, lo, _, e in diffs) / len(diffs):+.1f}"
                     " %.", ""]
     out += _sub_text(recs)
+    out += _shrink_text(recs, fig_dir, rel)
     fol = following(recs["t7_DSRW1_5_none_r0"]) if "t7_DSRW1_5_none_r0" in recs else None
     if fol is not None:
         out += ["### The backfill follows the wall (Figure 11)", "",
