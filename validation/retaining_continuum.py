@@ -171,12 +171,20 @@ def runs() -> dict[str, dict]:
         if sp["group"] in SHRINK_GROUPS:
             out[shrink_key(key)] = dict(sp, group="shrink_" + sp["group"],
                                         kw=dict(sp["kw"], corner_share="shrink"))
+    for r in (0.6, 0.7):  # the S1 checks at the ratios of the twins' median
+        out[f"shrink_s1_DSRW1_5_{r:g}"] = dict(out[f"s1_DSRW1_5_{r:g}"], group="shrink_s1",
+                                               kw={"corner_share": "shrink"},
+                                               median_of="shrink_DSRW1_5")
     return out
 
 
 #: groups of runs with a twin of ``corner_share="shrink"`` (group ``shrink_<group>``)
 SHRINK_GROUPS = ("t7", "mesh", "width", "boundary", "scale", "mock", "mock_k1e-3", "mock_k1e-1",
                  "mock_k1", "mock_phi", "mock30")
+
+
+#: the S1 checks (Figure 14), made at a ratio of the median A_col of their ensemble
+S1_GROUPS = ("s1", "shrink_s1")
 
 
 def shrink_key(key: str) -> str:
@@ -225,8 +233,8 @@ def compute(key: str) -> dict:
     if mock:
         kw.update(A_rate=A_MOCK, t_max=MOCK_TMAX)
     n_med = 0
-    if spec["group"] == "s1":
-        acol, n_med = _median_acol("t7_DSRW1_5_none")
+    if spec["group"] in S1_GROUPS:
+        acol, n_med = _median_acol(spec.get("median_of", "t7_DSRW1_5_none"))
         kw.update(signal="S1", a_peak=spec["ratio"] * acol)
     kw["safety"] = 0.2 * DT_FACTORS[spec["run"]]
     ck = None
@@ -622,9 +630,9 @@ def section(recompute: bool = False, jobs: int = 1, fig_dir: Path | None = None)
     fig_dir.mkdir(parents=True, exist_ok=True)
     rel = fig_dir.relative_to(ROOT) if fig_dir.is_relative_to(ROOT) else fig_dir
     spec = runs()
-    keys = [k for k, v in spec.items() if v["group"] not in ("slow", "s1")]
+    keys = [k for k, v in spec.items() if v["group"] not in ("slow",) + S1_GROUPS]
     recs = ensure(keys, recompute, jobs)
-    s1 = [k for k, v in spec.items() if v["group"] == "s1"]
+    s1 = [k for k, v in spec.items() if v["group"] in S1_GROUPS]
     # an S1 check made at another median of A_col (fewer runs then) is made again
     stale = [k for k, v in cached(s1).items() if not _s1_current(v)]
     recs.update(ensure(s1, recompute, jobs))
@@ -641,7 +649,7 @@ def section(recompute: bool = False, jobs: int = 1, fig_dir: Path | None = None)
 def _s1_current(rec: dict) -> bool:
     """Whether an S1 check's amplitude is its ratio of today's median A_col of DSRW1 at 5 Hz."""
     try:
-        acol, _ = _median_acol("t7_DSRW1_5_none")
+        acol, _ = _median_acol(rec["spec"].get("median_of", "t7_DSRW1_5_none"))
     except FileNotFoundError:
         return False
     return math.isclose(rec["summary"]["a_peak"], rec["spec"]["ratio"] * acol, rel_tol=1e-12)
