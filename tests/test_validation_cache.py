@@ -127,3 +127,23 @@ def test_a_disc_backfill_far_from_equilibrium_is_flagged():
     assert rc._unsettled(recs, "b") is None and rc._unsettled(recs, "c") is None
     assert rc._unsettled(recs, "b", limit=0.0) == pytest.approx(0.0669)
     assert rc._unsettled(recs, "missing") is None
+
+
+def test_every_continuum_run_has_one_shrink_twin():
+    """Each run of the groups of validation/retaining_continuum.py that compare the corner
+    rules has exactly one twin with ``corner_share="shrink"`` and otherwise the same spec: no
+    twin's key is another run's (a dict would silently drop one of them)."""
+    import retaining_continuum as rc
+
+    spec = rc.runs()
+    base = [k for k, v in spec.items() if v["group"] in rc.SHRINK_GROUPS]
+    twins = [rc.shrink_key(k) for k in base]
+    assert len(set(twins)) == len(base) > 100
+    assert not set(twins) & {k for k, v in spec.items() if not v["group"].startswith("shrink")}
+    for k, t in zip(base, twins, strict=True):
+        a, b = dict(spec[k]), dict(spec[t])
+        assert b.pop("kw") == dict(a.pop("kw"), corner_share="shrink")
+        assert b.pop("group") == "shrink_" + a.pop("group")
+        assert a == b
+    assert rc.shrink_key("t7_DSRW1_5_none_r0") == "shrink_DSRW1_5_r0"
+    assert rc.shrink_key("mock_1.7_k1_r0") == "shrink_1.7_k1_r0"
