@@ -129,21 +129,22 @@ def test_a_disc_backfill_far_from_equilibrium_is_flagged():
     assert rc._unsettled(recs, "missing") is None
 
 
-def test_every_continuum_run_has_one_shrink_twin():
+def test_every_continuum_run_has_one_twin_of_the_other_corner_rule():
     """Each run of the groups of validation/retaining_continuum.py that compare the corner
-    rules has exactly one twin with ``corner_share="shrink"`` and otherwise the same spec: no
+    rules has exactly one twin with the other ``corner_share`` and otherwise the same spec: no
     twin's key is another run's (a dict would silently drop one of them)."""
     import retaining_continuum as rc
 
     spec = rc.runs()
-    base = [k for k, v in spec.items() if v["group"] in rc.SHRINK_GROUPS]
-    twins = [rc.shrink_key(k) for k in base]
+    tw = rc.TWIN_RULE
+    base = [k for k, v in spec.items() if v["group"] in rc.TWIN_GROUPS]
+    twins = [rc.twin_key(k) for k in base]
     assert len(set(twins)) == len(base) > 100
-    assert not set(twins) & {k for k, v in spec.items() if not v["group"].startswith("shrink")}
+    assert not set(twins) & {k for k, v in spec.items() if not v["group"].startswith(tw)}
     for k, t in zip(base, twins, strict=True):
         a, b = dict(spec[k]), dict(spec[t])
-        assert b.pop("kw") == dict(a.pop("kw"), corner_share="shrink")
-        assert b.pop("group") == "shrink_" + a.pop("group")
+        assert b.pop("kw") == dict(a.pop("kw"), corner_share=tw)
+        assert b.pop("group") == f"{tw}_" + a.pop("group")
         assert a == b
-    assert rc.shrink_key("t7_DSRW1_5_none_r0") == "shrink_DSRW1_5_r0"
-    assert rc.shrink_key("mock_1.7_k1_r0") == "shrink_1.7_k1_r0"
+    assert rc.twin_key("t7_DSRW1_5_none_r0", "shrink") == "shrink_DSRW1_5_r0"
+    assert rc.twin_key("mock_1.7_k1_r0", "follow") == "follow_1.7_k1_r0"

@@ -169,9 +169,9 @@ def runs() -> dict[str, dict]:
     # of the creep at x 1, VALIDATION.md, Subcycling), the candidate default: a twin of every
     # run of the continuum backfill, so that the tables can change over to it when complete
     for key, sp in list(out.items()):
-        if sp["group"] in SHRINK_GROUPS:
-            out[shrink_key(key)] = dict(sp, group="shrink_" + sp["group"],
-                                        kw=dict(sp["kw"], corner_share="shrink"))
+        if sp["group"] in TWIN_GROUPS:
+            out[twin_key(key)] = dict(sp, group=f"{TWIN_RULE}_{sp['group']}",
+                                      kw=dict(sp["kw"], corner_share=TWIN_RULE))
     # subcycling at the printed stiffness with 'shrink' (refused by collapse_run above x 0.1
     # until validated: this run measures it against shrink_1.7_k1_r0, one step for all)
     out["shrink_sub_1.7_k1_r0"] = dict(group="shrink_sub_k1", wall="mockup-1.7", f=10.0,
@@ -179,30 +179,34 @@ def runs() -> dict[str, dict]:
                                        kw={"stiffness_scale": 1.0, "subcycle": "auto",
                                            "corner_share": "shrink"})
     for r in (0.6, 0.7):  # the S1 checks at the ratios of the twins' median
-        out[f"shrink_s1_DSRW1_5_{r:g}"] = dict(out[f"s1_DSRW1_5_{r:g}"], group="shrink_s1",
-                                               kw={"corner_share": "shrink"},
-                                               median_of="shrink_DSRW1_5")
+        out[twin_key(f"s1_DSRW1_5_{r:g}")] = dict(
+            out[f"s1_DSRW1_5_{r:g}"], group=f"{TWIN_RULE}_s1", kw={"corner_share": TWIN_RULE},
+            median_of=twin_key("t7_DSRW1_5_none_r0")[:-3])
     return out
 
 
-#: groups of runs with a twin of ``corner_share="shrink"`` (group ``shrink_<group>``)
-SHRINK_GROUPS = ("t7", "mesh", "width", "boundary", "scale", "mock", "mock_k1e-3", "mock_k1e-1",
+#: the interface's corner rule of the twins (``corner_share``): the one that is not the
+#: default, so that the tables compare the two (VALIDATION.md, *The corner rule*)
+TWIN_RULE = "shrink"
+#: groups of runs with a twin of the other corner rule (group ``<TWIN_RULE>_<group>``)
+TWIN_GROUPS = ("t7", "mesh", "width", "boundary", "scale", "mock", "mock_k1e-3", "mock_k1e-1",
                  "mock_k1", "mock_phi", "mock30")
 
 
 #: the S1 checks (Figure 14), made at a ratio of the median A_col of their ensemble
-S1_GROUPS = ("s1", "shrink_s1")
+S1_GROUPS = ("s1", f"{TWIN_RULE}_s1")
 
 
-def shrink_key(key: str) -> str:
-    """The key of the ``corner_share="shrink"`` twin of a run: ``shrink_`` and the key without
-    its ``t7_`` or ``mock_`` prefix and a ``_none`` vertical component (``t7_DSRW1_5_none_r0``
-    -> ``shrink_DSRW1_5_r0``, ``mock_1.7_k1_r0`` -> ``shrink_1.7_k1_r0``)."""
+def twin_key(key: str, rule: str | None = None) -> str:
+    """The key of the twin of a run with the corner rule ``rule`` (default
+    :data:`TWIN_RULE`): the rule, ``_`` and the key without its ``t7_`` or ``mock_`` prefix
+    and a ``_none`` vertical component (``t7_DSRW1_5_none_r0`` -> ``shrink_DSRW1_5_r0``,
+    ``mock_1.7_k1_r0`` -> ``shrink_1.7_k1_r0``)."""
     if key.startswith("t7_"):
         key = key[3:].replace("_none_", "_")
     elif key.startswith("mock_"):
         key = key[5:]
-    return "shrink_" + key
+    return f"{rule or TWIN_RULE}_{key}"
 
 
 def _wall(spec):
@@ -329,7 +333,7 @@ def main(argv=None) -> None:
     ap.add_argument("--group", nargs="*", default=None, help="Compute the runs of these "
                     "groups only (no Markdown): t7, t7_thrust, t7_discs, mesh, width, boundary, "
                     "scale, s1, mock, mock_thrust, mock_discs, mock_k1e-3, mock_k1e-1, mock_k1, "
-                    "shrink_<group> (the twins of corner_share='shrink'), "
+                    f"{TWIN_RULE}_<group> (the twins of the other corner rule), "
                     "sub, sub_ens, mock_phi, mock30, slow.")
     ap.add_argument("--recompute", action="store_true", help="Run again, ignoring the cache.")
     ap.add_argument("--keys", nargs="*", default=None, help="Compute these runs only, in this "
@@ -881,20 +885,20 @@ def _winkler_text(fig_dir: Path, rel) -> list[str]:
     return iw.text(rec, f"{rel}/corner_rule_winkler.png")
 
 
-def _shrink_text(recs: dict, fig_dir: Path, rel) -> list[str]:
-    """Every case with a run of ``corner_share="shrink"``: its ensemble against the default's
-    ('follow'), with the modes and whether the ranges meet."""
+def _twin_text(recs: dict, fig_dir: Path, rel) -> list[str]:
+    """Every case with a run of the other corner rule (:data:`TWIN_RULE`): its ensemble
+    against the default's, with the modes and whether the ranges meet."""
     spec = runs()
     rows, ch = [], []
     seen = set()
     for key, sp in spec.items():
-        if sp["group"] not in SHRINK_GROUPS:
+        if sp["group"] not in TWIN_GROUPS:
             continue
         pre = key.rsplit("_r", 1)[0]
         if pre in seen:
             continue
         seen.add(pre)
-        tw = shrink_key(f"{pre}_r0").rsplit("_r", 1)[0]
+        tw = twin_key(f"{pre}_r0").rsplit("_r", 1)[0]
         b = ens_stats(recs, tw)
         if b is None:
             continue
@@ -916,15 +920,18 @@ def _shrink_text(recs: dict, fig_dir: Path, rel) -> list[str]:
                 "yes" if b[1] <= a[2] and a[1] <= b[2] else "no")
         ch.append((c, meet, _label(sp)))
         rows.append(f"| {_label(sp)} | {cell(a, pre)} | {cell(b, tw)} | {c:+.1f} % | {meet} |")
-    out = ["#### The corner rule: 'shrink' against the default 'follow'", ""]
+    default = "follow" if TWIN_RULE == "shrink" else "shrink"
+    out = [f"#### The corner rule: '{TWIN_RULE}' against the default '{default}'", ""]
     out += _winkler_text(fig_dir, rel)
     if not rows:
         return out
     out += [
-           "The runs of every case repeated with `corner_share=\"shrink\"` (the twins `shrink_*` "
+           f"The runs of every case repeated with `corner_share=\"{TWIN_RULE}\"` (the twins "
+           f"`{TWIN_RULE}_*` "
            "of `validation/retaining_continuum.py`; the same time steps and meshes), A_col "
            "[m/s²], median [range] and mode of the nominal run:", "",
-           "| case | 'follow' (default) | 'shrink' | change of the medians | ranges meet |",
+           f"| case | '{default}' (default) | '{TWIN_RULE}' | change of the medians "
+           "| ranges meet |",
            "|---|---|---|---|---|", *rows, ""]
     if ch:
         big = [f"{lab} ({c:+.1f} %)" for c, meet, lab in ch if meet == "no"]
@@ -1159,7 +1166,7 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
                     f"{sum(100 * (lo[0] / e - 1) for _, _, lo, _, e in diffs) / len(diffs):+.1f}"
                     " %.", ""]
     out += _sub_text(recs)
-    out += _shrink_text(recs, fig_dir, rel)
+    out += _twin_text(recs, fig_dir, rel)
     fol = following(recs["t7_DSRW1_5_none_r0"]) if "t7_DSRW1_5_none_r0" in recs else None
     if fol is not None:
         out += ["### The backfill follows the wall (Figure 11)", "",
