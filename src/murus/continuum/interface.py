@@ -53,7 +53,8 @@ law is the same code as block-block joints; Savalle et al. (2022), eqs. 3-4; Ita
    gridpoint whose nearest core point is a vertex covers both edges at that vertex. A disc
    gets ``2 R`` (the disc-polygon tributary of the blocks) unless a gridpoint touches it. The
    rule sets the tributary length of a corner contact when it forms or carries no force; a
-   loaded one follows it up and down, or with ``corner_share="shrink"`` down only
+   loaded one follows it down only (``corner_share="shrink"``, the default), or up and down
+   (``"follow"``)
    (:func:`_kept_trib`: the coverage jumps when a gridpoint next to the corner starts or
    stops touching the face, and a stiffness that jumps up under load pumps energy into a
    rocking block). Of the vertices of a shape within reach of an edge, the two of least gap
@@ -1210,10 +1211,10 @@ class Interface:
         the blocks' (default True).
     corner_share : {"follow", "shrink"}
         How a loaded corner contact's share of a block face follows the coverage rule (module
-        doc): "follow" (default), up and down, as a contact that forms; "shrink", down only,
-        which gives a loaded corner no energy (:func:`_kept_trib`: with "follow" a block
-        rocking on a corner next to a gridpoint gains energy at every cycle, the creep of the
-        mock-ups at the printed joint stiffness; VALIDATION.md, *Subcycling*).
+        doc): "shrink" (default), down only, which gives a loaded corner no energy; "follow",
+        up and down, as a contact that forms (:func:`_kept_trib`: a block rocking on a corner
+        next to a gridpoint then gains energy at every cycle, the creep of the mock-ups at
+        the printed joint stiffness; VALIDATION.md, *The corner rule*).
 
     Attributes
     ----------
@@ -1233,7 +1234,7 @@ class Interface:
 
     def __init__(self, grid, edges, dem, joint=None, *, margin: float | None = None,
                  reach: float | None = None, depth: float | None = None,
-                 bond_initial: bool = True, corner_share: str = "follow") -> None:
+                 bond_initial: bool = True, corner_share: str = "shrink") -> None:
         from murus.dem import _kdata as dkd
         from murus.dem import kernels as DK
         from murus.dem.materials import Joint

@@ -280,11 +280,11 @@ def collapse(
     corner_share: str | None = typer.Option(None, "--corner-share", help="With --backfill "
                                             "continuum: how a loaded stone corner's share "
                                             "of the backfill's face follows the "
-                                            "interface's coverage rule, 'follow' (default, "
-                                            "the validated runs) or 'shrink' (down only: no "
-                                            "energy given to a rocking corner; for the "
-                                            "printed stiffness, VALIDATION.md, "
-                                            "Subcycling)."),
+                                            "interface's coverage rule, 'shrink' (default: "
+                                            "down only, no energy given to a rocking "
+                                            "corner) or 'follow' (up and down, the rule "
+                                            "of earlier versions; VALIDATION.md, The "
+                                            "corner rule)."),
 ) -> None:
     """S2 collapse run of the DEM wall on the continuum backfill of the paper (the default),
     the equivalent thrust or a disc backfill (Savalle et al. (2022), §4.2): writes d_top.csv

@@ -123,9 +123,10 @@ class ContinuumBackfill:
         was still at the ratio 2.7e-4 after 200 000 steps).
     corner_share : {"follow", "shrink"}
         How a loaded stone corner's share of the backfill's face follows the coverage rule
-        of the interface (:class:`murus.continuum.interface.Interface`): "follow" (default,
-        the validated runs) or "shrink" (down only: no energy given to a rocking corner; the
-        printed joint stiffness needs it, VALIDATION.md, *Subcycling*).
+        of the interface (:class:`murus.continuum.interface.Interface`): "shrink" (default:
+        down only, no energy given to a rocking corner) or "follow" (up and down, the rule
+        of earlier versions: a rocking corner gains energy, which made the printed joint
+        stiffness creep; VALIDATION.md, *The corner rule*).
 
     Raises
     ------
@@ -142,7 +143,7 @@ class ContinuumBackfill:
                  stiffness_scale: float = 1e-2, crust_cohesion: float | None = None,
                  crust_depth: float | None = None,
                  E: float | None = None, nu: float | None = None, settle_tol: float = 1e-4,
-                 settle_steps: int | None = None, corner_share: str = "follow") -> None:
+                 settle_steps: int | None = None, corner_share: str = "shrink") -> None:
         from murus.retaining.backfill import SEED_ELASTIC, SEED_INTERFACE_K, _is_mock
 
         b = str(boundary).strip().lower()
@@ -305,6 +306,5 @@ class ContinuumBackfill:
                "crust_depth": self.crust_depth, "crust_row_cohesion": self.crust_row_cohesion,
                "k_interface": self.k_interface,
                "settle": None if self.settle_result is None else self.settle_result.message}
-        if self.corner_share != "follow":  # (the default is not listed: older summaries)
-            out["corner_share"] = self.corner_share
+        out["corner_share"] = self.corner_share
         return out
