@@ -132,15 +132,14 @@ def test_cli_checks_the_corner_share(tmp_path, args, msg):
 
 
 def test_the_corner_share_is_an_option_of_the_backfill():
-    """``backfill_options={"corner_share": "shrink"}`` (what ``--corner-share shrink``
-    passes) is kept and listed in the backfill's summary (the default "follow" is not, so
-    that the summaries of the runs made before the option compare equal); an unknown value is
-    a one-line error."""
+    """The corner rule is "shrink" by default; ``backfill_options={"corner_share": "follow"}``
+    (what ``--corner-share follow`` passes) is kept; the backfill's summary lists the rule
+    either way; an unknown value is a one-line error."""
     from murus.retaining.continuum_backfill import ContinuumBackfill, ContinuumBackfillError
 
     wall = preset("DSRW1")
-    assert "corner_share" not in ContinuumBackfill(wall).summary()
-    assert ContinuumBackfill(wall, corner_share="shrink").summary()["corner_share"] == "shrink"
+    assert ContinuumBackfill(wall).summary()["corner_share"] == "shrink"
+    assert ContinuumBackfill(wall, corner_share="follow").summary()["corner_share"] == "follow"
     with pytest.raises(ContinuumBackfillError, match="follow, shrink"):
         ContinuumBackfill(wall, corner_share="grow")
 
