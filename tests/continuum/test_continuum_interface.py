@@ -266,11 +266,12 @@ def test_a_corner_rocking_next_to_a_gridpoint_gains_no_energy():
     a loop in its depth and tilt that makes the face touch the gridpoint and lift off it again
     at two different depths of the corner. The coverage rule gives the corner half the face
     while the gridpoint is off and only what the gridpoint leaves while it touches; with the
-    corner's stiffness following that up and down under load (``corner_share="follow"``, the
-    earlier default), every loop gives the block 0.62 J (0.54 of the largest stored energy: the pump
-    behind the creep of VALIDATION.md, *Subcycling*). With ``corner_share="shrink"`` a
-    loaded corner's stiffness follows the rule down, not up: the first loop may release
-    energy (booked as breaking), and from the second on the springs are elastic. What work
+    corner's stiffness following that up and down under load (``corner_share="follow"``,
+    the earlier default), every loop gives the block 0.62 J (0.54 of the largest stored
+    energy: the pump behind the creep of VALIDATION.md, *Subcycling*). With
+    ``corner_share="shrink"`` a loaded corner's stiffness follows the rule down, not up:
+    the first loop may release energy (booked as breaking), and from the second on the
+    springs are elastic. What work
     is left is that of the gridpoint's tributary length projected on the tilted face (``cos
     theta``), at most the stored energy times ``theta_max²``, and of contacts formed a step
     late (it vanishes as the steps shrink)."""
