@@ -148,3 +148,17 @@ def test_every_continuum_run_has_one_twin_of_the_other_corner_rule():
         assert a == b
     assert rc.twin_key("t7_DSRW1_5_none_r0", "shrink") == "shrink_DSRW1_5_r0"
     assert rc.twin_key("mock_1.7_k1_r0", "follow") == "follow_1.7_k1_r0"
+
+
+def test_record_diff_names_what_changed_but_the_wall_time():
+    """The comparison behind a re-keying (validation/restamp_check.py, promote_twins.py):
+    exact equality of the histories, the mode and every summary value but the wall time,
+    including a summary value only one record has."""
+    old = {"t": [0.0, 0.1], "d_top": [0.0, 1e-3], "mode": "T",
+           "summary": {"A_col": 5.9, "wall_time": 10.0}}
+    new = json.loads(json.dumps(old))
+    new["summary"]["wall_time"] = 99.0
+    assert runcache.record_diff(old, new) == []
+    new["d_top"][1] = 1e-3 * (1 + 1e-15)
+    new["summary"]["corner_share"] = "shrink"
+    assert runcache.record_diff(old, new) == ["d_top", "summary.corner_share"]

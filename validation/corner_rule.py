@@ -212,16 +212,29 @@ def amplitude_kept(t, x, n: int = HALF_CYCLES) -> float:
     return peak(z[n - 1], z[n]) / peak(z[0], z[1])
 
 
+#: the case drawn in the figure: (gridpoints to the face, theta0 / alpha), its first 1.5 s
+FIGURE_CASE, FIGURE_SPAN, FIGURE_STEP = (16, 0.04), 1.5, 2e-3
+
+
 def compute() -> dict:
     import runcache
 
     out = {"_engine_source": runcache.source_key(*ENGINE), "cases": []}
     alpha = _body().alpha
+    grid = np.arange(0.0, FIGURE_SPAN + 0.5 * FIGURE_STEP, FIGURE_STEP)
+    fig = {"per_face": FIGURE_CASE[0], "theta0_over_alpha": FIGURE_CASE[1],
+           "t": np.round(grid, 4).tolist()}
+
+    def trace(t, x, th0):  # theta / theta0 on the figure's grid
+        return np.round(np.interp(grid, t, x) / th0, 5).tolist()
+
     for frac in FRACS:
         th0 = frac * alpha
         tw, xw = winkler(th0)
         ref = {"theta0_over_alpha": frac, "winkler_half_period": half_period(tw, xw),
                "winkler_amplitude_kept": amplitude_kept(tw, xw), "runs": []}
+        if frac == FIGURE_CASE[1]:
+            fig["winkler"] = trace(tw, xw, th0)
         for per in SPACINGS:
             for rule in RULES:
                 t, x, en = interface(rule, per, th0)
@@ -230,8 +243,10 @@ def compute() -> dict:
                                     "amplitude_kept": amplitude_kept(t, x),
                                     "slip_J": en["slip"], "break_J": en["break"],
                                     "block_change_J": en["block_change"]})
+                if (per, frac) == FIGURE_CASE:
+                    fig[rule] = trace(t, x, th0)
         out["cases"].append(ref)
-    out["figure"] = _histories()
+    out["figure"] = fig
     out["stack"] = [stack(nx, ny, rule) for nx, ny in STACK_MESHES for rule in RULES]
     OUT.parent.mkdir(parents=True, exist_ok=True)
     tmp = OUT.with_suffix(".json.tmp")
@@ -249,21 +264,6 @@ def cached() -> dict | None:
     except (OSError, ValueError):
         return None
     return rec if rec.get("_engine_source") == runcache.source_key(*ENGINE) else None
-
-
-def _histories(per_face: int = 16, frac: float = 0.04, duration: float = 1.5,
-               step: float = 2e-3) -> dict:
-    """theta / theta0 on a grid of ``step`` for the figure: the Winkler model and the
-    interface with either rule."""
-    th0 = frac * _body().alpha
-    grid = np.arange(0.0, duration + 0.5 * step, step)
-    out = {"per_face": per_face, "theta0_over_alpha": frac, "t": np.round(grid, 4).tolist()}
-    t, x = winkler(th0, duration=duration)
-    out["winkler"] = np.round(np.interp(grid, t, x) / th0, 5).tolist()
-    for rule in RULES:
-        t, x, _ = interface(rule, per_face, th0, duration=duration)
-        out[rule] = np.round(np.interp(grid, t, x) / th0, 5).tolist()
-    return out
 
 
 def figure(rec: dict, path: Path) -> None:

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import copy
+import inspect
 import json
 import sys
 import tempfile
@@ -52,14 +53,6 @@ def _with_rule(rec: dict, rule: str) -> dict:
     return rec
 
 
-def _diff(old: dict, new: dict) -> list[str]:
-    so, sn = old["summary"], new["summary"]
-    out = [f for f in ("t", "d_top", "mode") if old[f] != new[f]]
-    out += [f"summary.{k}" for k in set(so) | set(sn) if k != "wall_time"
-            and so.get(k) != sn.get(k)]
-    return out
-
-
 def plan(rc, cache: Path, old_key: str) -> dict[str, tuple[str, str]]:
     """new key -> (old key, rule it was run with) of every record to rename, from the records
     of ``cache`` made by ``old_key``."""
@@ -72,7 +65,7 @@ def plan(rc, cache: Path, old_key: str) -> dict[str, tuple[str, str]]:
         return runcache._readable(cache / f"{k}.json", old_key)
 
     for key, sp in spec.items():
-        if sp["group"] not in rc.TWIN_GROUPS and sp["group"] not in rc.S1_GROUPS[:1]:
+        if sp["group"] not in rc.TWIN_GROUPS + ("s1",):
             continue
         old_twin = rc.twin_key(key, NEW)
         if have(key):
@@ -100,8 +93,6 @@ def main(argv=None) -> int:
                     help="runs of the other backfills to recompute and compare")
     ap.add_argument("--apply", action="store_true", help="rename and re-key when identical")
     args = ap.parse_args(argv)
-    import inspect
-
     default = inspect.signature(ContinuumBackfill).parameters["corner_share"].default
     if default != NEW or rc.TWIN_RULE != OLD:
         print(f"the default corner rule is {default!r} and the twins' {rc.TWIN_RULE!r}: run "
@@ -123,7 +114,7 @@ def main(argv=None) -> int:
             old = _with_rule(json.loads((cache / f"{src}.json").read_text()), rule)
             t0 = time.time()
             rec = rc.compute(new)
-            d = _diff(old, rec)
+            d = runcache.record_diff(old, rec)
             same &= not d
             checks.append(new)
             verdict = "identical" if not d else "DIFFERENT: " + ", ".join(d)
@@ -134,7 +125,7 @@ def main(argv=None) -> int:
         old = json.loads((cache / f"{key}.json").read_text())
         t0 = time.time()
         rec = rc.compute(key)
-        d = _diff(old, rec)
+        d = runcache.record_diff(old, rec)
         same &= not d
         print(f"{key}: {'identical' if not d else 'DIFFERENT: ' + ', '.join(d)} "
               f"({time.time() - t0:.0f} s)", flush=True)

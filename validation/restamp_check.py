@@ -52,8 +52,7 @@ def main(argv=None) -> int:
         t0 = time.time()
         rec = rc.compute(key)
         so, sn = old["summary"], rec["summary"]
-        diff = [f for f in ("t", "d_top", "mode") if rec[f] != old[f]]
-        diff += [f"summary.{k}" for k in so if k != "wall_time" and so[k] != sn.get(k)]
+        diff = runcache.record_diff(old, rec)
         same_all &= not diff
         print(f"{key}: A_col {so['A_col']!r} -> {sn['A_col']!r}, "
               f"{'identical' if not diff else 'DIFFERENT: ' + ', '.join(diff)} "

@@ -91,6 +91,17 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
     return {k: json.loads((cache / f"{k}.json").read_text()) for k in keys}
 
 
+def record_diff(old: dict, new: dict) -> list[str]:
+    """The fields in which two records of the same run differ (exact equality): the histories
+    ``t`` and ``d_top``, the mode and every summary value but the wall time. Empty: the same
+    run, bit for bit (the evidence for :func:`restamp`)."""
+    so, sn = old["summary"], new["summary"]
+    out = [f for f in ("t", "d_top", "mode") if old[f] != new[f]]
+    out += [f"summary.{k}" for k in sorted(set(so) | set(sn))
+            if k != "wall_time" and so.get(k) != sn.get(k)]
+    return out
+
+
 def restamp(cache: Path, old: str, new: str, evidence: str, skip=None) -> list[str]:
     """Re-key the records of ``cache`` computed by the engine ``old`` to the engine ``new``,
     when a change of the engine's source is shown not to change a run: ``evidence`` (kept in
