@@ -284,11 +284,12 @@ def test_a_rocking_stack_gets_no_energy_from_the_interface_with_shrink():
     contacts create energy as the stack rocks (breaking negative: 1.4 J in 0.2 s, more than
     the 0.93 J given; the stack rises 10 times what it does on a 32 x 16 layer, where both
     rules agree: validation/corner_rule.py); with "shrink" they only release it (breaking
-    >= 0: a passive interface, the energy balance of a contact law)."""
+    >= 0: a passive interface, the energy balance of a contact law). The same stack with
+    "follow" is run by :func:`test_a_subcycled_impact_on_a_stiff_interface_gains_no_energy`,
+    which checks that its breaking is below -0.5 times the energy given (this test's
+    contrast: it can fail)."""
     *_, breaking = _rocking_stack(1, share="shrink")
     assert breaking >= 0.0
-    *_, breaking = _rocking_stack(1, share="follow")
-    assert breaking < -0.5
 
 
 def test_a_subcycled_run_resumes_bit_for_bit_within_a_zones_step(tmp_path):
@@ -365,7 +366,10 @@ def test_a_subcycled_impact_on_a_stiff_interface_gains_no_energy():
     at half the step; bound: twice the larger; subcycled: -0.1 %), and the uplift changes by
     less than halving the time step of one step for all changes it (1.4e-7 m against 4.3e-6 m
     of 1.45e-4 m)."""
-    _, err1, up1, _ = _rocking_stack(1)
+    _, err1, up1, breaking = _rocking_stack(1)
+    # the stack rocks on 'follow', whose corners create energy (1.4 J of 0.93 J given):
+    # the contrast of test_a_rocking_stack_gets_no_energy_from_the_interface_with_shrink
+    assert breaking < -0.5
     _, err_half, up_half, _ = _rocking_stack(1, dt_factor=0.5)
     cm, err_n, up_n, _ = _rocking_stack("auto")
     assert cm.nsub >= 8
