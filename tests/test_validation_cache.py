@@ -152,13 +152,20 @@ def test_every_continuum_run_has_one_twin_of_the_other_corner_rule():
 
 def test_record_diff_names_what_changed_but_the_wall_time():
     """The comparison behind a re-keying (validation/restamp_check.py, promote_twins.py):
-    exact equality of the histories, the mode and every summary value but the wall time,
+    exact equality of the histories, the mode and every summary value but the wall times (at any depth),
     including a summary value only one record has."""
     old = {"t": [0.0, 0.1], "d_top": [0.0, 1e-3], "mode": "T",
            "summary": {"A_col": 5.9, "wall_time": 10.0}}
     new = json.loads(json.dumps(old))
     new["summary"]["wall_time"] = 99.0
     assert runcache.record_diff(old, new) == []
+    # a wall time deeper in the summary (the disc backfill's packing) is no difference either
+    old["summary"]["options"] = {"backfill_options": {"packing_wall_time": 7.4, "n": 2053}}
+    new["summary"]["options"] = {"backfill_options": {"packing_wall_time": 9.1, "n": 2053}}
+    assert runcache.record_diff(old, new) == []
+    new["summary"]["options"]["backfill_options"]["n"] = 2054
+    assert runcache.record_diff(old, new) == ["summary.options"]
+    new["summary"]["options"]["backfill_options"]["n"] = 2053
     new["d_top"][1] = 1e-3 * (1 + 1e-15)
     new["summary"]["corner_share"] = "shrink"
     assert runcache.record_diff(old, new) == ["d_top", "summary.corner_share"]

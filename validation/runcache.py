@@ -91,14 +91,21 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
     return {k: json.loads((cache / f"{k}.json").read_text()) for k in keys}
 
 
+def _timeless(x):
+    """``x`` without the wall times it holds at any depth (keys ending in ``wall_time``: the
+    run's own and, e.g., the disc backfill's ``packing_wall_time``)."""
+    if isinstance(x, dict):
+        return {k: _timeless(v) for k, v in x.items() if not str(k).endswith("wall_time")}
+    return x
+
+
 def record_diff(old: dict, new: dict) -> list[str]:
     """The fields in which two records of the same run differ (exact equality): the histories
-    ``t`` and ``d_top``, the mode and every summary value but the wall time. Empty: the same
-    run, bit for bit (the evidence for :func:`restamp`)."""
-    so, sn = old["summary"], new["summary"]
+    ``t`` and ``d_top``, the mode and every summary value but the wall times (at any depth of
+    the summary). Empty: the same run, bit for bit (the evidence for :func:`restamp`)."""
+    so, sn = _timeless(old["summary"]), _timeless(new["summary"])
     out = [f for f in ("t", "d_top", "mode") if old[f] != new[f]]
-    out += [f"summary.{k}" for k in sorted(set(so) | set(sn))
-            if k != "wall_time" and so.get(k) != sn.get(k)]
+    out += [f"summary.{k}" for k in sorted(set(so) | set(sn)) if so.get(k) != sn.get(k)]
     return out
 
 
