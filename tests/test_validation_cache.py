@@ -152,8 +152,8 @@ def test_every_continuum_run_has_one_twin_of_the_other_corner_rule():
 
 def test_record_diff_names_what_changed_but_the_wall_time():
     """The comparison behind a re-keying (validation/restamp_check.py, promote_twins.py):
-    exact equality of the histories, the mode and every summary value but the wall times (at any depth),
-    including a summary value only one record has."""
+    exact equality of the histories, the mode and every summary value but the wall times (at
+    any depth), including a summary value only one record has."""
     old = {"t": [0.0, 0.1], "d_top": [0.0, 1e-3], "mode": "T",
            "summary": {"A_col": 5.9, "wall_time": 10.0}}
     new = json.loads(json.dumps(old))

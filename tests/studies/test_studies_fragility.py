@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 import xarray as xr
-from scipy.special import ndtr
+from scipy.special import log_ndtr, ndtr, ndtri
 
 from murus.studies.fragility import (
     fisher_covariance,
@@ -52,6 +52,82 @@ def test_msa_mle_is_the_maximum():
     assert fit.loglik == pytest.approx(ll(fit.median, fit.beta), abs=1e-8)
     for dm, db in ((1.01, 1), (0.99, 1), (1, 1.02), (1, 0.98)):
         assert ll(fit.median * dm, fit.beta * db) < fit.loglik
+
+
+def _msa_score(x, n, z, median, beta):
+    """Log-likelihood of the stripes, its gradient in ``(ln median, beta)`` and, per component,
+    the sum of the absolute values of the terms of that gradient (the scale of its rounding)."""
+    u = np.log(x / median) / beta
+    lphi = -0.5 * u * u - 0.5 * math.log(2 * math.pi)
+    lp, lq = log_ndtr(u), log_ndtr(-u)
+    r1, r2 = np.exp(lphi - lp), np.exp(lphi - lq)  # phi / Phi(u), phi / Phi(-u)
+    s = z * r1 - (n - z) * r2  # d ll / du
+    t = z * r1 + (n - z) * r2
+    grad = np.array([np.sum(-s / beta), np.sum(-s * u / beta)])
+    scale = np.array([np.sum(t / beta), np.sum(t * np.abs(u) / beta)])
+    return float(np.sum(z * lp + (n - z) * lq)), grad, scale
+
+
+@pytest.mark.parametrize("seed", [5, 11, 2024])
+def test_msa_newton_fit_is_a_stationary_maximum(seed):
+    """At the fit the score vanishes to rounding: each component is below 1000 ulp of the sum
+    of the absolute values of its 12 terms (each term is good to a few ulp, and the rounding of
+    the returned median and beta adds as much); no point of a grid around the fit, out to 0.1
+    and down to 1e-4 standard errors, has a higher log-likelihood (beyond the rounding of the
+    log-likelihood)."""
+    n = np.full(LEVELS.size, N)
+    z = draw(np.random.default_rng(seed))
+    fit = fit_msa(LEVELS, n, z)
+    assert fit.status == "ok"
+    ll, grad, scale = _msa_score(LEVELS, n, z, fit.median, fit.beta)
+    assert fit.loglik == pytest.approx(ll, abs=1e-12 * abs(ll))
+    eps = np.finfo(float).eps
+    assert np.all(np.abs(grad) <= 1e3 * eps * scale)
+    s_mu, s_b = np.sqrt(np.diag(fit.cov))
+    for h in (1e-1, 1e-2, 1e-4):
+        for i in range(-4, 5):
+            for j in range(-4, 5):
+                if i or j:
+                    m = fit.median * math.exp(0.25 * i * h * s_mu)
+                    b = fit.beta + 0.25 * j * h * s_b
+                    assert _msa_score(LEVELS, n, z, m, b)[0] <= fit.loglik + 8 * eps * abs(ll)
+
+
+@pytest.mark.parametrize("x, n, z", [([0.2, 0.5], [10, 10], [3, 8]),
+                                     ([0.1, 1.5], [7, 40], [1, 39]),
+                                     ([0.3, 0.31], [25, 25], [5, 20])])
+def test_msa_two_stripes_reproduce_the_fractions(x, n, z):
+    """Two stripes, two parameters: the model is exactly identified and the MLE reproduces the
+    observed fractions, ``Phi(ln(x_j / median) / beta) = z_j / n_j``, i.e. the closed form
+    ``beta = ln(x2 / x1) / (u2 - u1)``, ``ln median = ln x1 - beta u1`` with
+    ``u_j = Phi^-1(z_j / n_j)``."""
+    x, n, z = (np.asarray(a, dtype=float) for a in (x, n, z))
+    fit = fit_msa(x, n, z)
+    assert fit.status == "ok"
+    assert np.all(np.abs(ndtr(np.log(x / fit.median) / fit.beta) - z / n) < 1e-9)
+    u = ndtri(z / n)
+    beta = math.log(x[1] / x[0]) / (u[1] - u[0])
+    assert fit.beta == pytest.approx(beta, rel=1e-9)
+    assert fit.median == pytest.approx(x[0] * math.exp(-beta * u[0]), rel=1e-9)
+    p = z / n
+    assert fit.loglik == pytest.approx(np.sum(z * np.log(p) + (n - z) * np.log1p(-p)),
+                                       abs=1e-9)
+
+
+def test_msa_quasi_separated_stripes_are_at_the_bound():
+    """Stripes all 0 below one level and all n above it, with the mixed stripe in between: the
+    likelihood grows as beta -> 0 (no finite MLE), so beta is at its lower bound, 0.01, and the
+    fraction at the mixed level is matched exactly (the other stripes, 69 standard deviations
+    away at beta = 0.01, add nothing): the log-likelihood is that of that stripe alone."""
+    lv = np.array([0.1, 0.2, 0.4, 0.8])
+    n = np.full(4, 10)
+    fit = fit_msa(lv, n, np.array([0, 4, 10, 10]))
+    assert fit.status == "boundary" and fit.beta == 0.01
+    assert ndtr(math.log(0.2 / fit.median) / fit.beta) == pytest.approx(0.4, abs=1e-12)
+    assert fit.loglik == pytest.approx(4 * math.log(0.4) + 6 * math.log(0.6), abs=1e-12)
+    # decreasing fractions: the slope 1 / beta would be negative, beta is at its upper bound 5
+    dec = fit_msa(lv, n, np.array([9, 6, 3, 1]))
+    assert dec.status == "boundary" and dec.beta == 5.0
 
 
 def test_msa_sampling_distribution_matches_fisher():

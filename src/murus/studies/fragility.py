@@ -112,6 +112,137 @@ def _check_stripes(levels, n, z):
     return x[keep], n[keep], z[keep]
 
 
+_LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
+
+
+def _probit_nll(a: float, b: float, v, z, m):
+    """Negative log-likelihood of the stripes at ``u = a + b v`` (binomial coefficients
+    omitted), or ``inf`` where it is not finite."""
+    from scipy.special import log_ndtr
+
+    u = a + b * v
+    with np.errstate(over="ignore", invalid="ignore"):
+        f = -float(z @ log_ndtr(u) + m @ log_ndtr(-u))
+    return f if math.isfinite(f) else math.inf
+
+
+def _probit_derivatives(a: float, b: float, v, z, m):
+    """Negative log-likelihood ``f`` of the stripes at ``u = a + b v``, its gradient and Hessian
+    in ``(a, b)``.
+
+    With ``r1 = phi(u) / Phi(u)`` and ``r2 = phi(u) / Phi(-u)`` (from :func:`log_ndtr`, stable
+    for large ``|u|``), ``df/du = -z r1 + m r2`` and ``d2f/du2 = z r1 (u + r1) + m r2 (r2 - u)``,
+    each curvature term being in ``(0, 1)`` (the normal CDF is strongly log-concave: it is
+    clipped there against the cancellation in ``u + r1`` for ``u << 0``).
+
+    Parameters
+    ----------
+    a, b : float
+        Probit intercept and slope.
+    v : numpy.ndarray
+        Centred log IM levels.
+    z, m : numpy.ndarray
+        Records exceeding and not exceeding at each level.
+
+    Returns
+    -------
+    f : float
+    grad : numpy.ndarray
+        ``(df/da, df/db)``.
+    hess : numpy.ndarray
+        2 x 2.
+    """
+    from scipy.special import log_ndtr
+
+    u = a + b * v
+    lp, lq = log_ndtr(u), log_ndtr(-u)
+    f = -float(z @ lp + m @ lq)
+    lphi = -0.5 * u * u - _LOG_SQRT_2PI
+    r1 = np.exp(lphi - lp)  # phi / Phi(u)
+    r2 = np.exp(lphi - lq)  # phi / Phi(-u)
+    d = m * r2 - z * r1
+    w = z * np.clip(r1 * (u + r1), 0.0, 1.0) + m * np.clip(r2 * (r2 - u), 0.0, 1.0)
+    wv = w * v
+    grad = np.array([d.sum(), d @ v])
+    hess = np.array([[w.sum(), wv.sum()], [wv.sum(), wv @ v]])
+    return f, grad, hess
+
+
+def _newton_direction(grad, hess):
+    """``-hess^-1 grad``, with a ridge if ``hess`` is (numerically) singular."""
+    h00, h01, h11 = hess[0, 0], hess[0, 1], hess[1, 1]
+    scale = max(h00, h11, 1e-300)
+    ridge = 0.0
+    for _ in range(60):
+        p, s = h00 + ridge, h11 + ridge
+        det = p * s - h01 * h01
+        if det > 1e-12 * p * s and p > 0:
+            return np.array([-(s * grad[0] - h01 * grad[1]) / det,
+                             -(p * grad[1] - h01 * grad[0]) / det])
+        ridge = max(4.0 * ridge, 1e-10 * scale)
+    return -grad / scale
+
+
+def _fit_probit(v, z, m, a0: float, b0: float, b_min: float, b_max: float,
+                max_iter: int = 100):
+    """Minimise the negative log-likelihood of the probit model ``P = Phi(a + b v)`` over
+    ``b_min <= b <= b_max`` by a projected, damped Newton method (the function is convex):
+    analytic gradient and Hessian, Armijo backtracking along the projected path; when ``b`` is
+    at a bound and the Newton step points out of the box, ``b`` is held there and the step is
+    taken in ``a`` alone. Stops on a Newton decrement ``-g^T d < 1e-28 (1 + |f|)`` (about 1000
+    times the decrement left by rounding: the gradient is then zero to rounding), on a step
+    below rounding, or when no decrease is found along the Newton direction.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Centred log IM levels.
+    z, m : numpy.ndarray
+        Records exceeding and not exceeding at each level.
+    a0, b0 : float
+        Start.
+    b_min, b_max : float
+        Bounds of ``b`` (equal: ``b`` is held there and only ``a`` is fitted).
+    max_iter : int
+        Most Newton steps.
+
+    Returns
+    -------
+    a, b, f : float
+        The optimum and the negative log-likelihood there.
+    """
+    a, b = a0, min(max(b0, b_min), b_max)
+    f, g, H = _probit_derivatives(a, b, v, z, m)
+    tol = 1e-28
+    for _ in range(max_iter):
+        d = _newton_direction(g, H)
+        at_lo = b <= b_min * (1.0 + 1e-12) and d[1] < 0.0
+        at_hi = b >= b_max * (1.0 - 1e-12) and d[1] > 0.0
+        if at_lo or at_hi or b_min >= b_max:  # a bound is active: Newton in a alone
+            b = b_min if at_lo else b_max
+            d = np.array([-g[0] / H[0, 0] if H[0, 0] > 0 else -g[0], 0.0])
+        dec = -float(g @ d)  # Newton decrement squared
+        if not dec > tol * (1.0 + abs(f)):
+            break
+        slack = 4e-16 * (1.0 + abs(f))  # rounding of f
+        t = 1.0
+        while t > 1e-12:
+            at = a + t * d[0]
+            bt = min(max(b + t * d[1], b_min), b_max)
+            ft = _probit_nll(at, bt, v, z, m)
+            if ft <= f + 1e-4 * min(g[0] * (at - a) + g[1] * (bt - b), 0.0) + slack:
+                break
+            t *= 0.5
+        else:
+            break  # no decrease along the Newton direction: at the optimum to rounding
+        small = abs(at - a) <= 4e-16 * (1.0 + abs(a)) and abs(bt - b) <= 4e-16 * b
+        a, b = at, bt
+        f, g, H = _probit_derivatives(a, b, v, z, m)
+        if small:
+            break
+    return a, b, f
+
+
 def fit_msa(levels, n, z) -> FragilityFit:
     """Maximum-likelihood lognormal fragility from stripes: ``z[j]`` of ``n[j]`` records exceed
     the limit state at the level ``levels[j]`` (Baker 2015 eq. 11).
@@ -129,12 +260,20 @@ def fit_msa(levels, n, z) -> FragilityFit:
     -------
     FragilityFit
 
+    Notes
+    -----
+    The likelihood is maximised as a probit regression ``p_j = Phi(a + b ln x_j)``, convex in
+    ``(a, b)``, by a projected Newton method with the analytic gradient and Hessian
+    (:func:`_fit_probit`), ``b = 1 / beta`` bounded to ``beta`` in [0.01, 5]. Without a finite
+    maximum, the fit is at a bound of ``beta`` (status ``"boundary"``): separated stripes (all 0
+    below a level, all ``n`` above it, at most the stripes of that one level mixed: beta = 0.01)
+    or fractions flat or decreasing with the IM (the best ``beta`` above 5: beta = 5).
+
     References
     ----------
     Baker (2015), eq. 11.
     """
-    from scipy.optimize import minimize
-    from scipy.special import log_ndtr
+    from scipy.special import ndtri
 
     x, n, z = _check_stripes(levels, n, z)
     nan2 = np.full((2, 2), np.nan)
@@ -154,31 +293,29 @@ def fit_msa(levels, n, z) -> FragilityFit:
             med = math.exp(0.5 * (below.max() + above.min()))
             return FragilityFit(med, 1.0 / _B_MAX, nan2, 0.0, "boundary")
 
-    def nll(q):
-        a, b = q
-        u = a + b * lx
-        lp, lq = log_ndtr(u), log_ndtr(-u)
-        f = -np.sum(z * lp + (n - z) * lq)
-        phi = np.exp(-0.5 * u * u) / math.sqrt(2 * math.pi)
-        r1 = np.exp(np.log(phi + 1e-300) - lp)  # phi / Phi(u)
-        r2 = np.exp(np.log(phi + 1e-300) - lq)  # phi / Phi(-u)
-        du = -(z * r1 - (n - z) * r2)
-        return f, np.array([du.sum(), (du * lx).sum()])
-
-    # start: beta = 0.5 and the median where the observed fraction crosses one half
-    frac = z / n
-    lm0 = float(np.interp(0.5, np.maximum.accumulate(frac), lx)) if frac.max() > 0.5 \
-        else float(lx.max() + 0.5)
-    b0 = 2.0  # the problem is convex in (a, b): one start is enough
-    best = minimize(nll, np.array([-lm0 * b0, b0]), jac=True, method="L-BFGS-B",
-                    bounds=[(None, None), (_B_MIN, _B_MAX)],
-                    options={"ftol": 1e-15, "gtol": 1e-10, "maxiter": 500})
-    a, b = best.x
+    # the levels are centred (u = a + b (ln x - c)) for the conditioning of the Newton steps
+    c = float(n @ lx / n.sum())
+    v = lx - c
+    top = lx[z < n].max()
+    if top <= lx[z > 0].min():
+        # quasi-separated: the stripes below the level top are all 0, those above all n; the
+        # likelihood grows (ever more slowly) as beta -> 0, its profile in b = 1/beta being
+        # convex and decreasing: b is at its upper bound, the fraction at top is matched
+        at = lx == top
+        a0 = float(ndtri(z[at].sum() / n[at].sum())) - _B_MAX * (top - c)
+        a, b, f = _fit_probit(v, z, n - z, a0, _B_MAX, _B_MAX, _B_MAX)
+    else:
+        # start: beta = 0.5 and the median where the observed fraction crosses one half
+        frac = z / n
+        lm0 = float(np.interp(0.5, np.maximum.accumulate(frac), lx)) if frac.max() > 0.5 \
+            else float(lx.max() + 0.5)
+        b0 = 2.0  # the problem is convex in (a, b): one start is enough
+        a, b, f = _fit_probit(v, z, n - z, b0 * (c - lm0), b0, _B_MIN, _B_MAX)
     beta = 1.0 / b
-    median = math.exp(-a / b)
+    median = math.exp(c - a / b)
     status = "boundary" if (b <= _B_MIN * (1 + 1e-6) or b >= _B_MAX * (1 - 1e-6)) else "ok"
     cov = fisher_covariance(median, beta, x, n) if status == "ok" else nan2
-    return FragilityFit(median, beta, cov, float(-best.fun), status)
+    return FragilityFit(median, beta, cov, -f, status)
 
 
 def fisher_covariance(median: float, beta: float, levels, n) -> np.ndarray:
