@@ -69,9 +69,24 @@ def _err(a, b) -> str:
     return f"{100 * (a / b - 1):+.0f} %"
 
 
+def _corner_rule(row: dict) -> str:
+    """The interface's corner rule the S2 case of ``row`` was run with: listed in its summary
+    since session 19; before, the default of the time, "follow"."""
+    name = f"S2_{float(row['frequency_Hz']):g}Hz_{row['vertical']}"
+    path = CACHE / row["wall"] / "cases" / f"{name}.json"
+    try:
+        bo = json.loads(path.read_text())["summary"]["options"]["backfill_options"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return "unknown"
+    return bo.get("corner_share", "follow") if isinstance(bo, dict) else "unknown"
+
+
 def _against_nominal(res: dict) -> tuple[list[str], list[str]]:
     """The S2 cases whose A_col equals (first list) or differs from (second) the nominal run
-    of the same case in the continuum validation's cache (cases without one are skipped)."""
+    of the same case and corner rule in the continuum validation's cache (cases without one
+    are skipped)."""
+    import retaining_continuum as rc
+
     same, diff = [], []
     cont = ROOT / "validation" / "results" / "retaining_continuum"
     for r in res.values():
@@ -79,7 +94,11 @@ def _against_nominal(res: dict) -> tuple[list[str], list[str]]:
             if row["collapsed"] is not True:
                 continue
             tag = f"{row['wall']}_{float(row['frequency_Hz']):g}_{row['vertical']}"
-            path = cont / f"t7_{tag}_r0.json"
+            key = f"t7_{tag}_r0"
+            rule = _corner_rule(row)
+            if rule == rc.TWIN_RULE:
+                key = rc.twin_key(key)
+            path = cont / f"{key}.json"
             if not path.exists():
                 continue
             a = json.loads(path.read_text())["summary"].get("A_col")
@@ -145,6 +164,14 @@ def section(workers: int = 1, cached: bool = False) -> str:
                      f"{_f(sa)} | {a_txt} | {_f(sp)} | {_f(row['A_pseudo_m_s2'])} | {_f(sr)} | "
                      f"{_f(row['r']) if ok else '—'} | {c} |")
     L.append("")
+    rules = sorted({_corner_rule(row) for r in res.values() for row in r.table.rows})
+    if rules and rules != ["shrink"]:
+        L.append(f"- **The cached cases were run with the corner rule {', '.join(rules)}** (the "
+                 "interface's `corner_share`; the default before session 19 was 'follow', "
+                 "since then 'shrink': VALIDATION.md, *The corner rule*). They stand for that "
+                 "rule until the studies are run again (delete the study folders and run "
+                 "`python validation/retaining_behaviour.py --workers 2`, about 1.5 "
+                 "core-hours); the continuum section below gives both rules.")
     same, diff = _against_nominal(res)
     if same or diff:
         L.append(f"- The study's S2 runs against the nominal runs of the continuum section "
