@@ -16,7 +16,7 @@ XDIST_GROUPS = ("tests/continuum/",)
 #: worker has run the rest (a fresh clone: mid-way through the collection was too early, and it
 #: compiled the coupled kernels a second time: 280 s instead of 170 s).
 AFTER_THE_REST = ("tests/continuum/test_continuum_retaining_backfill.py::"
-          "test_the_shipped_command_reproduces_the_validated_a_col",)
+                  "test_the_shipped_command_reproduces_the_validated_a_col",)
 
 
 #: Folders collected last: their tests run the distinct-element kernels, which the continuum
@@ -32,9 +32,9 @@ def pytest_collection_modifyitems(config, items):
     def late(it):
         return it.nodeid.startswith(LATE)
 
-    mid = [it for it in items if it.nodeid in AFTER_THE_REST]
+    after = [it for it in items if it.nodeid in AFTER_THE_REST]
     rest = [it for it in items if it.nodeid not in AFTER_THE_REST]
-    items[:] = [it for it in rest if not late(it)] + mid + [it for it in rest if late(it)]
+    items[:] = [it for it in rest if not late(it)] + after + [it for it in rest if late(it)]
 
 
 @pytest.hookimpl(tryfirst=True, optionalhook=True)
