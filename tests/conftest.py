@@ -23,7 +23,7 @@ AFTER_THE_REST = ("tests/continuum/test_continuum_retaining_backfill.py::"
 #: group's first test compiles on its worker (with the coupled ones) during the first minutes;
 #: the other worker meanwhile runs the rest, then finds these kernels in numba's cache instead
 #: of compiling them a second time at the same moment.
-LATE = ("tests/dem/", "tests/retaining/", "tests/test_threads.py")
+LATE = ("tests/dem/", "tests/retaining/")
 
 
 def pytest_collection_modifyitems(config, items):
