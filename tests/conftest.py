@@ -9,14 +9,13 @@ DATA = Path(__file__).parent / "data"
 #: interface and DEM kernels: minutes, cold), which two workers would otherwise compile twice at
 #: the same time on the machine's two cores.
 XDIST_GROUPS = ("tests/continuum/",)
-#: Long tests taken out of their folder's group and collected just before the folders of
-#: :data:`LATE`: the shipped command's collapse run (about 170 s) would otherwise lengthen the
-#: continuum group, the suite's longest unit on one worker (its first test compiles the
-#: coupled kernels, about 190 s cold); collected there, it runs on the other worker once that
-#: worker has run the rest (a fresh clone: mid-way through the collection was too early, and it
-#: compiled the coupled kernels a second time: 280 s instead of 170 s).
-AFTER_THE_REST = ("tests/continuum/test_continuum_retaining_backfill.py::"
-                  "test_the_shipped_command_reproduces_the_validated_a_col",)
+#: Long tests taken out of their folder's group and collected mid-way through the suite: the
+#: shipped command's collapse run (about 170 s) would otherwise lengthen the continuum group,
+#: the suite's longest unit on one worker (its first test compiles the coupled kernels, about
+#: 180 s cold); scheduled mid-way, it runs on whichever worker is free, after those kernels are
+#: in numba's cache.
+MIDWAY = ("tests/continuum/test_continuum_retaining_backfill.py::"
+          "test_the_shipped_command_reproduces_the_validated_a_col",)
 
 
 #: Folders collected last: their tests run the distinct-element kernels, which the continuum
@@ -28,13 +27,15 @@ LATE = ("tests/dem/", "tests/retaining/")
 
 def pytest_collection_modifyitems(config, items):
     """Reorder the collection (the order in which ``--dist loadgroup`` hands the units to the
-    workers): the tests of :data:`AFTER_THE_REST`, then the folders of :data:`LATE`, last."""
+    workers): the folders of :data:`LATE` last, the tests of :data:`MIDWAY` in the middle."""
     def late(it):
         return it.nodeid.startswith(LATE)
 
-    after = [it for it in items if it.nodeid in AFTER_THE_REST]
-    rest = [it for it in items if it.nodeid not in AFTER_THE_REST]
-    items[:] = [it for it in rest if not late(it)] + after + [it for it in rest if late(it)]
+    mid = [it for it in items if it.nodeid in MIDWAY]
+    rest = [it for it in items if it.nodeid not in MIDWAY]
+    rest = [it for it in rest if not late(it)] + [it for it in rest if late(it)]
+    k = len(rest) // 2
+    items[:] = rest[:k] + mid + rest[k:]
 
 
 @pytest.hookimpl(tryfirst=True, optionalhook=True)
@@ -49,7 +50,7 @@ def pytest_xdist_make_scheduler(config, log):
 
     class FolderGroups(LoadGroupScheduling):
         def _split_scope(self, nodeid):
-            if nodeid in AFTER_THE_REST:
+            if nodeid in MIDWAY:
                 return nodeid
             for folder in XDIST_GROUPS:
                 if nodeid.startswith(folder):
