@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import argparse
 import copy
-import inspect
 import json
 import sys
 import tempfile
@@ -82,8 +81,6 @@ def main(argv=None) -> int:
     import retaining_continuum as rc
     import runcache
 
-    from murus.retaining.continuum_backfill import ContinuumBackfill
-
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("old", help="engine key of the records (the engine before the change)")
     ap.add_argument("--check", nargs="+", required=True,
@@ -93,7 +90,7 @@ def main(argv=None) -> int:
                     help="runs of the other backfills to recompute and compare")
     ap.add_argument("--apply", action="store_true", help="rename and re-key when identical")
     args = ap.parse_args(argv)
-    default = inspect.signature(ContinuumBackfill).parameters["corner_share"].default
+    default = rc.default_rule()
     if default != NEW or rc.TWIN_RULE != OLD:
         print(f"the default corner rule is {default!r} and the twins' {rc.TWIN_RULE!r}: run "
               f"this after the change to {NEW!r} (twins {OLD!r})")

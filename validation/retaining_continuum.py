@@ -187,6 +187,15 @@ def runs() -> dict[str, dict]:
 #: the interface's corner rule of the twins (``corner_share``): the one that is not the
 #: default, so that the tables compare the two (VALIDATION.md, *The corner rule*)
 TWIN_RULE = "follow"
+def default_rule() -> str:
+    """The interface's default corner rule (``ContinuumBackfill``'s ``corner_share``)."""
+    import inspect
+
+    from murus.retaining.continuum_backfill import ContinuumBackfill
+
+    return inspect.signature(ContinuumBackfill).parameters["corner_share"].default
+
+
 #: groups of runs with a twin of the other corner rule (group ``<TWIN_RULE>_<group>``)
 TWIN_GROUPS = ("t7", "mesh", "width", "boundary", "scale", "mock", "mock_k1e-3", "mock_k1e-1",
                "mock_k1", "mock_phi", "mock30")
@@ -928,7 +937,7 @@ def _twin_text(recs: dict, fig_dir: Path, rel) -> list[str]:
                 "yes" if b[1] <= a[2] and a[1] <= b[2] else "no")
         ch.append((c, meet, _label(sp)))
         rows.append(f"| {_label(sp)} | {cell(a, pre)} | {cell(b, tw)} | {c:+.1f} % | {meet} |")
-    default = "follow" if TWIN_RULE == "shrink" else "shrink"
+    default = default_rule()
     out = [f"#### The corner rule: '{TWIN_RULE}' against the default '{default}'", ""]
     out += _winkler_text(fig_dir, rel)
     if not rows:
@@ -980,13 +989,8 @@ def _not_yet(recs: dict) -> list[str]:
            and twin_key(k) in recs]
     if not gap:
         return []
-    import inspect
-
-    from murus.retaining.continuum_backfill import ContinuumBackfill
-
-    default = inspect.signature(ContinuumBackfill).parameters["corner_share"].default
     return [f"**{len(gap)} runs are not computed yet with the corner rule that is the default "
-            f"since session 19** (`corner_share=\"{default}\"`): a cell \"not run\" or "
+            f"since session 19** (`corner_share=\"{default_rule()}\"`): a cell \"not run\" or "
             f"\"n runs of 5\" below is one of them. Their runs with the earlier default "
             f"'{TWIN_RULE}', which every table of this section showed until then, are in "
             f"*The corner rule* below, case by case (`python "
