@@ -164,11 +164,14 @@ def section(workers: int = 1, cached: bool = False) -> str:
                      f"{_f(sa)} | {a_txt} | {_f(sp)} | {_f(row['A_pseudo_m_s2'])} | {_f(sr)} | "
                      f"{_f(row['r']) if ok else '—'} | {c} |")
     L.append("")
+    import retaining_continuum as rc
+
     rules = sorted({_corner_rule(row) for r in res.values() for row in r.table.rows})
-    if rules and rules != ["shrink"]:
+    if rules and rules != [rc.default_rule()]:
         L.append(f"- **The cached cases were run with the corner rule {', '.join(rules)}** (the "
                  "interface's `corner_share`; the default before session 19 was 'follow', "
-                 "since then 'shrink': VALIDATION.md, *The corner rule*). They stand for that "
+                 f"since then '{rc.default_rule()}': VALIDATION.md, *The corner rule*). They "
+                 "stand for that "
                  "rule until the studies are run again (delete the study folders and run "
                  "`python validation/retaining_behaviour.py --workers 2`, about 1.5 "
                  "core-hours); the continuum section below gives both rules.")
