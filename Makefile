@@ -26,7 +26,7 @@ demo: $(STAMP)
 
 test: $(TSTAMP)
 	$(BIN)/python -m ruff check src tests benchmarks validation
-	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadgroup
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist load
 
 validate: $(TSTAMP)
 	$(BIN)/python validation/run.py --out VALIDATION.md

@@ -1,63 +1,56 @@
+import os
 from pathlib import Path
 
 import pytest
 
 DATA = Path(__file__).parent / "data"
 
-#: Test folders that ``make test`` (pytest-xdist, ``--dist loadgroup``) runs on one worker each:
-#: their first tests compile large numba kernels (the coupled model's step inlines the continuum,
-#: interface and DEM kernels: minutes, cold), which two workers would otherwise compile twice at
-#: the same time on the machine's two cores.
-XDIST_GROUPS = ("tests/continuum/",)
-#: Long tests taken out of their folder's group and collected mid-way through the suite: the
-#: shipped command's collapse run (about 170 s) would otherwise lengthen the continuum group,
-#: the suite's longest unit on one worker (its first test compiles the coupled kernels, about
-#: 180 s cold); scheduled mid-way, it runs on whichever worker is free, after those kernels are
-#: in numba's cache.
-MIDWAY = ("tests/continuum/test_continuum_retaining_backfill.py::"
-          "test_the_shipped_command_reproduces_the_validated_a_col",)
-
-
-#: Folders collected last: their tests run the distinct-element kernels, which the continuum
-#: group's first test compiles on its worker (with the coupled ones) during the first minutes;
-#: the other worker meanwhile runs the rest, then finds these kernels in numba's cache instead
-#: of compiling them a second time at the same moment.
-LATE = ("tests/dem/", "tests/retaining/")
+#: Tests that run the large numba kernels (the distinct-element contact loop, the coupled
+#: model of stones and zones): minutes to compile, cold. They are collected after the others,
+#: and :func:`_one_cold_compile_at_a_time` keeps the two workers of ``make test`` from compiling
+#: them at the same moment on the machine's two cores.
+HEAVY = ("tests/continuum/", "tests/dem/", "tests/retaining/", "tests/test_limit.py",
+         "tests/test_threads.py")
+#: The test collected first, so that a worker starts on it at once: it compiles the contact
+#: loop and the coupled kernels (about four minutes, cold) while the other worker runs the
+#: light tests.
+FIRST = ("tests/continuum/test_continuum_coupled.py::"
+         "test_block_on_an_elastic_layer_settles_to_the_closed_form")
 
 
 def pytest_collection_modifyitems(config, items):
-    """Reorder the collection (the order in which ``--dist loadgroup`` hands the units to the
-    workers): the folders of :data:`LATE` last, the tests of :data:`MIDWAY` in the middle."""
-    def late(it):
-        return it.nodeid.startswith(LATE)
-
-    mid = [it for it in items if it.nodeid in MIDWAY]
-    rest = [it for it in items if it.nodeid not in MIDWAY]
-    rest = [it for it in rest if not late(it)] + [it for it in rest if late(it)]
-    k = len(rest) // 2
-    items[:] = rest[:k] + mid + rest[k:]
+    """Reorder the collection (the order in which pytest-xdist hands the tests to the workers,
+    in consecutive batches): :data:`FIRST`, the light tests, then the :data:`HEAVY` ones."""
+    first = [it for it in items if it.nodeid == FIRST]
+    rest = [it for it in items if it.nodeid != FIRST]
+    items[:] = (first + [it for it in rest if not it.nodeid.startswith(HEAVY)]
+                + [it for it in rest if it.nodeid.startswith(HEAVY)])
 
 
-@pytest.hookimpl(tryfirst=True, optionalhook=True)
-def pytest_xdist_make_scheduler(config, log):
-    """The loadgroup schedule with the folders of ``XDIST_GROUPS`` as groups. Grouping by
-    ``xdist_group`` marks added at collection does not work with pytest 9.2 (pytest-xdist 3.8
-    groups by rewriting node ids, which pytest 9.2 no longer reads: pytest-xdist issue #1386),
-    so the scheduler groups by node id itself."""
-    if config.getoption("dist") != "loadgroup":
-        return None
-    from xdist.scheduler import LoadGroupScheduling
+_COMPILED = []
 
-    class FolderGroups(LoadGroupScheduling):
-        def _split_scope(self, nodeid):
-            if nodeid in MIDWAY:
-                return nodeid
-            for folder in XDIST_GROUPS:
-                if nodeid.startswith(folder):
-                    return folder
-            return super()._split_scope(nodeid)
 
-    return FolderGroups(config, log)
+@pytest.fixture(autouse=True)
+def _one_cold_compile_at_a_time(request, tmp_path_factory):
+    """The first :data:`HEAVY` test of each pytest-xdist worker runs under a lock shared by
+    the workers: the first worker to get there compiles the large kernels into numba's disk
+    cache; the other, arriving meanwhile, waits for it and then loads them from the cache
+    (seconds) instead of compiling them a second time beside it (which cost the suite over two
+    minutes). No lock in a single process."""
+    if (_COMPILED or os.environ.get("PYTEST_XDIST_WORKER") is None
+            or not request.node.nodeid.startswith(HEAVY)):
+        yield
+        return
+    _COMPILED.append(request.node.nodeid)
+    import fcntl
+
+    lock = tmp_path_factory.getbasetemp().parent / "murus-kernels.lock"
+    with open(lock, "a") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
 
 
 @pytest.fixture

@@ -2,6 +2,10 @@
 governor's decisions from given timings, who decides, and DEM results that do not depend on
 the split of a chunk nor on the thread count. No timings are asserted (benchmarks/)."""
 
+import os
+import subprocess
+import sys
+
 import numba
 import numpy as np
 import pytest
@@ -126,11 +130,22 @@ def test_who_decides(monkeypatch):
         monkeypatch.setenv("MURUS_THREADS", bad)
         with pytest.raises(ValueError, match="MURUS_THREADS"):
             T.resolve()
-    monkeypatch.delenv("MURUS_THREADS")
-    monkeypatch.setenv("NUMBA_NUM_THREADS", "1")
-    assert T.resolve() == numba.get_num_threads()  # explicit: the count as it is set
-    g = T.Governor.for_run()
-    assert g.fixed and g.cap == numba.get_num_threads()
+
+
+def test_an_explicit_numba_num_threads_is_kept():
+    """NUMBA_NUM_THREADS set by the user: the count as it is set, a fixed governor. In a fresh
+    interpreter: numba refuses a changed NUMBA_NUM_THREADS once its threads run, which they do
+    in this one as soon as any test before has run a parallel kernel."""
+    code = ("import numba\n"
+            "from murus import threads as T\n"
+            "assert T.resolve() == numba.get_num_threads() == 1, T.resolve()\n"
+            "g = T.Governor.for_run()\n"
+            "assert g.fixed and g.cap == 1, (g.fixed, g.cap)\n")
+    env = {k: v for k, v in os.environ.items() if k != "MURUS_THREADS"}
+    env["NUMBA_NUM_THREADS"] = "1"
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
 
 
 def test_wait_policy_set_unless_the_user_chose(monkeypatch):

@@ -52,10 +52,29 @@ def _copies(nt):
     return type(nt)(*[a.copy() for a in nt])
 
 
-def test_parallel_loops_write_the_state():
+#: the contact loop run by the interpreter (NUMBA_DISABLE_JIT=1: the loop body as Python, the
+#: parallel loop a plain one) on the state pickled by the test, its outputs pickled back
+_INTERPRETED = """
+import pickle, sys
+from murus.dem import kernels as K
+args = pickle.load(open(sys.argv[1], "rb"))
+K._contacts_parallel(*args)
+pickle.dump((args[0], args[1], args[-1]), open(sys.argv[2], "wb"))
+"""
+
+
+def test_parallel_loops_write_the_state(tmp_path):
     """The parallel contact and body loops write the structures they are given, as the serial
     ones do (numba drops writes through a named-tuple attribute inside a prange loop, numba
-    issue #7135: the kernels write by field position)."""
+    issue #7135: the kernels write by field position). The reference of the contact loop is
+    the same code run by the interpreter in a fresh process (``NUMBA_DISABLE_JIT=1``), to the
+    last bit: a compiled serial copy of the loop would cost the suite minutes of compilation
+    (``_contacts_serial``, kept for the benchmarks)."""
+    import os
+    import pickle
+    import subprocess
+    import sys
+
     m = Model(joint=Joint(kn=1e9, ks=1e9, friction_deg=35), rounding=1e-3)
     m.add_rectangle(0.8, 0.2, center=(0.0, 0.1), kinematic="fixed")
     top = m.add_rectangle(0.4, 0.2, center=(0.17, 0.3))
@@ -63,17 +82,23 @@ def test_parallel_loops_write_the_state():
     m.bvel[top] = (0.01, 0.0)  # sliding: the shear forces change
     m.bomg[top] = 0.01
     n = m.pairs.shape[0]
-    out = {}
-    for name, loop in (("ser", K._contacts_serial), ("par", K._contacts_parallel)):
-        c = _copies(kd.pack(kd.Contacts, m))
-        pw = np.zeros((n, K.NW))
-        nact = np.zeros(n, np.int64)
-        loop(c, pw, kd.pack(kd.Shapes, m), kd.pack(kd.Bodies, m), m.jprops, m.dt,
-             m.thickness, m.P[K.P_REACH], nact)
-        out[name] = c
-    assert not np.array_equal(out["ser"].sf[..., K.F_FS], m.sf[..., K.F_FS])
-    for a, b in zip(out["ser"], out["par"], strict=True):
+    args = (_copies(kd.pack(kd.Contacts, m)), np.zeros((n, K.NW)), kd.pack(kd.Shapes, m),
+            kd.pack(kd.Bodies, m), m.jprops, m.dt, m.thickness, m.P[K.P_REACH],
+            np.zeros(n, np.int64))
+    (tmp_path / "in.pkl").write_bytes(pickle.dumps(args))
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    run = subprocess.run([sys.executable, "-c", _INTERPRETED, str(tmp_path / "in.pkl"),
+                          str(tmp_path / "out.pkl")], env=env, capture_output=True, text=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
+    ref = pickle.loads((tmp_path / "out.pkl").read_bytes())
+    K._contacts_parallel(*args)
+    out = (args[0], args[1], args[-1])
+    assert not np.array_equal(ref[0].sf[..., K.F_FS], m.sf[..., K.F_FS])
+    assert np.any(ref[2] > 0) and np.any(ref[1] != 0.0)
+    for a, b in zip(ref[0], out[0], strict=True):
         assert np.array_equal(a, b)
+    assert np.array_equal(ref[1], out[1]) and np.array_equal(ref[2], out[2])
     fb = np.zeros((m.nbody, 3))
     fr = kd.Frame(0.0, 0.0, 0.0, 0.0, 0.0, -9.81, 0.0, 0.0)
     bsp, bsh = K.incidence(m.sbody, m.nbody)

@@ -130,3 +130,25 @@ def test_interrupt_wrapped_by_numba_stops_the_run():
         run_tasks(_numba_like, [(0, 1), (1, 2)], "serial", retries=2,
                   on_result=lambda i, r: got.__setitem__(i, r))
     assert got == {}
+
+
+
+def test_limiting_the_threads_leaves_the_environment_as_it_was(monkeypatch):
+    """``limit_threads`` in a process that has imported numba (a forked worker, or the
+    caller's process when tasks run there) limits the threads of this thread and leaves
+    ``NUMBA_NUM_THREADS`` alone: numba refuses a changed value at its next compilation once its
+    threads run, so every later compilation in the process failed."""
+    import os
+
+    import numba
+
+    from murus.studies.executors import limit_threads
+
+    monkeypatch.delenv("NUMBA_NUM_THREADS", raising=False)
+    before = numba.get_num_threads()
+    try:
+        limit_threads(1)
+        assert numba.get_num_threads() == 1
+        assert "NUMBA_NUM_THREADS" not in os.environ
+    finally:
+        numba.set_num_threads(before)

@@ -339,8 +339,10 @@ def detect(m) -> None:
     n = m.pairs.shape[0]
     dis = np.zeros((n, K.NW))
     nact = np.zeros(n, np.int64)
-    K._contacts_serial(kd.pack(kd.Contacts, m), dis, shapes, kd.pack(kd.Bodies, m), m.jprops,
-                       0.0, m.thickness, m.P[K.P_REACH], nact)
+    # the parallel loop (on any number of threads the same numbers): the one the steps use, so
+    # that a fresh process compiles one copy of the contact loop, not two (minutes, cold)
+    K._contacts_parallel(kd.pack(kd.Contacts, m), dis, shapes, kd.pack(kd.Bodies, m), m.jprops,
+                         0.0, m.thickness, m.P[K.P_REACH], nact)
     m.snapshot()
 
 

@@ -1105,7 +1105,9 @@ def _contacts_parallel(c, pw, shapes, bodies, jprops, dt, thick, reach, nact):
 
 @njit(cache=True, error_model="numpy")
 def _contacts_serial(c, pw, shapes, bodies, jprops, dt, thick, reach, nact):
-    """:func:`_contacts_parallel` on one thread."""
+    """:func:`_contacts_parallel` on one thread: the reference of the parallel loop in the
+    tests and benchmarks (the engine itself calls only the parallel loop, whose numbers do not
+    depend on the thread count)."""
     pairs, pj, pbond, sid, sf, sbr = c
     for k in range(pairs.shape[0]):
         nact[k] = _process(k, pairs, pj, pbond, sid, sf, sbr, pw, shapes.wv, shapes.svs,

@@ -208,9 +208,9 @@ _STIFF = typer.Option(None, "--stiffness-scale", help="Multiplies the joint stif
                       "Savalle et al. (2022), Table 6 (2.8e12 Pa/m); the time step grows as its "
                       "inverse square root. Default 1e-2 with --backfill continuum (within 0.3 "
                       "% of the printed stiffness's A_col), 1e-3 otherwise.")
-_XI = typer.Option(0.05, "--xi", help="Mass-proportional damping, fraction of critical at "
-                   "the input frequency (Savalle et al. (2022), §3.1 and §4.1: 5 %, which its "
-                   "Tables 1 and 6 print as the 10 % given to UDEC).")
+_XI = typer.Option(None, "--xi", help="Mass-proportional damping, fraction of critical at "
+                   "the input frequency (default 0.05: Savalle et al. (2022), §3.1 and §4.1, "
+                   "5 %, which its Tables 1 and 6 print as the 10 % given to UDEC).")
 _THR = typer.Option(None, "--threshold", help="Collapse when d_top exceeds this fraction of H "
                     "(default 0.2; 0.05 for mock-ups).")
 _TMAX = typer.Option(None, "--t-max", help="End of an S2 run without collapse [s] (default "
@@ -228,7 +228,7 @@ def collapse(
                                     "A_col (Savalle et al. (2022), Figure 14)."),
     stone_height: float | None = _STONE_H,
     stiffness_scale: float | None = _STIFF,
-    xi: float = _XI,
+    xi: float | None = _XI,
     threshold: float | None = _THR,
     t_max: float | None = _TMAX,
     base: str | None = _BASE,
@@ -357,15 +357,23 @@ def collapse(
             with LazyProgress(f"collapse {wall.name} {frequency:g} Hz", unit="s") as bar:
                 res = collapse_run(wall, frequency, vertical, progress=bar.update, **kw, **ck)
         else:
-            if workers > 1:
-                import os
+            import os
 
-                os.environ.setdefault("NUMBA_NUM_THREADS", "1")
-            with LazyProgress(f"collapse {wall.name} {frequency:g} Hz, {runs} runs",
-                              unit="runs" if workers > 1 else "s") as bar:
-                ens = collapse_ensemble(wall, frequency, vertical, runs=runs,
-                                        executor="process" if workers > 1 else None,
-                                        workers=workers, progress=bar.update, **kw)
+            # one numba thread in each worker process: the workers inherit it; this process
+            # gets its environment back (numba refuses a changed NUMBA_NUM_THREADS once its
+            # threads run, and the command may be called in a process that goes on)
+            mine = workers > 1 and "NUMBA_NUM_THREADS" not in os.environ
+            if mine:
+                os.environ["NUMBA_NUM_THREADS"] = "1"
+            try:
+                with LazyProgress(f"collapse {wall.name} {frequency:g} Hz, {runs} runs",
+                                  unit="runs" if workers > 1 else "s") as bar:
+                    ens = collapse_ensemble(wall, frequency, vertical, runs=runs,
+                                            executor="process" if workers > 1 else None,
+                                            workers=workers, progress=bar.update, **kw)
+            finally:
+                if mine:
+                    del os.environ["NUMBA_NUM_THREADS"]
             res = ens.nominal
         checks = {}
         phase = "checks"

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import os
 import signal
+import sys
 import threading
 from concurrent.futures import Executor, Future
 
@@ -47,10 +48,14 @@ class ExecutorError(MurusError, ValueError):
 def limit_threads(n: int | None = 1) -> None:
     """Limit numba's threads in this thread (``None``: leave them). Used as the process-pool
     initializer and at the start of every chunk (Dask runs tasks in worker threads and numba's
-    thread count is per thread)."""
+    thread count is per thread). The environment's ``NUMBA_NUM_THREADS`` (the size of numba's
+    pool) is set only in a process that has not imported numba yet (a fresh worker): in one that
+    goes on (a serial executor runs the tasks in the caller's process) it would stay behind, and
+    numba refuses a changed ``NUMBA_NUM_THREADS`` at its next compilation once its threads run."""
     if n is None:
         return
-    os.environ.setdefault("NUMBA_NUM_THREADS", str(n))
+    if "numba" not in sys.modules:
+        os.environ.setdefault("NUMBA_NUM_THREADS", str(n))
     import numba
 
     numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))
