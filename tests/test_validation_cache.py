@@ -49,7 +49,8 @@ def _compute(key):  # writes the record, as a validation script's compute does
     return rec
 
 
-def test_a_record_of_another_engine_is_recomputed(tmp_path):
+def test_a_record_of_another_engine_is_recomputed(tmp_path, monkeypatch):
+    monkeypatch.delenv("NUMBA_NUM_THREADS", raising=False)  # as it was, whatever ensure does
     _compute.cache, _compute.n = str(tmp_path), 0
     recs = runcache.ensure(["a"], _compute, tmp_path, engine="E1")
     assert recs["a"]["n"] == 0 and recs["a"][runcache.ENGINE_FIELD] == "E1"

@@ -70,7 +70,10 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
     second."""
     todo = [k for k in keys if recompute or not _readable(cache / f"{k}.json", engine)]
     if todo:
-        os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+        if "numba" not in sys.modules:  # a fresh process: numba's pool of one thread
+            # (not later: its pool may run with another count, and numba refuses a changed
+            # NUMBA_NUM_THREADS at its next compilation; the runs then take the count as is)
+            os.environ.setdefault("NUMBA_NUM_THREADS", "1")
         from murus.progress import progress
         from murus.studies.sweep import run_tasks
 
