@@ -5,52 +5,74 @@ import pytest
 
 DATA = Path(__file__).parent / "data"
 
-#: Tests that run the large numba kernels (the distinct-element contact loop, the coupled
-#: model of stones and zones): minutes to compile, cold. They are collected after the others,
-#: and :func:`_one_cold_compile_at_a_time` keeps the two workers of ``make test`` from compiling
-#: them at the same moment on the machine's two cores.
-HEAVY = ("tests/continuum/", "tests/dem/", "tests/retaining/", "tests/test_limit.py",
-         "tests/test_threads.py")
-#: The test collected first, so that a worker starts on it at once: it compiles the contact
-#: loop and the coupled kernels (about four minutes, cold) while the other worker runs the
-#: light tests.
+#: Tests that run the large numba kernels, minutes to compile cold: the distinct-element
+#: contact loop (``"dem"``), and the coupled model of stones and zones on top of it
+#: (``"coupled"``). They are collected after the others, and :func:`_one_cold_compile_at_a_time`
+#: keeps the two workers of ``make test`` from compiling the same kernels at the same moment on
+#: the machine's two cores.
+NEEDS = {"tests/dem/": ("dem",), "tests/test_limit.py": ("dem",),
+         "tests/test_threads.py": ("dem",), "tests/continuum/": ("dem", "coupled"),
+         "tests/retaining/": ("dem", "coupled")}
+#: The test collected first, so that a worker starts compiling those kernels at once (about
+#: four minutes, cold) while the other one runs the light tests.
 FIRST = ("tests/continuum/test_continuum_coupled.py::"
          "test_block_on_an_elastic_layer_settles_to_the_closed_form")
 
 
+def _needs(nodeid: str) -> tuple[str, ...]:
+    return next((v for k, v in NEEDS.items() if nodeid.startswith(k)), ())
+
+
 def pytest_collection_modifyitems(config, items):
     """Reorder the collection (the order in which pytest-xdist hands the tests to the workers,
-    in consecutive batches): :data:`FIRST`, the light tests, then the :data:`HEAVY` ones."""
-    first = [it for it in items if it.nodeid == FIRST]
-    rest = [it for it in items if it.nodeid != FIRST]
-    items[:] = (first + [it for it in rest if not it.nodeid.startswith(HEAVY)]
-                + [it for it in rest if it.nodeid.startswith(HEAVY)])
+    in consecutive batches): :data:`FIRST`, the light tests, those that need the contact loop,
+    then those that need the coupled kernels as well."""
+    items.sort(key=lambda it: (it.nodeid != FIRST, len(_needs(it.nodeid))))
 
 
-_COMPILED = []
+def _warm_dem():
+    """Compile the contact loop and the DEM step (two blocks, a few steps)."""
+    from murus.dem import Joint, Model
+
+    m = Model(joint=Joint(kn=1e9, ks=1e9, friction_deg=30))
+    m.add_rectangle(1.0, 0.2, center=(0.0, -0.1), kinematic="fixed")
+    m.add_rectangle(0.3, 0.3, center=(0.0, 0.15))
+    m.settle(tol=1e-3, max_steps=50)
+
+
+def _warm_coupled():
+    """Compile the coupled step (a block on an elastic layer of four zones, a few steps)."""
+    from murus.continuum import verify as V
+
+    cm = V.block_on_layer(2, 2)[0]
+    cm.settle(tol=1e-3, max_steps=50)
+
+
+_WARM = {"dem": _warm_dem, "coupled": _warm_coupled}
+_DONE: set[str] = set()
 
 
 @pytest.fixture(autouse=True)
 def _one_cold_compile_at_a_time(request, tmp_path_factory):
-    """The first :data:`HEAVY` test of each pytest-xdist worker runs under a lock shared by
-    the workers: the first worker to get there compiles the large kernels into numba's disk
-    cache; the other, arriving meanwhile, waits for it and then loads them from the cache
-    (seconds) instead of compiling them a second time beside it (which cost the suite over two
-    minutes). No lock in a single process."""
-    if (_COMPILED or os.environ.get("PYTEST_XDIST_WORKER") is None
-            or not request.node.nodeid.startswith(HEAVY)):
-        yield
-        return
-    _COMPILED.append(request.node.nodeid)
-    import fcntl
+    """Before the first test of a pytest-xdist worker that needs a family of large kernels
+    (:data:`NEEDS`), compile it under a lock shared by the workers (a small model run a few
+    steps): the first worker to get there compiles the kernels into numba's disk cache; the
+    other, arriving meanwhile, waits for it and then loads them from the cache (seconds)
+    instead of compiling them a second time beside it (which cost the suite two minutes and
+    more). Nothing in a single process."""
+    todo = [k for k in _needs(request.node.nodeid) if k not in _DONE]
+    if todo and os.environ.get("PYTEST_XDIST_WORKER") is not None:
+        import fcntl
 
-    lock = tmp_path_factory.getbasetemp().parent / "murus-kernels.lock"
-    with open(lock, "a") as fh:
-        fcntl.flock(fh, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(fh, fcntl.LOCK_UN)
+        for k in todo:
+            with open(tmp_path_factory.getbasetemp().parent / f"murus-{k}.lock", "a") as fh:
+                fcntl.flock(fh, fcntl.LOCK_EX)
+                try:
+                    _WARM[k]()
+                finally:
+                    fcntl.flock(fh, fcntl.LOCK_UN)
+            _DONE.add(k)
+    yield
 
 
 @pytest.fixture
