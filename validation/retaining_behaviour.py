@@ -19,7 +19,6 @@ import argparse
 import csv
 import json
 import math
-import os
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -40,7 +39,9 @@ def studies():
 def run_all(workers: int = 1, cached: bool = False) -> dict:
     """name -> BehaviourStudyResult (computing the missing cases; with ``cached`` only the
     studies whose folder holds a finished table, which computes nothing)."""
-    os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+    from murus.studies.executors import fresh_pool_size
+
+    fresh_pool_size(1)  # one numba thread, in a fresh process
     from murus.retaining.study import run_behaviour_study
 
     res = {}

@@ -6,7 +6,6 @@ kept (the next ``make validate`` resumes from them), the runs in progress abando
 from __future__ import annotations
 
 import json
-import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -70,10 +69,9 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
     second."""
     todo = [k for k in keys if recompute or not _readable(cache / f"{k}.json", engine)]
     if todo:
-        if "numba" not in sys.modules:  # a fresh process: numba's pool of one thread
-            # (not later: its pool may run with another count, and numba refuses a changed
-            # NUMBA_NUM_THREADS at its next compilation; the runs then take the count as is)
-            os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+        from murus.studies.executors import fresh_pool_size
+
+        fresh_pool_size(1)  # one numba thread, in a fresh process
         from murus.progress import progress
         from murus.studies.sweep import run_tasks
 

@@ -357,23 +357,12 @@ def collapse(
             with LazyProgress(f"collapse {wall.name} {frequency:g} Hz", unit="s") as bar:
                 res = collapse_run(wall, frequency, vertical, progress=bar.update, **kw, **ck)
         else:
-            import os
-
-            # one numba thread in each worker process: the workers inherit it; this process
-            # gets its environment back (numba refuses a changed NUMBA_NUM_THREADS once its
-            # threads run, and the command may be called in a process that goes on)
-            mine = workers > 1 and "NUMBA_NUM_THREADS" not in os.environ
-            if mine:
-                os.environ["NUMBA_NUM_THREADS"] = "1"
-            try:
-                with LazyProgress(f"collapse {wall.name} {frequency:g} Hz, {runs} runs",
-                                  unit="runs" if workers > 1 else "s") as bar:
-                    ens = collapse_ensemble(wall, frequency, vertical, runs=runs,
-                                            executor="process" if workers > 1 else None,
-                                            workers=workers, progress=bar.update, **kw)
-            finally:
-                if mine:
-                    del os.environ["NUMBA_NUM_THREADS"]
+            # (one numba thread in each worker process: the pool's initializer sets it)
+            with LazyProgress(f"collapse {wall.name} {frequency:g} Hz, {runs} runs",
+                              unit="runs" if workers > 1 else "s") as bar:
+                ens = collapse_ensemble(wall, frequency, vertical, runs=runs,
+                                        executor="process" if workers > 1 else None,
+                                        workers=workers, progress=bar.update, **kw)
             res = ens.nominal
         checks = {}
         phase = "checks"

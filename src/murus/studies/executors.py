@@ -36,6 +36,7 @@ from concurrent.futures import Executor, Future
 from murus.errors import MurusError
 
 __all__ = ["SerialExecutor", "ExecutorHandle", "open_executor", "limit_threads",
+           "fresh_pool_size",
            "watch_parent", "EXECUTOR_KINDS", "ExecutorError"]
 
 EXECUTOR_KINDS = ("serial", "process", "dask")
@@ -45,17 +46,25 @@ class ExecutorError(MurusError, ValueError):
     """An executor that cannot be opened (one-line message)."""
 
 
+def fresh_pool_size(n: int) -> bool:
+    """Set the size of numba's thread pool (``NUMBA_NUM_THREADS``, unless the user set it) to
+    ``n`` in a process that has not imported numba yet (a fresh worker), and return whether it
+    is now ``n``. Not in one that has: its pool may already run with another count, and numba
+    refuses a changed ``NUMBA_NUM_THREADS`` at its next compilation, every later compilation
+    of the process failing (the variable would stay behind in a process that goes on)."""
+    if "numba" not in sys.modules:
+        os.environ.setdefault("NUMBA_NUM_THREADS", str(int(n)))
+    return os.environ.get("NUMBA_NUM_THREADS") == str(int(n))
+
+
 def limit_threads(n: int | None = 1) -> None:
     """Limit numba's threads in this thread (``None``: leave them). Used as the process-pool
     initializer and at the start of every chunk (Dask runs tasks in worker threads and numba's
-    thread count is per thread). The environment's ``NUMBA_NUM_THREADS`` (the size of numba's
-    pool) is set only in a process that has not imported numba yet (a fresh worker): in one that
-    goes on (a serial executor runs the tasks in the caller's process) it would stay behind, and
-    numba refuses a changed ``NUMBA_NUM_THREADS`` at its next compilation once its threads run."""
+    thread count is per thread); the pool's size too in a fresh worker
+    (:func:`fresh_pool_size`)."""
     if n is None:
         return
-    if "numba" not in sys.modules:
-        os.environ.setdefault("NUMBA_NUM_THREADS", str(n))
+    fresh_pool_size(n)
     import numba
 
     numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))
