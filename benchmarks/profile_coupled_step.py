@@ -168,12 +168,12 @@ def main(argv=None) -> int:
     class Done(Exception):
         pass
 
-    def spy(self, n, drive):
+    def spy(self, n, drive, zdrive=None):
         if self.dem.time >= args.time and self.dem.P[DK.P_ALOCAL] == 0.0:
             found["t"] = self.dem.time
             found["res"] = profile(self, drive, args.steps)
             raise Done
-        return step(self, n, drive)
+        return step(self, n, drive, zdrive)
 
     CP.CoupledModel.step = spy
     try:
