@@ -132,7 +132,6 @@ def test_interrupt_wrapped_by_numba_stops_the_run():
     assert got == {}
 
 
-
 def test_limiting_the_threads_leaves_the_environment_as_it_was(monkeypatch):
     """``limit_threads`` in a process that has imported numba (a forked worker, or the
     caller's process when tasks run there) limits the threads of this thread and leaves

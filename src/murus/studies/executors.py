@@ -46,15 +46,14 @@ class ExecutorError(MurusError, ValueError):
     """An executor that cannot be opened (one-line message)."""
 
 
-def fresh_pool_size(n: int) -> bool:
+def fresh_pool_size(n: int) -> None:
     """Set the size of numba's thread pool (``NUMBA_NUM_THREADS``, unless the user set it) to
-    ``n`` in a process that has not imported numba yet (a fresh worker), and return whether it
-    is now ``n``. Not in one that has: its pool may already run with another count, and numba
-    refuses a changed ``NUMBA_NUM_THREADS`` at its next compilation, every later compilation
-    of the process failing (the variable would stay behind in a process that goes on)."""
+    ``n`` in a process that has not imported numba yet (a fresh worker). Not in one that has:
+    its pool may already run with another count, and numba refuses a changed
+    ``NUMBA_NUM_THREADS`` at its next compilation, every later compilation of the process
+    failing (the variable would stay behind in a process that goes on)."""
     if "numba" not in sys.modules:
         os.environ.setdefault("NUMBA_NUM_THREADS", str(int(n)))
-    return os.environ.get("NUMBA_NUM_THREADS") == str(int(n))
 
 
 def limit_threads(n: int | None = 1) -> None:
