@@ -143,7 +143,7 @@ def _block(width, height, zeta, theta0, kn, friction_deg, rounding, density):
 def free_rocking(width: float, height: float, zeta: float, *, theta0_over_alpha: float = 0.5,
                  n_impacts: int = 5, kn: float = KN, friction_deg: float = FRICTION_DEG,
                  rounding: float = ROUNDING, density: float = DENSITY,
-                 duration: float | None = None, sample_dt: float = 1e-4) -> FreeRocking:
+                 duration: float | None = None, sample_dt: float = 5e-4) -> FreeRocking:
     """Release a ``width`` x ``height`` block tilted onto its right corner by
     ``theta0_over_alpha`` alpha on a fixed base, with joint contact damping ``zeta``, and
     record its rocking until ``n_impacts`` impacts (or ``duration`` [s]).
@@ -168,10 +168,12 @@ def free_rocking(width: float, height: float, zeta: float, *, theta0_over_alpha:
     sample_dt : float
         Interval of the recorded history [s] (whole time steps, at least one): the
         restitutions are medians over the swings and the peaks sit where the rotation is
-        stationary, so the default 1e-4 s changes them by less than 2e-6 and 1e-7 of their
-        values against a history of every step (measured on the 0.25 x 1.0 m block, kn = 1e9
-        and 1e10 Pa/m, zeta = 0, 0.5 and 1), in a quarter of the time (each sample pauses the
-        engine).
+        stationary, so the default 5e-4 s changes the mean restitution of the first three
+        impacts by at most 3.5e-6 against 1e-4 s (measured on the 0.25 x 1.0 m block, kn = 1e9
+        and 1e10 Pa/m, zeta = 0, 0.15 and 1; 1e-4 s itself is within 2e-6 of a history of
+        every step), 600 times below the calibration's tolerance, in a fifth of the time: each
+        sample pauses the engine (about 0.2 ms of Python, several times the steps between
+        two samples at 1e-4 s).
 
     Returns
     -------
