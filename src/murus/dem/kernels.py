@@ -984,19 +984,52 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         cst = (thick, reach, dt)
         pb = pbond[k]
         pt0 = SubContact(px0, py0, nx0, ny0, g0, l0)
-        # both laws read the old slots before either is written
-        (keep0, br0, pb, fn0, fs0, mr0, kna0, ksa0, kra0, ds, dr, db) = _joint_law(
-            m0, k, sf, sbr, pb, jprops, jp, rolling, reff, pt0, pm, cst)
-        d_slip += ds
-        d_roll += dr
-        d_break += db
         pt1 = SubContact(px1, py1, nx1, ny1, g1, l1)
-        if not discs and cnt >= 2:
-            (keep1, br1, pb, fn1, fs1, mr1, kna1, ksa1, kra1, ds, dr, db) = _joint_law(
-                m1, k, sf, sbr, pb, jprops, jp, rolling, reff, pt1, pm, cst)
+        # both laws read the old slots before either is written. One inlined copy of the law
+        # for both sub-contacts, in a loop of one or two passes: the two copies of the law
+        # inlined one after the other cost numba 45 s more to compile the contact loop (of 110
+        # s), for no speed (benchmarks/ab_dem.py, BENCHMARKS.md, session 22)
+        nlaw = 1 if discs or cnt < 2 else 2
+        br0 = 0
+        br1 = 0
+        fn0 = 0.0
+        fs0 = 0.0
+        mr0 = 0.0
+        kna0 = 0.0
+        ksa0 = 0.0
+        kra0 = 0.0
+        fn1 = 0.0
+        fs1 = 0.0
+        mr1 = 0.0
+        kna1 = 0.0
+        ksa1 = 0.0
+        kra1 = 0.0
+        for o in range(nlaw):
+            pt = pt0 if o == 0 else pt1
+            mo = m0 if o == 0 else m1
+            (keep, br, pb, fn, fs, mr, kna, ksa, kra, ds, dr, db) = _joint_law(
+                mo, k, sf, sbr, pb, jprops, jp, rolling, reff, pt, pm, cst)
             d_slip += ds
             d_roll += dr
             d_break += db
+            if o == 0:
+                keep0 = keep
+                br0 = br
+                fn0 = fn
+                fs0 = fs
+                mr0 = mr
+                kna0 = kna
+                ksa0 = ksa
+                kra0 = kra
+            else:
+                keep1 = keep
+                br1 = br
+                fn1 = fn
+                fs1 = fs
+                mr1 = mr
+                kna1 = kna
+                ksa1 = ksa
+                kra1 = kra
         pbond[k] = pb
         slot = 0
         rfx = 0.0
