@@ -987,7 +987,7 @@ def process_pair(k, pairs, pj, pbond, sid, sf, sbr, pw, wv, svs, svn, skind, sra
         pt1 = SubContact(px1, py1, nx1, ny1, g1, l1)
         # both laws read the old slots before either is written. One inlined copy of the law
         # for both sub-contacts, in a loop of one or two passes: the two copies of the law
-        # inlined one after the other cost numba 45 s more to compile the contact loop (of 110
+        # inlined one after the other cost numba 32 s more to compile the contact loop (of 93
         # s), for no speed (benchmarks/ab_dem.py, BENCHMARKS.md, session 22)
         nlaw = 1 if discs or cnt < 2 else 2
         br0 = 0
