@@ -10,7 +10,7 @@ study resumes there and computes only its missing cases (delete a folder to reco
 
 Usage::
 
-    python validation/retaining_behaviour.py [--out FILE] [--workers 2]
+    python validation/retaining_behaviour.py [--out FILE] [--workers 2] [--cached] [--cache DIR]
 """
 
 from __future__ import annotations
@@ -224,8 +224,15 @@ def main(argv=None) -> None:
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--cached", action="store_true", help="The finished studies only (no "
                     "computation; a wall not computed is listed as such).")
+    ap.add_argument("--cache", default=None, help="The studies' folder (default "
+                    "validation/results/retaining_behaviour/continuum): e.g. a scratch folder "
+                    "that replaces it once every study in it is complete.")
     args = ap.parse_args(argv)
     import runcache
+
+    if args.cache is not None:
+        global CACHE
+        CACHE = Path(args.cache).resolve()
 
     runcache.emit(section(args.workers, args.cached), args.out)
 
