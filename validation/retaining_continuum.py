@@ -569,7 +569,8 @@ def _stiffness_check(recs: dict) -> list[str]:
         if a is None or b is None or not (math.isfinite(a[0]) and math.isfinite(b[0])):
             continue
         d = 100 * (a[0] / b[0] - 1)
-        rows.append(f"H/B {s:g}: {a[0]:.2f} ({a[3]} runs) against {b[0]:.2f} ({b[3]} "
+        rows.append(f"H/B {s:g}: {a[0]:.2f} ({a[3]} run{'s' if a[3] > 1 else ''}) against "
+                    f"{b[0]:.2f} ({b[3]} "
                     f"run{'s' if b[3] > 1 else ''}, {how}): {d:+.1f} %"
                     f"{'' if abs(d) <= 3 else ' (not within 3 %)'}")
     if not rows:
