@@ -745,7 +745,8 @@ SUB_PAIRS = {"sub_1.7_r0": ("mock_1.7", "mock-up H/B = 1.7 (S), x 1e-2"),
              "sub_1.7_k1e-1_r0": ("mock_1.7_k1e-1", "mock-up H/B = 1.7, x 1e-1"),
              "sub_2.7_k1e-1_r0": ("mock_2.7_k1e-1", "mock-up H/B = 2.7, x 1e-1"),
              "sub_DSRW1_5_r0": ("t7_DSRW1_5_none", "DSRW1, 5 Hz, x 1e-2"),
-             "sub_1.7_k1_r0": ("mock_1.7_k1", "mock-up H/B = 1.7, x 1")}
+             "sub_1.7_k1_r0": ("mock_1.7_k1", "mock-up H/B = 1.7, x 1"),
+             "sub_2.7_k1_r0": ("mock_2.7_k1", "mock-up H/B = 2.7, x 1")}
 
 
 def _sub_text(recs: dict) -> list[str]:
