@@ -182,7 +182,7 @@ def runs() -> dict[str, dict]:
         ens("mock_k1_sub", f"sub_{s:g}_k1", wall=f"mockup-{s:g}", f=10.0, vertical="none",
             unvalidated=True, kw={"stiffness_scale": 1.0, "subcycle": "auto"})
     # Table 4 and Figure 7 at the printed stiffness, subcycled: the mock-ups' reference since
-    # session 23 (x 1e-2 is 10 % off x 1 on the toppling H/B = 2.7, MOCK_REFERENCE)
+    # session 23 (x 1e-2 is 10 % off x 1 on the toppling H/B = 2.7: MOCK_COLUMNS)
     for phi in (50.0, 55.0):
         ens("mock_k1_sub_phi", f"sub_2.7_k1_phi{phi:g}", wall="mockup-2.7", f=10.0,
             vertical="none", unvalidated=True, kw={"stiffness_scale": 1.0, "subcycle": "auto"},
