@@ -355,9 +355,9 @@ def campaign() -> list[str]:
     report uses them: the subcycling pairs at x 1 not run (``SUB_PAIRS``: the H/B = 2.7 run of
     one step for all, DSRW1's two runs), the nominal run of every wall of Table 3, then their
     perturbed runs one index at a time (so that a part of the campaign gives medians of three,
-    then of five, for every wall), then Table 4 and the 30 Hz case. A long campaign spans several sessions:
-    ``--campaign`` computes the missing ones in this order and resumes the one in progress
-    from its checkpoint."""
+    then of five, for every wall), then Table 4 and the 30 Hz case. A long campaign spans
+    several sessions: ``--campaign`` computes the missing ones in this order and resumes the
+    one in progress from its checkpoint."""
     from murus.retaining.geometry import MOCKUP_SLENDERNESS
 
     keys = ["mock_2.7_k1_r0", "scale_DSRW1_5_k1_r0", "sub_DSRW1_5_k1_r0"]
