@@ -802,9 +802,9 @@ def _sub_text(recs: dict) -> list[str]:
            "starts (11 for the H/B = 2.7 mock-up, 12 for H/B = 3: the interface's stable "
            "step with the stones settled on it; `murus.continuum.coupled`, module doc). The "
            "same runs without and with it (nominal time step; A_col; the speed-up, measured "
-           "on an idle machine, is in BENCHMARKS.md, *Subcycling*: 4.1 and 3.1 times on the H/B = 2.7 mock-up at "
-           "x 1e-2 and x 1e-1, 2.2 on DSRW1; these runs' wall times were taken under "
-           "different loads of a shared machine and do not compare):", "",
+           "on an idle machine, is in BENCHMARKS.md, *Subcycling*: 4.1 and 3.1 times on the "
+           "H/B = 2.7 mock-up at x 1e-2 and x 1e-1, 2.2 on DSRW1; these runs' wall times "
+           "were taken under different loads of a shared machine and do not compare):", "",
            "| run | one step for all, nominal [m/s²] | its ensemble | subcycled, nominal "
            "[m/s²] | its ensemble | difference of the nominal runs | ranges meet |",
            "|---|---|---|---|---|---|---|"] + rows + [""]
