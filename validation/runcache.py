@@ -37,9 +37,37 @@ def _readable(path: Path, engine: str | None = None) -> bool:
     return engine is None or (isinstance(rec, dict) and rec.get(ENGINE_FIELD) == engine)
 
 
+#: The machine a record was computed on (:func:`platform`): the same source gives the same
+#: numbers bit for bit only on a machine of the same arithmetic (session 24: a CPU without
+#: AVX-512 settled DSRW1 in another number of steps than the machines before it).
+PLATFORM_FIELD = "_platform"
+
+
+def platform() -> dict:
+    """This machine as far as it decides the arithmetic: the CPU's name, the instruction-set
+    extensions numpy dispatches on (AVX-512, AVX2, FMA), the versions of numpy and numba."""
+    import numba
+    import numpy as np
+
+    cpu = ""
+    try:
+        with open("/proc/cpuinfo") as fh:
+            cpu = next((ln.split(":", 1)[1].strip() for ln in fh
+                        if ln.startswith("model name")), "")
+    except OSError:
+        pass
+    try:
+        from numpy._core._multiarray_umath import __cpu_features__ as feats
+    except ImportError:  # numpy < 2
+        from numpy.core._multiarray_umath import __cpu_features__ as feats
+    isa = [k for k in ("AVX512F", "AVX512_SKX", "AVX2", "FMA3") if feats.get(k)]
+    return {"cpu": cpu, "isa": isa, "numpy": np.__version__, "numba": numba.__version__}
+
+
 def _stamp(path: Path, engine: str) -> None:
     rec = json.loads(path.read_text())
     rec[ENGINE_FIELD] = engine
+    rec[PLATFORM_FIELD] = platform()
     tmp = path.with_suffix(".json.tmp")
     tmp.write_text(json.dumps(rec))
     tmp.replace(path)
