@@ -170,3 +170,23 @@ def test_record_diff_names_what_changed_but_the_wall_time():
     new["d_top"][1] = 1e-3 * (1 + 1e-15)
     new["summary"]["corner_share"] = "shrink"
     assert runcache.record_diff(old, new) == ["d_top", "summary.corner_share"]
+
+
+def test_the_campaign_is_made_of_runs_of_the_report():
+    """``--campaign`` (validation/retaining_continuum.py) computes runs of the report, each
+    once, beginning with the subcycling pairs at x 1 and the nominal run of every wall of
+    Table 3; ``--lane I/N`` splits it into N disjoint lanes that cover it."""
+    import retaining_continuum as rc
+
+    from murus.retaining.geometry import MOCKUP_SLENDERNESS
+
+    keys, spec = rc.campaign(), rc.runs()
+    assert len(keys) == len(set(keys)) and all(k in spec for k in keys)
+    assert keys[:3] == ["mock_2.7_k1_r0", "scale_DSRW1_5_k1_r0", "sub_DSRW1_5_k1_r0"]
+    assert keys[3:3 + len(MOCKUP_SLENDERNESS)] == [f"sub_{s:g}_k1_r0" for s in
+                                                     MOCKUP_SLENDERNESS]
+    lanes = [keys[i::2] for i in range(2)]
+    assert sorted(lanes[0] + lanes[1]) == sorted(keys) and not set(lanes[0]) & set(lanes[1])
+    with pytest.raises(SystemExit) as e:
+        rc.main(["--campaign", "--lane", "2/2"])
+    assert e.value.code == 2

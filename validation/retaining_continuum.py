@@ -18,7 +18,8 @@ Usage::
 
     python validation/retaining_continuum.py [--out FILE] [--jobs 2] [--group t7 mesh ...]
     python validation/retaining_continuum.py --list
-    python validation/retaining_continuum.py --campaign [--jobs 2]   # the mock-ups' reference
+    python validation/retaining_continuum.py --campaign --lane 0/2   # the mock-ups' reference,
+    python validation/retaining_continuum.py --campaign --lane 1/2   # on two cores
 """
 
 from __future__ import annotations
@@ -387,6 +388,9 @@ def main(argv=None) -> None:
                     "every case first, then the perturbed ones.")
     ap.add_argument("--campaign", action="store_true", help="Compute the missing runs of the "
                     "mock-ups' reference in the report's order of use (no Markdown).")
+    ap.add_argument("--lane", default=None, metavar="I/N", help="With --campaign: the runs "
+                    "of index I modulo N only (N lanes, one process each, e.g. 0/2 and 1/2 "
+                    "on two cores: each stops on Ctrl-C with its run's checkpoint written).")
     ap.add_argument("--cached", action="store_true", help="The section from the cached runs "
                     "only (a run missing is shown as not run).")
     ap.add_argument("--list", action="store_true", help="List the run keys and whether cached.")
@@ -398,7 +402,15 @@ def main(argv=None) -> None:
             print(k, spec[k]["group"], "cached" if k in have else "-")
         return
     if args.keys or args.campaign:
-        ensure(args.keys or campaign(), args.recompute, args.jobs)
+        keys = args.keys or campaign()
+        if args.lane is not None:
+            m = re.fullmatch(r"(\d+)/(\d+)", args.lane)
+            if not m or int(m[1]) >= int(m[2]):
+                print(f"error: --lane {args.lane!r}: expected I/N with 0 <= I < N",
+                      file=sys.stderr)
+                raise SystemExit(2)
+            keys = keys[int(m[1])::int(m[2])]
+        ensure(keys, args.recompute, args.jobs)
         return
     if args.group is not None:
         keys = [k for k, s in spec.items() if s["group"] in args.group]
