@@ -187,6 +187,7 @@ def test_the_campaign_is_made_of_runs_of_the_report():
                                                      MOCKUP_SLENDERNESS]
     lanes = [keys[i::2] for i in range(2)]
     assert sorted(lanes[0] + lanes[1]) == sorted(keys) and not set(lanes[0]) & set(lanes[1])
-    with pytest.raises(SystemExit) as e:
-        rc.main(["--campaign", "--lane", "2/2"])
-    assert e.value.code == 2
+    for argv in (["--campaign", "--lane", "2/2"], ["--keys", "mock_3_r0", "--lane", "0/2"]):
+        with pytest.raises(SystemExit) as e:
+            rc.main(argv)
+        assert e.value.code == 2

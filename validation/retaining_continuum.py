@@ -406,9 +406,9 @@ def main(argv=None) -> None:
         keys = args.keys or campaign()
         if args.lane is not None:
             m = re.fullmatch(r"(\d+)/(\d+)", args.lane)
-            if not m or int(m[1]) >= int(m[2]):
-                print(f"error: --lane {args.lane!r}: expected I/N with 0 <= I < N",
-                      file=sys.stderr)
+            if not args.campaign or not m or int(m[1]) >= int(m[2]):
+                print(f"error: --lane {args.lane!r}: expected I/N with 0 <= I < N, with "
+                      f"--campaign", file=sys.stderr)
                 raise SystemExit(2)
             keys = keys[int(m[1])::int(m[2])]
         ensure(keys, args.recompute, args.jobs)

@@ -44,9 +44,9 @@ def main(argv=None) -> None:
     except (OSError, ValueError) as e:
         print(f"error: {e}", file=sys.stderr)
         raise SystemExit(2) from None
-    tmp = doc.with_name(doc.name + ".tmp")
-    tmp.write_text(out)
-    tmp.replace(doc)
+    from murus.outputs import write_text
+
+    write_text(doc, out)
 
 
 if __name__ == "__main__":
