@@ -59,6 +59,33 @@ def test_a_record_of_another_engine_is_recomputed(tmp_path, monkeypatch):
     assert again["n"] == 1 and again[runcache.ENGINE_FIELD] == "E2"
 
 
+def _compute_under_ctrl_c(key):
+    """Sends itself SIGINT inside the engine's Ctrl-C guard, as a long run interrupted by the
+    user: the guard must take it as its flag (collapse_run then writes its checkpoint), not a
+    handler of the caller raising at once. Key "bad" raises."""
+    import os
+    import signal
+
+    from murus.dem.engine import _SigInt
+
+    if key == "bad":
+        raise ValueError("no such wall")
+    with _SigInt() as ctrl:
+        os.kill(os.getpid(), signal.SIGINT)
+    return _compute(f"{key}" if ctrl.hit else f"{key}-preempted")
+
+
+def test_a_serial_run_keeps_its_own_ctrl_c_and_failures_come_last(tmp_path):
+    _compute.cache, _compute.n = str(tmp_path), 0
+    try:
+        with pytest.raises(RuntimeError, match="bad: ValueError: no such wall"):
+            runcache.ensure(["a", "bad", "b"], _compute_under_ctrl_c, tmp_path)
+    except KeyboardInterrupt:
+        pytest.fail("ensure pre-empted the run's own Ctrl-C handling (a handler of its own)")
+    # both good runs done (after the failure), each with the SIGINT as the guard's flag
+    assert sorted(p.name for p in tmp_path.glob("*.json")) == ["a.json", "b.json"]
+
+
 def test_the_real_engine_key_is_stable():
     k = runcache.source_key("dem", "continuum", "retaining", "motion/synthetic.py")
     assert len(k) == 16 and k == runcache.source_key("motion/synthetic.py", "retaining",

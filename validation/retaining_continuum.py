@@ -390,8 +390,8 @@ def main(argv=None) -> None:
                     "mock-ups' reference in the report's order of use (no Markdown).")
     ap.add_argument("--lane", default=None, metavar="I/N", help="With --campaign: the runs "
                     "of index I modulo N only (N lanes, one process each, e.g. 0/2 and 1/2 "
-                    "on two cores; a run interrupted resumes from its last checkpoint, at "
-                    "most 5 minutes old).")
+                    "on two cores; Ctrl-C writes the run's checkpoint, from which the next "
+                    "start resumes it).")
     ap.add_argument("--cached", action="store_true", help="The section from the cached runs "
                     "only (a run missing is shown as not run).")
     ap.add_argument("--list", action="store_true", help="List the run keys and whether cached.")

@@ -94,7 +94,7 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
     of them with ``recompute``), and with ``engine`` (a :func:`source_key`) for those computed
     by another engine, each record then stamped with it. A run that raises is reported after
     the others finished (``RuntimeError``); Ctrl-C raises ``KeyboardInterrupt`` within about a
-    second."""
+    second (serial, ``jobs=1``: a run that checkpoints writes its checkpoint first)."""
     todo = [k for k in keys if recompute or not _readable(cache / f"{k}.json", engine)]
     if todo:
         from murus.studies.executors import fresh_pool_size
@@ -111,13 +111,34 @@ def ensure(keys, compute: Callable[[str], object], cache: Path, recompute: bool 
                 print(f"  computed {todo[i]}", file=sys.stderr, flush=True)
                 p.advance()
 
-            fails = run_tasks(_Missing(compute, cache, engine, recompute),
-                              list(enumerate(todo)), kind, workers=jobs, retries=0,
-                              on_result=done)
+            missing = _Missing(compute, cache, engine, recompute)
+            if kind == "serial":
+                fails = _serial(missing, todo, done)
+            else:
+                fails = run_tasks(missing, list(enumerate(todo)), kind, workers=jobs,
+                                  retries=0, on_result=done)
         if fails:
             raise RuntimeError("validation runs failed: " + "; ".join(
                 f"{todo[i]}: {f['error']}" for i, f in sorted(fails.items())))
     return {k: json.loads((cache / f"{k}.json").read_text()) for k in keys}
+
+
+def _serial(missing: _Missing, todo: list[str], done: Callable) -> dict[int, dict]:
+    """The runs ``todo`` one after the other in this process, with no SIGINT handler of ours:
+    a long run's own Ctrl-C handling (``collapse_run`` writes its checkpoint at the interrupt,
+    then raises ``KeyboardInterrupt``) is in effect, which ``run_tasks``' handler would
+    pre-empt (it raises inside the numba chunk, and the checkpoint kept is the last periodic
+    one). A run that raises is reported in the returned ``{index: {"error"}}`` and the others
+    go on."""
+    fails = {}
+    for i, key in enumerate(todo):
+        try:
+            res = missing(key)
+        except Exception as exc:  # reported after the others, as run_tasks does
+            fails[i] = {"error": f"{type(exc).__name__}: {exc}", "attempts": 1}
+            continue
+        done(i, res)
+    return fails
 
 
 def _timeless(x):
