@@ -15,6 +15,7 @@ ENGINE_FIELD = "_engine_source"
 
 
 from murus._source import NOT_ENGINE  # noqa: E402,F401  (re-exported)
+from murus.outputs import write_text  # noqa: E402
 
 
 def source_key(*packages: str, root: Path | None = None,
@@ -68,9 +69,7 @@ def _stamp(path: Path, engine: str) -> None:
     rec = json.loads(path.read_text())
     rec[ENGINE_FIELD] = engine
     rec[PLATFORM_FIELD] = platform()
-    tmp = path.with_suffix(".json.tmp")
-    tmp.write_text(json.dumps(rec))
-    tmp.replace(path)
+    write_text(path, json.dumps(rec))
 
 
 class _Missing:
@@ -135,7 +134,7 @@ def _serial(missing: _Missing, todo: list[str], done: Callable) -> dict[int, dic
         try:
             res = missing(key)
         except Exception as exc:  # reported after the others, as run_tasks does
-            fails[i] = {"error": f"{type(exc).__name__}: {exc}", "attempts": 1}
+            fails[i] = {"error": f"{type(exc).__name__}: {exc}"}
             continue
         done(i, res)
     return fails
@@ -178,9 +177,7 @@ def restamp(cache: Path, old: str, new: str, evidence: str, skip=None) -> list[s
         rec[ENGINE_FIELD] = new
         rec["_restamped_from"] = old
         rec["_restamp_evidence"] = evidence
-        tmp = path.with_suffix(".json.tmp")
-        tmp.write_text(json.dumps(rec))
-        tmp.replace(path)
+        write_text(path, json.dumps(rec))
         done.append(path.stem)
     return done
 
@@ -188,7 +185,7 @@ def restamp(cache: Path, old: str, new: str, evidence: str, skip=None) -> list[s
 def emit(text: str, out: str | None) -> None:
     """Write a section to the file ``out``, or to standard output without one."""
     if out:
-        Path(out).write_text(text)
+        write_text(out, text)
     else:
         sys.stdout.write(text)
 
