@@ -24,7 +24,6 @@ Usage::
 
 from __future__ import annotations
 
-import contextlib
 import csv
 import json
 import math
@@ -132,8 +131,7 @@ def runs() -> dict[str, dict]:
                                                f=10.0, vertical="none",
                                                kw={"stiffness_scale": 1e-1}, run=0)
     # subcycling (the zones step once every n steps of the stones): against the runs of one
-    # step for all at both stiffnesses, and DSRW1 (refused at the printed stiffness, not
-    # validated there: validation/subcycle_chatter.py)
+    # step for all at both stiffnesses, and DSRW1 (at x 1: sub_DSRW1_5_k1_r0 below)
     for s in (1.7, 2.7):
         for tag, sc in (("", {}), ("_k1e-1", {"stiffness_scale": 1e-1})):
             out[f"sub_{s:g}{tag}_r0"] = dict(group="sub", wall=f"mockup-{s:g}", f=10.0,
@@ -151,7 +149,6 @@ def runs() -> dict[str, dict]:
     # and at the printed stiffness, against scale_DSRW1_5_k1_r0 (one step for all): the third
     # pair at x 1 (the mock-ups' two, and a full-scale wall)
     out["sub_DSRW1_5_k1_r0"] = dict(group="sub", wall="DSRW1", f=5.0, vertical="none", run=0,
-                                    unvalidated=True,
                                     kw={"stiffness_scale": 1.0, "subcycle": "auto"})
     for s in MOCKUP_SLENDERNESS:  # Table 3 at x 1e-1, subcycled: the other walls
         if s not in (1.7, 2.7):
@@ -182,20 +179,19 @@ def runs() -> dict[str, dict]:
     # Table 3 at the printed stiffness (item 1 of issue 18: single runs at x 1e-2 and x 1
     # differ by about 10 % on the sliding H/B = 1.7, within one ensemble's scatter; the
     # medians decide), subcycled (about a third of the cost of one step for all):
-    # collapse_run refuses subcycling above x 0.1 until it is validated there; sub_1.7_k1_r0
-    # against mock_1.7_k1_r0 (one step for all) is the first measure of it (SUB_PAIRS), the
-    # H/B = 2.7 pair the second
+    # validated there by the pairs of SUB_PAIRS at x 1 (sub_1.7_k1_r0 against mock_1.7_k1_r0,
+    # one step for all; H/B = 2.7; DSRW1), which lifted collapse_run's refusal (session 24)
     for s in MOCKUP_SLENDERNESS:
         ens("mock_k1_sub", f"sub_{s:g}_k1", wall=f"mockup-{s:g}", f=10.0, vertical="none",
-            unvalidated=True, kw={"stiffness_scale": 1.0, "subcycle": "auto"})
+            kw={"stiffness_scale": 1.0, "subcycle": "auto"})
     # Table 4 and Figure 7 at the printed stiffness, subcycled: the mock-ups' reference since
     # session 23 (x 1e-2 is 10 % off x 1 on the toppling H/B = 2.7: MOCK_COLUMNS)
     for phi in (50.0, 55.0):
         ens("mock_k1_sub_phi", f"sub_2.7_k1_phi{phi:g}", wall="mockup-2.7", f=10.0,
-            vertical="none", unvalidated=True, kw={"stiffness_scale": 1.0, "subcycle": "auto"},
+            vertical="none", kw={"stiffness_scale": 1.0, "subcycle": "auto"},
             overrides={"backfill_friction_deg": phi})
     ens("mock_k1_sub30", "sub_2.3_k1_30Hz", wall="mockup-2.3", f=30.0, vertical="none",
-        unvalidated=True, kw={"stiffness_scale": 1.0, "subcycle": "auto"})
+        kw={"stiffness_scale": 1.0, "subcycle": "auto"})
     for r in (0.6, 0.7):  # the S1 checks at the ratios of the twins' median
         out[twin_key(f"s1_DSRW1_5_{r:g}")] = dict(
             out[f"s1_DSRW1_5_{r:g}"], group=f"{TWIN_RULE}_s1", kw={"corner_share": TWIN_RULE},
@@ -258,22 +254,6 @@ def _median_acol(prefix: str) -> tuple[float, int]:
     return float(statistics.median(vals)), len(vals)
 
 
-@contextlib.contextmanager
-def _unvalidated(allow: bool):
-    """With ``allow``, subcycling is not refused at any joint stiffness while the block runs
-    (``collapse.SUBCYCLE_MAX_SCALE``): for the runs that measure the unvalidated path (a
-    spec's ``unvalidated``), never for a user's."""
-    from murus.retaining import collapse
-
-    old = collapse.SUBCYCLE_MAX_SCALE
-    if allow:
-        collapse.SUBCYCLE_MAX_SCALE = math.inf
-    try:
-        yield
-    finally:
-        collapse.SUBCYCLE_MAX_SCALE = old
-
-
 def compute(key: str) -> dict:
     """Run ``key`` and write its JSON to the cache; returns the stored record."""
     from murus.retaining.collapse import DT_FACTORS, CollapseError, collapse_run
@@ -304,16 +284,14 @@ def compute(key: str) -> dict:
     args = (wall, spec["f"], spec["vertical"])
     kw.update(backfill=bmode, backfill_options=opts if bmode == "continuum" else None)
     try:
-        with _unvalidated(spec.get("unvalidated", False)):
-            r = collapse_run(*args, **kw)
+        r = collapse_run(*args, **kw)
     except CollapseError as e:
         # a checkpoint of this key left by another run (e.g. an S1 check whose median A_col
         # changed since) or damaged: ours, removed, and the run starts again
         if ck is None or not str(e).startswith(str(ck)):
             raise
         ck.unlink()
-        with _unvalidated(spec.get("unvalidated", False)):
-            r = collapse_run(*args, **kw)
+        r = collapse_run(*args, **kw)
     rec = {"key": key, "spec": spec, "summary": json_safe(r.summary()), "mode": r.mode,
            "stone_height": wall.stone_height, "median_of": n_med,
            "t": [round(float(x), 4) for x in r.t],
@@ -551,8 +529,7 @@ def _mock_walls():
 #: scaled stiffness only where its A_col is within 3 % of the printed one's; x 1e-2 is not on
 #: the mock-ups, :func:`_stiffness_check`; the subcycled runs at x 1 are measured against
 #: those of one step for all in *Subcycling* below), the second the printed stiffness with
-#: one step for all, the third x 1e-2 (the default of ``collapse_run``, which refuses
-#: subcycling at x 1 until *Subcycling* validates it)
+#: one step for all, the third x 1e-2 (the default of ``collapse_run``)
 MOCK_COLUMNS = (("sub_{s}_k1", "**continuum, joints as printed (x 1, subcycled)** (reference)"),
                 ("mock_{s}_k1", "continuum, joints as printed (x 1, one step for all)"),
                 ("mock_{s}", "continuum, joints x 1e-2 (the default of collapse_run)"))
@@ -851,8 +828,9 @@ def _sub_text(recs: dict) -> list[str]:
                 f"{f['7.74-8.0'][0]:.0f} and {f['7.74-8.0'][1]:.0f} N within a millisecond "
                 "from 7.74 to 8.0 s, and the wall walks on its base. The subcycled x 1 runs "
                 "(session 13: H/B 1.3 1.96, 1.7 2.87, 2.7 2.59, 3.3 1.77 m/s²) are withdrawn; "
-                "`collapse_run` refuses subcycling above x 1e-1 (`SUBCYCLE_MAX_SCALE`) until "
-                "the cause found in session 16 (below) is mended.", ""]
+                "`collapse_run` refused subcycling above x 1e-1 (`SUBCYCLE_MAX_SCALE`) until "
+                "the cause found in session 16 (below) was mended and the pairs above "
+                "measured the mend; it still refuses it with the corner rule 'follow'.", ""]
         m = data.get("mended")
         if m:
             fm = m["interface_normal_N"]
@@ -1197,9 +1175,10 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
             "since session 23 the reference of the mock-ups is **the printed "
             "stiffness, subcycled** (about 1 hour a run on one core, against 3 hours with one "
             "step for all; the pairs of *Subcycling* below measure what subcycling changes). "
-            "`collapse_run` still refuses subcycling at that stiffness until those pairs "
-            "validate it, so the case files of `examples/retaining/savalle2022_table3/` run "
-            "x 1e-2, the third column.", "", *mt, ""]
+            "Those pairs validate it at x 1 (since session 24 `collapse_run` allows it there "
+            "with the default corner rule), and the case files of "
+            "`examples/retaining/savalle2022_table3/` run the reference: `stiffness_scale = "
+            "1.0`, `subcycle = \"auto\"`.", "", *mt, ""]
     out += _stiffness_check(recs)
     for pre, title in MOCK_COLUMNS:
         g = minfo[pre]

@@ -49,10 +49,7 @@ def run(subcycle: str | None) -> dict:
             rows.append((float(t), hold["bf"].interface.normal_force()))
 
     cb.ContinuumBackfill.settle = settle
-    import murus.retaining.collapse as col
 
-    limit = col.SUBCYCLE_MAX_SCALE
-    col.SUBCYCLE_MAX_SCALE = float("inf")  # the evidence of why subcycling is refused at x 1
     try:
         wall = rc._wall(rc.runs()["mock_1.7_k1_r0"])  # (its subcycled twin is withdrawn)
         kw = dict(stiffness_scale=1.0, A_rate=rc.A_MOCK, t_max=T_MAX, safety=0.2,
@@ -63,7 +60,6 @@ def run(subcycle: str | None) -> dict:
         r = collapse_run(wall, 10.0, "none", **kw)
     finally:
         cb.ContinuumBackfill.settle = orig
-        col.SUBCYCLE_MAX_SCALE = limit
     t, d = np.asarray(r.t), np.asarray(r.d_top)
     f = np.asarray(rows)
 

@@ -463,13 +463,14 @@ def test_table3_case_files_are_the_validated_runs(name):
     finally:
         sys.path.pop(0)
     spec = rc.runs()
-    key = {"mockup_2.7_phi50": "mock_2.7_phi50_r0",
-           "mockup_2.7_phi55": "mock_2.7_phi55_r0"}.get(name, name.replace("mockup", "mock")
-                                                        + "_r0")
+    # the reference of the report: the printed stiffness, subcycled (rc.MOCK_COLUMNS)
+    key = name.replace("mockup", "sub").replace("_phi", "_k1_phi")
+    key = (key if "phi" in key else key + "_k1") + "_r0"
     s = spec[key]
     wall = rc._wall(s)
-    assert s["kw"] == {} and s["run"] == 0  # the nominal run: collapse_run's defaults, and
-    kw = {"A_rate": rc.A_MOCK, "t_max": rc.MOCK_TMAX}  # the mock-ups' slope and length
+    ref = {"stiffness_scale": 1.0, "subcycle": "auto"}
+    assert s["kw"] == ref and s["run"] == 0  # the nominal run, and
+    kw = dict(ref, A_rate=rc.A_MOCK, t_max=rc.MOCK_TMAX)  # the mock-ups' slope and length
     st = load_behaviour_study(EXAMPLE.parent / "savalle2022_table3" / f"{name}.toml")
     assert st.wall.name == wall.name
     assert st.wall.stone_height == pytest.approx(wall.stone_height, rel=1e-12)
@@ -478,14 +479,16 @@ def test_table3_case_files_are_the_validated_runs(name):
     # Figure 7 (30 Hz) is the H/B = 2.3 wall's second case, the validation's mock30 run
     assert [c[0] for c in st.cases] == ([10.0, 30.0] if name == "mockup_2.3" else [10.0])
     if name == "mockup_2.3":
-        s30 = spec["mock_2.3_30Hz_r0"]
-        assert s30["wall"] == s["wall"] and s30["f"] == 30.0 and s30["kw"] == {}
+        s30 = spec["sub_2.3_k1_30Hz_r0"]
+        assert s30["wall"] == s["wall"] and s30["f"] == 30.0 and s30["kw"] == ref
     got = st.case_kwargs(st.tasks()[0])
-    for k in ("A_rate", "t_max"):
+    for k in ("A_rate", "t_max", "stiffness_scale"):
         assert got[k] == pytest.approx(kw[k], rel=1e-12)
+    assert got["subcycle"] == "auto"
     # the rest are collapse_run's defaults in both
     assert got["backfill"] == "continuum" and got["xi"] == 0.05
-    assert set(got) - {"A_rate", "t_max", "backfill", "xi", "A_pseudo"} == set()
+    assert set(got) - {"A_rate", "t_max", "backfill", "xi", "A_pseudo", "stiffness_scale",
+                       "subcycle"} == set()
 
 
 def test_a_rate_option_reaches_collapse_run():
@@ -524,6 +527,8 @@ def test_subcycle_in_numerics():
             behaviour_study(dict(base, numerics={"backfill": "continuum", "subcycle": bad}))
     with pytest.raises(CaseError, match="subcycle needs backfill = 'continuum'"):
         behaviour_study(dict(base, numerics={"backfill": "thrust", "subcycle": "auto"}))
-    with pytest.raises(CaseError, match="not validated above x 0.1"):
-        behaviour_study(dict(base, numerics={"backfill": "continuum", "subcycle": "auto",
-                                             "stiffness_scale": 1.0}))
+    # at the printed stiffness too (the case files' corner rule is the default, "shrink")
+    st = behaviour_study(dict(base, numerics={"backfill": "continuum", "subcycle": "auto",
+                                              "stiffness_scale": 1.0}))
+    got = st.case_kwargs(st.tasks()[0])
+    assert got["subcycle"] == "auto" and got["stiffness_scale"] == 1.0

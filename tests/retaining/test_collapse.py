@@ -108,16 +108,19 @@ def test_errors(wall):
             collapse_run(wall, 5.0, backfill="continuum", subcycle=bad)
     with pytest.raises(CollapseError, match="only with the continuum backfill"):
         collapse_run(wall, 5.0, backfill="thrust", subcycle="auto")
-    # refused above x 1e-1 (VALIDATION.md, Subcycling), before anything is built; n = 1 is off
+    # refused above x 1e-1 with the corner rule "follow" (VALIDATION.md, Subcycling), before
+    # anything is built; n = 1 is off; the default rule "shrink" subcycles at any stiffness
     nowhere = "/no/such/folder/ck.npz"  # the next check, also before anything is built
+    follow = {"corner_share": "follow"}
     for scale in (1.0, 0.2):
-        with pytest.raises(CollapseError, match="not validated above x 0.1"):
+        with pytest.raises(CollapseError, match="'follow': not validated above x 0.1"):
             collapse_run(wall, 5.0, backfill="continuum", subcycle="auto",
-                         stiffness_scale=scale, checkpoint=nowhere)
-    for n, scale in ((1, 1.0), ("auto", 0.1)):
+                         stiffness_scale=scale, backfill_options=follow, checkpoint=nowhere)
+    for n, scale, opts in ((1, 1.0, follow), ("auto", 0.1, follow), ("auto", 1.0, None),
+                           (3, 1.0, {"corner_share": "shrink"})):
         with pytest.raises(CollapseError, match="does not exist"):
             collapse_run(wall, 5.0, backfill="continuum", subcycle=n, stiffness_scale=scale,
-                         checkpoint=nowhere)
+                         backfill_options=opts, checkpoint=nowhere)
 
 
 def test_cli_collapse_and_errors(tmp_path):

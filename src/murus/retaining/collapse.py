@@ -87,21 +87,24 @@ __all__ = ["CollapseError", "CollapseResult", "BehaviourTable", "VERTICAL_MODES"
 #: cost; the equivalent thrust and the disc backfill, validated at 1e-3, keep it.
 STIFFNESS_SCALE = {"thrust": 1e-3, "discrete": 1e-3, "continuum": 1e-2}
 
-#: The largest joint stiffness scale at which subcycling is allowed: at the printed stiffness
-#: (x 1) the subcycled mock-ups crept from a quarter of their resistance while the interface
-#: chattered (sessions 14 and 15; ``validation/subcycle_chatter.py``), and so did one step for
-#: all under any small perturbation (session 16), fed by energy a rocking stone's corner
-#: gained from the interface when its stiffness followed the coverage rule up under load
-#: (mended in session 17: ``interface._kept_trib``; VALIDATION.md, *Subcycling*). The refusal
-#: stays until subcycling is measured against one step for all at x 1 with the mended
-#: interface. At x 1e-1 and below the subcycled runs agreed with one step for all (within 1.4
-#: % at x 1e-2; +3.9 % on the one H/B = 2.7 run at x 1e-1, its ensemble not computed).
+#: The largest joint stiffness scale at which subcycling is allowed with the interface's corner
+#: rule ``corner_share="follow"``: at the printed stiffness (x 1) the subcycled mock-ups crept
+#: from a quarter of their resistance while the interface chattered (sessions 14 and 15;
+#: ``validation/subcycle_chatter.py``), and so did one step for all under any small
+#: perturbation (session 16), fed by energy a rocking stone's corner gained from the interface
+#: when its stiffness followed the coverage rule up under load. The default rule, "shrink"
+#: (session 17: ``interface._kept_trib``; VALIDATION.md, *The corner rule*), mends it, and
+#: with it subcycling is allowed at any stiffness: at x 1 the subcycled runs agree with one
+#: step for all (VALIDATION.md, *Subcycling*: the mock-ups H/B = 1.7 and 2.7 and DSRW1 at
+#: 5 Hz), as at x 1e-1 and below.
 SUBCYCLE_MAX_SCALE = 0.1
 
 
-def subcycle_refused(subcycle, stiffness_scale: float | None) -> str | None:
-    """Why ``subcycle`` is refused at ``stiffness_scale`` (above :data:`SUBCYCLE_MAX_SCALE`),
-    or None (allowed; also when the scale is not given yet).
+def subcycle_refused(subcycle, stiffness_scale: float | None,
+                     corner_share: str = "shrink") -> str | None:
+    """Why ``subcycle`` is refused at ``stiffness_scale`` with the interface's corner rule
+    ``corner_share`` (above :data:`SUBCYCLE_MAX_SCALE` with the rule "follow"), or None
+    (allowed; also when the scale is not given yet).
 
     Parameters
     ----------
@@ -109,17 +112,20 @@ def subcycle_refused(subcycle, stiffness_scale: float | None) -> str | None:
         As :func:`collapse_run`'s.
     stiffness_scale : float or None
         The joints' stiffness scale.
+    corner_share : {"shrink", "follow"}
+        The interface's corner rule (:class:`murus.retaining.continuum_backfill.ContinuumBackfill`).
 
     Returns
     -------
     str or None
     """
-    if subcycle in (None, 1) or stiffness_scale is None:
+    if subcycle in (None, 1) or stiffness_scale is None or corner_share != "follow":
         return None
     if stiffness_scale > SUBCYCLE_MAX_SCALE * (1 + 1e-12):
-        return (f"subcycle = {subcycle!r} at stiffness_scale = {stiffness_scale:g}: "
-                f"subcycling is not validated above x {SUBCYCLE_MAX_SCALE:g} (VALIDATION.md, "
-                f"Subcycling); use one step for all")
+        return (f"subcycle = {subcycle!r} at stiffness_scale = {stiffness_scale:g} with "
+                f"corner_share = 'follow': not validated above x {SUBCYCLE_MAX_SCALE:g} (the "
+                f"rocking corners feed the interface's chatter: VALIDATION.md, Subcycling); use "
+                f"the default corner rule 'shrink' or one step for all")
     return None
 
 
@@ -442,8 +448,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
         ``"auto"``: as many as the zones' and the interface's stable steps allow); the
         blocks' contacts set the time step, and the zones, most of a step's cost, then
         take a step of their own size. Default: off (one step for all). Refused above
-        ``stiffness_scale`` :data:`SUBCYCLE_MAX_SCALE` (0.1), where it is not validated yet
-        (VALIDATION.md, *Subcycling*).
+        ``stiffness_scale`` :data:`SUBCYCLE_MAX_SCALE` (0.1) with the corner rule
+        ``corner_share="follow"``, where it is not validated (VALIDATION.md, *Subcycling*).
 
     Returns
     -------
@@ -529,7 +535,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
                                 f"{checkpoint_every!r}")
     if stiffness_scale is None:
         stiffness_scale = STIFFNESS_SCALE[bmode]
-    refused = subcycle_refused(subcycle, stiffness_scale)
+    refused = subcycle_refused(subcycle, stiffness_scale,
+                               (backfill_options or {}).get("corner_share", "shrink"))
     if refused:
         raise CollapseError(refused)
     ck_path = ck_run = digest = None
