@@ -180,7 +180,7 @@ def runs() -> dict[str, dict]:
     # differ by about 10 % on the sliding H/B = 1.7, within one ensemble's scatter; the
     # medians decide), subcycled (about a third of the cost of one step for all):
     # validated there by the pairs of SUB_PAIRS at x 1 (sub_1.7_k1_r0 against mock_1.7_k1_r0,
-    # one step for all; H/B = 2.7; DSRW1), which lifted collapse_run's refusal (session 24)
+    # one step for all; H/B = 2.7; DSRW1), which lifted collapse_run's refusal (session 26)
     for s in MOCKUP_SLENDERNESS:
         ens("mock_k1_sub", f"sub_{s:g}_k1", wall=f"mockup-{s:g}", f=10.0, vertical="none",
             kw={"stiffness_scale": 1.0, "subcycle": "auto"})
@@ -1175,7 +1175,7 @@ def _text(recs: dict, fig_dir: Path, rel) -> str:
             "since session 23 the reference of the mock-ups is **the printed "
             "stiffness, subcycled** (about 1 hour a run on one core, against 3 hours with one "
             "step for all; the pairs of *Subcycling* below measure what subcycling changes). "
-            "Those pairs validate it at x 1 (since session 24 `collapse_run` allows it there "
+            "Those pairs validate it at x 1 (since session 26 `collapse_run` allows it there "
             "with the default corner rule), and the case files of "
             "`examples/retaining/savalle2022_table3/` run the reference: `stiffness_scale = "
             "1.0`, `subcycle = \"auto\"`.", "", *mt, ""]
