@@ -218,3 +218,40 @@ def test_the_campaign_is_made_of_runs_of_the_report():
         with pytest.raises(SystemExit) as e:
             rc.main(argv)
         assert e.value.code == 2
+
+
+def test_a_checkpoint_is_rekeyed_only_from_the_old_engines_digest(tmp_path):
+    """``restamp_check.rekey_checkpoint`` (after a change shown not to change a run): the
+    checkpoint of the old engine, its digest checked, is written under the new engine's name
+    and digest with the same state, and ``collapse_run``'s check accepts it as the new run's;
+    one of other arguments (another digest) is refused; the old file is left."""
+    import numpy as np
+    import restamp_check
+
+    from murus.retaining.collapse import CollapseError, _check_checkpoint
+
+    state = np.arange(64, dtype=np.uint8)
+    run = {"left": 10, "steps": 5, "updates": 7, "wall": 1.5, "digest": "d-old"}
+    old = tmp_path / "k_r0.aaaa.npz"
+    np.savez(old, model=state, run=np.array(json.dumps(run)))
+    new = restamp_check.rekey_checkpoint(tmp_path, "k_r0", {"digest": "d-old", "code": "aaaa"},
+                                         {"digest": "d-new", "code": "bbbb"})
+    assert new == tmp_path / "k_r0.bbbb.npz" and old.exists()
+    got = _check_checkpoint(new, "d-new")
+    assert got == dict(run, digest="d-new")
+    with np.load(new) as z:
+        assert np.array_equal(z["model"], state)
+    with pytest.raises(CollapseError, match="another run"):
+        _check_checkpoint(new, "d-old")
+    with pytest.raises(SystemExit, match="not the old engine's"):
+        restamp_check.rekey_checkpoint(tmp_path, "k_r0", {"digest": "d-other", "code": "aaaa"},
+                                       {"digest": "d-new", "code": "cccc"})
+    assert not (tmp_path / "k_r0.cccc.npz").exists()
+
+
+def test_restamp_check_refuses_an_old_tree_that_is_no_checkout(tmp_path, capsys):
+    """``--old-tree`` must be a checkout of murus: said in one line, exit code 2, nothing run."""
+    import restamp_check
+
+    assert restamp_check.main(["old", "t7_DSRW1_5_none_r0", "--old-tree", str(tmp_path)]) == 2
+    assert "not a checkout of murus" in capsys.readouterr().err

@@ -138,7 +138,8 @@ def main(argv=None) -> int:
                          "progress too (repeatable)")
     args = ap.parse_args(argv)
     if args.old_tree is not None and not (args.old_tree / "src" / "murus").is_dir():
-        print(f"--old-tree {args.old_tree}: not a checkout of murus (no src/murus)")
+        print(f"error: --old-tree {args.old_tree}: not a checkout of murus (no src/murus)",
+              file=sys.stderr)
         return 2
     new = runcache.source_key(*rc.ENGINE)
     cache = rc.CACHE
