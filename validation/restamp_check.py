@@ -57,13 +57,17 @@ Path(out).write_text(json.dumps(rc.compute(key)))
 """
 
 
+def _tree_env(tree: Path) -> dict:
+    """The environment of a process that runs the checkout ``tree``'s murus and validation."""
+    return dict(os.environ, PYTHONPATH=os.pathsep.join([str(tree / "src"),
+                                                        str(tree / "validation")]))
+
+
 def _run_in(tree: Path, key: str, t_max: float, out: Path) -> dict:
     """The record of ``key`` computed by the engine of the checkout ``tree``, cut at
     ``t_max``, in a process of its own (its own modules and numba caches)."""
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(tree / "src"),
-                                                       str(tree / "validation")]))
-    subprocess.run([sys.executable, "-c", _ONE_RUN, key, repr(t_max), str(out)], env=env,
-                   check=True)
+    subprocess.run([sys.executable, "-c", _ONE_RUN, key, repr(t_max), str(out)],
+                   env=_tree_env(tree), check=True)
     return json.loads(out.read_text())
 
 
@@ -89,10 +93,8 @@ except Got as e:
 
 def _digest_in(tree: Path, key: str) -> dict:
     """The checkpoint digest and code key of ``key`` under the engine of ``tree``."""
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(tree / "src"),
-                                                       str(tree / "validation")]))
-    out = subprocess.run([sys.executable, "-c", _DIGEST, key], env=env, check=True,
-                         capture_output=True, text=True).stdout
+    out = subprocess.run([sys.executable, "-c", _DIGEST, key], env=_tree_env(tree),
+                         check=True, capture_output=True, text=True).stdout
     return json.loads(out.strip().splitlines()[-1])
 
 
