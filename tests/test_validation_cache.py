@@ -250,8 +250,12 @@ def test_a_checkpoint_is_rekeyed_only_from_the_old_engines_digest(tmp_path):
 
 
 def test_restamp_check_refuses_an_old_tree_that_is_no_checkout(tmp_path, capsys):
-    """``--old-tree`` must be a checkout of murus: said in one line, exit code 2, nothing run."""
+    """``--old-tree`` must be a checkout of murus, and ``--checkpoint`` comes with
+    ``--old-tree`` and ``--apply``: said in one line, exit code 2, nothing run."""
     import restamp_check
 
     assert restamp_check.main(["old", "t7_DSRW1_5_none_r0", "--old-tree", str(tmp_path)]) == 2
     assert "not a checkout of murus" in capsys.readouterr().err
+    # a checkpoint is re-keyed only with the evidence of both engines, applied
+    assert restamp_check.main(["old", "t7_DSRW1_5_none_r0", "--checkpoint", "k_r0"]) == 2
+    assert "--checkpoint needs --old-tree and --apply" in capsys.readouterr().err

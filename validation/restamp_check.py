@@ -84,6 +84,12 @@ class Got(Exception):
 def grab(path, digest):
     raise Got(json.dumps({"digest": digest, "code": C._code_key()}))
 C._check_checkpoint = grab
+run = C.collapse_run
+def no_run(*a, **kw):  # a run without a checkpoint (discs) would run whole: refused
+    if kw.get("checkpoint") is None:
+        raise SystemExit(f"{sys.argv[1]}: a run without a checkpoint")
+    return run(*a, **kw)
+C.collapse_run = no_run
 try:
     rc.compute(sys.argv[1])
 except Got as e:
@@ -143,6 +149,9 @@ def main(argv=None) -> int:
         print(f"error: --old-tree {args.old_tree}: not a checkout of murus (no src/murus)",
               file=sys.stderr)
         return 2
+    if args.checkpoint and (args.old_tree is None or not args.apply):
+        print("error: --checkpoint needs --old-tree and --apply", file=sys.stderr)
+        return 2
     new = runcache.source_key(*rc.ENGINE)
     cache = rc.CACHE
     rc.CACHE = Path(tempfile.mkdtemp(prefix="restamp_"))
@@ -181,7 +190,7 @@ def main(argv=None) -> int:
                 return (rec.get("spec", {}).get("kw", {}).get("subcycle") or 1) != 1
         keys = runcache.restamp(cache, args.old, new, ev, skip=skip)
         print(f"re-keyed {len(keys)} records {args.old} -> {new}")
-        for key in args.checkpoint if args.old_tree is not None else ():
+        for key in args.checkpoint:
             dst = rekey_checkpoint(rc.CHECKPOINTS, key, _digest_in(args.old_tree, key),
                                    _digest_in(HERE.parent, key))
             print(f"checkpoint of {key} re-keyed: {dst.name}")
