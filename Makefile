@@ -13,12 +13,18 @@ $(BIN)/python:
 	$(PY) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 
+# pip's own byte-compilation of the installed packages runs on one core (half of the install's
+# time); compileall -j 0 does the same on all of them (BENCHMARKS.md, session 28)
+COMPILE := $(BIN)/python -m compileall -q -j 0 $(VENV)/lib > /dev/null
+
 $(STAMP): $(BIN)/python pyproject.toml
-	$(BIN)/python -m pip install -q -e .
+	$(BIN)/python -m pip install -q --no-compile -e .
+	$(COMPILE)
 	touch $@
 
 $(TSTAMP): $(STAMP) pyproject.toml
-	$(BIN)/python -m pip install -q -e ".[test,records,dask]"
+	$(BIN)/python -m pip install -q --no-compile -e ".[test,records,dask]"
+	$(COMPILE)
 	touch $@
 
 demo: $(STAMP)
@@ -32,11 +38,13 @@ validate: $(TSTAMP)
 	$(BIN)/python validation/run.py --out VALIDATION.md
 
 bench: $(TSTAMP)
-	$(BIN)/python -m pip install -q -e ".[bench]"
+	$(BIN)/python -m pip install -q --no-compile -e ".[bench]"
+	$(COMPILE)
 	$(BIN)/python benchmarks/run.py
 
 $(DSTAMP): $(STAMP) pyproject.toml
-	$(BIN)/python -m pip install -q -e ".[docs]"
+	$(BIN)/python -m pip install -q --no-compile -e ".[docs]"
+	$(COMPILE)
 	touch $@
 
 # the documentation site, into docs/_build/html/ (offline; warnings are errors). The gallery runs

@@ -259,3 +259,54 @@ def test_restamp_check_refuses_an_old_tree_that_is_no_checkout(tmp_path, capsys)
     # a checkpoint is re-keyed only with the evidence of both engines, applied
     assert restamp_check.main(["old", "t7_DSRW1_5_none_r0", "--checkpoint", "k_r0"]) == 2
     assert "--checkpoint needs --old-tree and --apply" in capsys.readouterr().err
+
+
+def _fake_study(st, kind, workers=None, out=None):
+    """Stands for run_behaviour_study: one case file per call, kept across calls (a resume)."""
+    cases = Path(out) / "cases"
+    cases.mkdir(parents=True, exist_ok=True)
+    n = len(list(cases.iterdir()))
+    (cases / f"case{n}.json").write_text("{}")
+    (Path(out) / "behaviour_factor.csv").write_text("wall\n")
+    return n
+
+
+def test_a_behaviour_study_of_another_engine_is_recomputed(tmp_path, monkeypatch):
+    """The behaviour studies' folders (validation/retaining_behaviour.py) are keyed by the
+    engine as the records are: stamped before their first case, resumed by the same engine,
+    recomputed from scratch by another (left out with ``--cached``, and named), refused
+    without a stamp (one line, exit 2), re-keyed by restamp_check with its evidence."""
+    import restamp_check
+    import retaining_behaviour as rb
+
+    import murus.retaining.study as S
+
+    monkeypatch.delenv("NUMBA_NUM_THREADS", raising=False)
+    monkeypatch.setattr(rb, "CACHE", tmp_path)
+    monkeypatch.setattr(rb, "studies", lambda: {"W1": None})
+    monkeypatch.setattr(S, "run_behaviour_study", _fake_study)
+    monkeypatch.setattr(rb, "engine_key", lambda: "E1")
+    assert rb.run_all() == {"W1": 0}
+    stamp = json.loads((tmp_path / "W1" / rb.STAMP).read_text())
+    assert stamp[runcache.ENGINE_FIELD] == "E1"
+    assert stamp[runcache.PLATFORM_FIELD] == runcache.platform()
+    assert rb.run_all() == {"W1": 1}  # resumed: the first case kept
+    assert rb.stamp_state(tmp_path / "W1", "E1") == ("current", "E1")
+
+    monkeypatch.setattr(rb, "engine_key", lambda: "E2")
+    stale = {}
+    assert rb.run_all(cached=True, stale=stale) == {} and stale == {"W1": "E1"}
+    assert len(list((tmp_path / "W1" / "cases").iterdir())) == 2  # --cached wrote nothing
+    assert rb.run_all() == {"W1": 0}  # recomputed from scratch
+    assert rb.stamp_state(tmp_path / "W1", "E2") == ("current", "E2")
+
+    assert restamp_check.restamp_studies("E2", "E3", "W1 cut at 1 s: bit for bit") == ["W1"]
+    stamp = json.loads((tmp_path / "W1" / rb.STAMP).read_text())
+    assert stamp[runcache.ENGINE_FIELD] == "E3" and stamp["_restamped_from"] == "E2"
+    assert restamp_check.restamp_studies("E2", "E4", "none") == []  # E2's stamp is gone
+
+    (tmp_path / "W1" / rb.STAMP).unlink()
+    with pytest.raises(SystemExit) as exc:
+        rb.main(["--out", str(tmp_path / "section.md")])
+    assert exc.value.code == 2 and not (tmp_path / "section.md").exists()
+    assert len(list((tmp_path / "W1" / "cases").iterdir())) == 1  # nothing removed

@@ -125,6 +125,19 @@ def rekey_checkpoint(checkpoints: Path, key: str, old: dict, new: dict) -> Path:
     return dst
 
 
+def restamp_studies(old: str, new: str, evidence: str) -> list[str]:
+    """Re-key the engine stamps of the behaviour studies (``retaining_behaviour.STAMP`` in each
+    folder of ``retaining_behaviour.CACHE``) made by ``old``, with the same evidence as the
+    records. Returns the studies re-keyed."""
+    import retaining_behaviour as rb
+    import runcache
+
+    if not rb.CACHE.is_dir():
+        return []
+    return [f.name for f in sorted(rb.CACHE.iterdir())
+            if f.is_dir() and runcache.restamp(f, old, new, evidence)]
+
+
 def main(argv=None) -> int:
     import retaining_continuum as rc
     import runcache
@@ -190,6 +203,9 @@ def main(argv=None) -> int:
                 return (rec.get("spec", {}).get("kw", {}).get("subcycle") or 1) != 1
         keys = runcache.restamp(cache, args.old, new, ev, skip=skip)
         print(f"re-keyed {len(keys)} records {args.old} -> {new}")
+        if not args.except_subcycled:  # the studies run subcycled: else recomputed
+            studies = restamp_studies(args.old, new, ev)
+            print(f"re-keyed {len(studies)} behaviour studies {args.old} -> {new}")
         for key in args.checkpoint:
             dst = rekey_checkpoint(rc.CHECKPOINTS, key, _digest_in(args.old_tree, key),
                                    _digest_in(HERE.parent, key))

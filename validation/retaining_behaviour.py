@@ -6,7 +6,12 @@ each) and ``dsrw2..4_behaviour_factor.toml`` (5 Hz with its checks), run by
 :func:`murus.retaining.study.run_behaviour_study` on the continuum backfill of the paper.
 
 The study folders under ``validation/results/retaining_behaviour/continuum/`` are the cache: a
-study resumes there and computes only its missing cases (delete a folder to recompute it).
+study resumes there and computes only its missing cases (delete a folder to recompute it). Each
+folder is keyed by the engine's source as the continuum records are (``engine.json``, written
+before its first case: the key of ``runcache.source_key`` over ``retaining_continuum.ENGINE``):
+a study made by another engine is recomputed (and left out with ``--cached``), unless
+``validation/restamp_check.py --apply`` re-keyed it with the evidence that the change of the
+engine changes no run.
 
 Usage::
 
@@ -19,6 +24,8 @@ import argparse
 import csv
 import json
 import math
+import shutil
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -26,6 +33,50 @@ CACHE = ROOT / "validation" / "results" / "retaining_behaviour" / "continuum"
 EXAMPLES = ROOT / "examples" / "retaining"
 DATA = ROOT / "tests" / "data" / "retaining" / "savalle2022_table8.csv"
 WALLS = ("DSRW1", "DSRW2", "DSRW3", "DSRW4")
+#: A study folder's engine stamp: ``{runcache.ENGINE_FIELD: key, runcache.PLATFORM_FIELD: ...}``
+#: (re-keyed by ``runcache.restamp`` as a record is).
+STAMP = "engine.json"
+
+
+def engine_key() -> str:
+    """The key of the engine whose source decides the studies' runs (the continuum
+    validation's)."""
+    import retaining_continuum as rc
+    import runcache
+
+    return runcache.source_key(*rc.ENGINE)
+
+
+def stamp_state(folder: Path, engine: str) -> tuple[str, str | None]:
+    """``("new", None)``: no folder or an empty one; ``("current", key)``: stamped by
+    ``engine``; ``("stale", key)``: stamped by another engine; ``("unknown", None)``: a folder
+    with content and no readable stamp."""
+    import runcache
+
+    if not folder.is_dir() or not any(folder.iterdir()):
+        return "new", None
+    try:
+        key = json.loads((folder / STAMP).read_text()).get(runcache.ENGINE_FIELD)
+    except (OSError, ValueError, AttributeError):
+        return "unknown", None
+    if not isinstance(key, str):
+        return "unknown", None
+    return ("current" if key == engine else "stale"), key
+
+
+def write_stamp(folder: Path, engine: str) -> None:
+    import runcache
+
+    from murus.outputs import write_text
+
+    folder.mkdir(parents=True, exist_ok=True)
+    write_text(folder / STAMP, json.dumps({runcache.ENGINE_FIELD: engine,
+                                           runcache.PLATFORM_FIELD: runcache.platform()},
+                                          indent=1) + "\n")
+
+
+class StaleStudy(Exception):
+    """A study folder this script cannot vouch for (no engine stamp)."""
 
 
 def studies():
@@ -36,18 +87,37 @@ def studies():
             for w in WALLS}
 
 
-def run_all(workers: int = 1, cached: bool = False) -> dict:
+def run_all(workers: int = 1, cached: bool = False, stale: dict | None = None) -> dict:
     """name -> BehaviourStudyResult (computing the missing cases; with ``cached`` only the
-    studies whose folder holds a finished table, which computes nothing)."""
+    studies whose folder holds a finished table of this engine, which computes nothing).
+
+    A folder stamped by another engine is recomputed from scratch (its content was written by
+    this script: the stamp says so); with ``cached`` it is left out and listed in ``stale``
+    (name -> its engine key, or None for a folder without a stamp). A folder with content but
+    no stamp is refused (:class:`StaleStudy`): nothing tells which engine made it."""
     from murus.studies.executors import fresh_pool_size
 
     fresh_pool_size(1)  # one numba thread, in a fresh process
     from murus.retaining.study import run_behaviour_study
 
+    eng = engine_key()
     res = {}
     for name, st in studies().items():
-        if cached and not (CACHE / name / "behaviour_factor.csv").exists():
-            continue
+        folder = CACHE / name
+        state, key = stamp_state(folder, eng)
+        if cached:
+            if state in ("stale", "unknown") and stale is not None:
+                stale[name] = key
+            if state != "current" or not (folder / "behaviour_factor.csv").exists():
+                continue
+        elif state == "unknown":
+            raise StaleStudy(f"{folder}: a study folder without a readable engine stamp "
+                             f"({STAMP}): delete it to recompute it")
+        elif state == "stale":
+            print(f"  {name}: made by engine {key}, not {eng}: recomputed", file=sys.stderr)
+            shutil.rmtree(folder)
+        if state != "current" and not cached:
+            write_stamp(folder, eng)
         kind = "serial" if workers <= 1 else "process"
         res[name] = run_behaviour_study(st, kind, workers=None if workers <= 1 else workers,
                                         out=CACHE / name)
@@ -123,8 +193,24 @@ def _against_nominal(res: dict) -> tuple[list[str], list[str], list[float], set[
     return same, diff, rel, machines
 
 
+def _study_machines(res: dict) -> set[str]:
+    """The machines in the engine stamps of the studies ``res`` ("not recorded" without)."""
+    import runcache
+
+    out = set()
+    for name in res:
+        try:
+            pf = json.loads((CACHE / name / STAMP).read_text()).get(runcache.PLATFORM_FIELD)
+        except (OSError, ValueError, AttributeError):
+            pf = None
+        out.add(f"{pf.get('cpu', '?')} ({', '.join(pf.get('isa', []))})" if pf
+                else "not recorded")
+    return out
+
+
 def section(workers: int = 1, cached: bool = False) -> str:
-    res = run_all(workers, cached)
+    stale: dict = {}
+    res = run_all(workers, cached, stale)
     seed = {(r["wall"], float(r["frequency_Hz"]), r["vertical"].replace("-", "_")): r
             for r in _seed_rows()}
     L = ["## Dry-stone retaining walls: behaviour factor (Savalle et al. (2022), Tables 7-8, "
@@ -140,7 +226,13 @@ def section(workers: int = 1, cached: bool = False) -> str:
              "`validation/results/retaining_behaviour/continuum/` are its cache); the same table "
              "comes from `murus retaining behaviour-factor examples/retaining/"
              "dsrw1_behaviour_factor.toml`.")
-    missing = [w for w in WALLS if w not in res]
+    missing = [w for w in WALLS if w not in res and w not in stale]
+    if stale:
+        L.append("")
+        L.append("Made by another engine, so left out (`python validation/retaining_behaviour.py "
+                 "--workers 2` recomputes them; `validation/restamp_check.py --apply` re-keys "
+                 "them where the change of the engine is shown to change no run): "
+                 + ", ".join(f"{w} ({k or 'no stamp'})" for w, k in stale.items()) + ".")
     if missing:
         L.append("")
         one = len(missing) == 1
@@ -200,8 +292,8 @@ def section(workers: int = 1, cached: bool = False) -> str:
                      "amplifies differences in the last digits of the arithmetic, which is why "
                      "the continuum section gives each A_col as the median of five runs with "
                      "its range. The machine of the nominal records: "
-                     + "; ".join(sorted(machines)) + "; the study's cases record neither their "
-                     "machine nor their engine.")
+                     + "; ".join(sorted(machines)) + "; the study folders': "
+                     + "; ".join(sorted(_study_machines(res))) + ".")
     r1 = [r for w, r in rs if w == "DSRW1"]
     above = ("above it in every case" if rs and min(r for _, r in rs) > 1.5
              else "below it in some cases")
@@ -254,7 +346,12 @@ def main(argv=None) -> None:
         global CACHE
         CACHE = Path(args.cache).resolve()
 
-    runcache.emit(section(args.workers, args.cached), args.out)
+    try:
+        text = section(args.workers, args.cached)
+    except StaleStudy as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        raise SystemExit(2) from None
+    runcache.emit(text, args.out)
 
 
 if __name__ == "__main__":
