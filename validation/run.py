@@ -89,6 +89,9 @@ def main() -> None:
         except Exception as exc:
             if is_interrupt(exc):  # Ctrl-C inside a numba kernel: a SystemError
                 raise KeyboardInterrupt from exc
+            if isinstance(exc, retaining_behaviour.StaleStudy):  # a folder of no known engine
+                print(f"error: {exc} ({args.out} not written)", file=sys.stderr)
+                raise SystemExit(2) from None
             raise
     except KeyboardInterrupt:
         print(f"\ninterrupted in section {name} after {format_seconds(time.monotonic() - t0)}"
