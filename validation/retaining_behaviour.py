@@ -152,16 +152,20 @@ def _corner_rule(row: dict) -> str:
     return bo.get("corner_share", "follow") if isinstance(bo, dict) else "unknown"
 
 
-def _against_nominal(res: dict) -> tuple[list[str], list[str], list[float], set[str]]:
+def _against_nominal(res: dict) -> tuple[list[str], list[str], list[float], set[str], list]:
     """The S2 cases whose A_col equals (first list) or differs from (second) the nominal run
     of the same case and corner rule in the continuum validation's cache (cases without one
-    are skipped), the relative differences of the second, and the machines the compared
+    are skipped), the relative differences of the second, the machines the compared
     records were computed on (``runcache.PLATFORM_FIELD``; "not recorded" for the records
-    made before the field existed)."""
+    made before the field existed), and, for the cases whose five runs are all cached,
+    ``(label, A_col of the study, lowest and highest of the five, relative distance outside
+    that range (0 inside))``: the study's S2 run is the shipped command's run (the nominal
+    run's arguments) on the machine of the study, so this is item 6's "the shipped command
+    reproduces each number within its stated range", measured there."""
     import retaining_continuum as rc
     import runcache
 
-    same, diff, rel, machines = [], [], [], set()
+    same, diff, rel, machines, ranges = [], [], [], set(), []
     cont = ROOT / "validation" / "results" / "retaining_continuum"
     for r in res.values():
         for row in r.table.rows:
@@ -181,6 +185,14 @@ def _against_nominal(res: dict) -> tuple[list[str], list[str], list[float], set[
             machines.add(f"{pf.get('cpu', '?')} ({', '.join(pf.get('isa', []))})" if pf
                          else "not recorded")
             lab = f"{row['wall']} {row['frequency_Hz']:g} Hz {row['vertical']}"
+            ens = [json.loads(p.read_text())["summary"].get("A_col")
+                   for p in (cont / f"{key[:-1]}{i}.json" for i in range(rc.NRUNS))
+                   if p.exists()]
+            ens = [float(x) for x in ens if x is not None]
+            if len(ens) == rc.NRUNS:
+                x, lo, hi = float(row["A_col_m_s2"]), min(ens), max(ens)
+                out = 0.0 if lo <= x <= hi else (x / hi - 1 if x > hi else x / lo - 1)
+                ranges.append((lab, x, lo, hi, out))
             if a is not None and float(a) == float(row["A_col_m_s2"]):
                 same.append(lab)
             elif a is not None:
@@ -190,7 +202,7 @@ def _against_nominal(res: dict) -> tuple[list[str], list[str], list[float], set[
                             f"{100 * d:+.2f} %)")
             else:
                 diff.append(f"{lab} ({row['A_col_m_s2']:.4f}; the record has no A_col)")
-    return same, diff, rel, machines
+    return same, diff, rel, machines, ranges
 
 
 def _study_machines(res: dict) -> set[str]:
@@ -280,7 +292,7 @@ def section(workers: int = 1, cached: bool = False) -> str:
                  "rule until the studies are run again (delete the study folders and run "
                  "`python validation/retaining_behaviour.py --workers 2`, about 1.5 "
                  "core-hours); the continuum section below gives both rules.")
-    same, diff, rel, machines = _against_nominal(res)
+    same, diff, rel, machines, ranges = _against_nominal(res)
     if same or diff:
         L.append(f"- The study's S2 runs against the nominal runs of the continuum section "
                  f"below (the same numerics, computed separately): {len(same)} of "
@@ -294,6 +306,15 @@ def section(workers: int = 1, cached: bool = False) -> str:
                      "its range. The machine of the nominal records: "
                      + "; ".join(sorted(machines)) + "; the study folders': "
                      + "; ".join(sorted(_study_machines(res))) + ".")
+    if ranges:
+        outside = [f"{lab} ({x:.4f} against [{lo:.4f}-{hi:.4f}], {100 * o:+.2f} % beyond it)"
+                   for lab, x, lo, hi, o in ranges if o != 0.0]
+        L.append(f"- The study's S2 runs are the shipped command's runs (the nominal run's "
+                 f"arguments: `murus retaining collapse --preset DSRW1 --frequency 5` and so "
+                 f"on) on the study's machine; against the range of the five runs of the "
+                 f"continuum section (item 6 of issue 18: the shipped command within the "
+                 f"stated range): {len(ranges) - len(outside)} of {len(ranges)} within it"
+                 + ("." if not outside else "; outside: " + ", ".join(outside) + "."))
     r1 = [r for w, r in rs if w == "DSRW1"]
     above = ("above it in every case" if rs and min(r for _, r in rs) > 1.5
              else "below it in some cases")
