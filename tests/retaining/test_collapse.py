@@ -128,17 +128,20 @@ def test_the_refusal_assumes_the_backfills_default_corner_rule():
     """``subcycle_refused`` (and ``collapse_run``, which passes it the corner rule of
     ``backfill_options`` or this default) decides on the rule the continuum backfill and its
     interface run when none is given: the three defaults are one rule, so that a change of the
-    backfill's default cannot leave the refusal judging another rule than the one run."""
+    backfill's default cannot leave the refusal judging another rule than the one run (all
+    read ``murus.continuum.DEFAULT_CORNER_SHARE``)."""
     import inspect
 
+    from murus.continuum import DEFAULT_CORNER_SHARE
     from murus.continuum.interface import Interface
     from murus.retaining.collapse import subcycle_refused
     from murus.retaining.continuum_backfill import ContinuumBackfill
 
     defaults = {inspect.signature(f).parameters["corner_share"].default
                 for f in (Interface.__init__, ContinuumBackfill.__init__, subcycle_refused)}
-    assert defaults == {"shrink"}
+    assert defaults == {DEFAULT_CORNER_SHARE} == {"shrink"}
     assert subcycle_refused("auto", 1.0) is None
+
 
 def test_cli_collapse_and_errors(tmp_path):
     from murus.cli import app

@@ -21,6 +21,13 @@ numba.
 
 from murus._lazy import lazy_exports
 
+#: The interface's default corner rule (``corner_share`` of :class:`Interface`: "shrink", a
+#: loaded corner's share of a stone's face follows the coverage rule down only), also the
+#: default of the continuum backfill (:mod:`murus.retaining.continuum_backfill`) and the rule
+#: :func:`murus.retaining.collapse.subcycle_refused` assumes: one constant, here where none of
+#: them loads numba to read it.
+DEFAULT_CORNER_SHARE = "shrink"
+
 _EXPORTS = {
     "ContinuumModel": "model",
     "ModelError": "model",

@@ -119,6 +119,7 @@ import numpy as np
 from numba import njit
 
 from murus._jit import guard_cache as _guard_cache
+from murus.continuum import DEFAULT_CORNER_SHARE
 from murus.dem._kdata import Contacts, PairMotion, SubContact
 from murus.dem.kernels import (
     F_FN,
@@ -1111,7 +1112,9 @@ def step(P, E, C, geo, side, bodies, shapes, jprops, nodes, corners, state, work
     """
     gxy = side.gxy
     if C[IC_NEED_REBUILD] != 0 or moved(geo, gxy, bodies, state, P[IP_MARGIN]):
-        t = rebuild(P, E, C, geo, gxy, bodies, shapes, nodes, corners, state, 0)
+        # np.int64: a literal 0 would compile another specialisation of rebuild than the
+        # int64 of its calls from Python
+        t = rebuild(P, E, C, geo, gxy, bodies, shapes, nodes, corners, state, np.int64(0))
         nodes = Contacts(t[0], t[1], t[2], t[3], t[4], t[5])
         corners = Contacts(t[6], t[7], t[8], t[9], t[10], t[11])
     b0 = E[IE_DBREAK]
@@ -1234,7 +1237,8 @@ class Interface:
 
     def __init__(self, grid, edges, dem, joint=None, *, margin: float | None = None,
                  reach: float | None = None, depth: float | None = None,
-                 bond_initial: bool = True, corner_share: str = "shrink") -> None:
+                 bond_initial: bool = True,
+                 corner_share: str = DEFAULT_CORNER_SHARE) -> None:
         from murus.dem import _kdata as dkd
         from murus.dem import kernels as DK
         from murus.dem.materials import Joint

@@ -602,7 +602,8 @@ def _zone(z, zg, zmat, zsig, zstate, zwork, zf, gxy, gvel, mprops, P):
     zf[r + 3, 1] = 0.25 * fy3
 
 
-#: No selection: every zone (:func:`_zones_par`).
+#: No selection: every zone (:func:`_zones_par`, called from Python; :func:`zone_forces`
+#: makes its own).
 _ALL = np.zeros(0, np.int64)
 
 
@@ -792,11 +793,15 @@ def zone_forces(P, grid, zones, mprops, par):
     -------
     None
     """
+    # an empty selection of this function's own, not the global _ALL: a global array is a
+    # read-only constant to numba, another type than the selections of zone_forces_sel, and
+    # each of _zones_par and _zones_ser was compiled twice (about 35 s of CPU, cold)
+    allz = np.empty(0, np.int64)
     if par:
-        _zones_par(_ALL, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
+        _zones_par(allz, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
                    grid.gxy, grid.gvel, mprops, P)
     else:
-        _zones_ser(_ALL, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
+        _zones_ser(allz, zones.zg, zones.zmat, zones.zsig, zones.zstate, zones.zwork, zones.zf,
                    grid.gxy, grid.gvel, mprops, P)
 
 

@@ -72,6 +72,7 @@ from pathlib import Path
 
 import numpy as np
 
+from murus.continuum import DEFAULT_CORNER_SHARE
 from murus.errors import MurusError
 from murus.retaining.geometry import RetainingWall
 
@@ -101,7 +102,7 @@ SUBCYCLE_MAX_SCALE = 0.1
 
 
 def subcycle_refused(subcycle, stiffness_scale: float | None,
-                     corner_share: str = "shrink") -> str | None:
+                     corner_share: str = DEFAULT_CORNER_SHARE) -> str | None:
     """Why ``subcycle`` is refused at ``stiffness_scale`` with the interface's corner rule
     ``corner_share`` (above :data:`SUBCYCLE_MAX_SCALE` with the rule "follow"), or None
     (allowed; also when the scale is not given yet).
@@ -536,7 +537,8 @@ def collapse_run(wall: RetainingWall, frequency: float, vertical: str = "none", 
     if stiffness_scale is None:
         stiffness_scale = STIFFNESS_SCALE[bmode]
     refused = subcycle_refused(subcycle, stiffness_scale,
-                               (backfill_options or {}).get("corner_share", "shrink"))
+                               (backfill_options or {}).get("corner_share",
+                                                               DEFAULT_CORNER_SHARE))
     if refused:
         raise CollapseError(refused)
     ck_path = ck_run = digest = None

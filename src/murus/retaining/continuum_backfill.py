@@ -54,6 +54,7 @@ import math
 import numpy as np
 
 from murus import G
+from murus.continuum import DEFAULT_CORNER_SHARE
 from murus.errors import MurusError
 from murus.retaining.geometry import RetainingWall
 
@@ -143,7 +144,8 @@ class ContinuumBackfill:
                  stiffness_scale: float = 1e-2, crust_cohesion: float | None = None,
                  crust_depth: float | None = None,
                  E: float | None = None, nu: float | None = None, settle_tol: float = 1e-4,
-                 settle_steps: int | None = None, corner_share: str = "shrink") -> None:
+                 settle_steps: int | None = None,
+                 corner_share: str = DEFAULT_CORNER_SHARE) -> None:
         from murus.retaining.backfill import SEED_ELASTIC, SEED_INTERFACE_K, _is_mock
 
         b = str(boundary).strip().lower()
