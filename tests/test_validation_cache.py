@@ -292,11 +292,18 @@ def test_a_behaviour_study_of_another_engine_is_recomputed(tmp_path, monkeypatch
     assert stamp[runcache.PLATFORM_FIELD] == runcache.platform()
     assert rb.run_all() == {"W1": 1}  # resumed: the first case kept
     assert rb.stamp_state(tmp_path / "W1", "E1") == ("current", "E1")
+    assert "_resumed_on" not in json.loads((tmp_path / "W1" / rb.STAMP).read_text())
+    here = runcache.platform
+    other = dict(here(), cpu="another CPU")
+    monkeypatch.setattr(runcache, "platform", lambda: other)
+    assert rb.run_all() == {"W1": 2}  # resumed on another machine: named in the stamp
+    assert json.loads((tmp_path / "W1" / rb.STAMP).read_text())["_resumed_on"] == [other]
+    monkeypatch.setattr(runcache, "platform", here)
 
     monkeypatch.setattr(rb, "engine_key", lambda: "E2")
     stale = {}
     assert rb.run_all(cached=True, stale=stale) == {} and stale == {"W1": "E1"}
-    assert len(list((tmp_path / "W1" / "cases").iterdir())) == 2  # --cached wrote nothing
+    assert len(list((tmp_path / "W1" / "cases").iterdir())) == 3  # --cached wrote nothing
     assert rb.run_all() == {"W1": 0}  # recomputed from scratch
     assert rb.stamp_state(tmp_path / "W1", "E2") == ("current", "E2")
 

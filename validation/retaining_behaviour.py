@@ -75,6 +75,22 @@ def write_stamp(folder: Path, engine: str) -> None:
                                           indent=1) + "\n")
 
 
+def note_machine(folder: Path) -> None:
+    """Add this machine to the stamp's ``_resumed_on`` when a study is resumed on a machine
+    other than the one of its first case (the same engine gives the same numbers only on a
+    machine of the same arithmetic)."""
+    import runcache
+
+    from murus.outputs import write_text
+
+    stamp = json.loads((folder / STAMP).read_text())
+    here = runcache.platform()
+    seen = [stamp.get(runcache.PLATFORM_FIELD)] + stamp.get("_resumed_on", [])
+    if here not in seen:
+        stamp["_resumed_on"] = stamp.get("_resumed_on", []) + [here]
+        write_text(folder / STAMP, json.dumps(stamp, indent=1) + "\n")
+
+
 class StaleStudy(Exception):
     """A study folder this script cannot vouch for (no engine stamp)."""
 
@@ -118,6 +134,8 @@ def run_all(workers: int = 1, cached: bool = False, stale: dict | None = None) -
             shutil.rmtree(folder)
         if state != "current" and not cached:
             write_stamp(folder, eng)
+        elif state == "current" and not cached:
+            note_machine(folder)
         kind = "serial" if workers <= 1 else "process"
         res[name] = run_behaviour_study(st, kind, workers=None if workers <= 1 else workers,
                                         out=CACHE / name)
