@@ -132,10 +132,10 @@ def run_all(workers: int = 1, cached: bool = False, stale: dict | None = None) -
         elif state == "stale":
             print(f"  {name}: made by engine {key}, not {eng}: recomputed", file=sys.stderr)
             shutil.rmtree(folder)
-        if state != "current" and not cached:
-            write_stamp(folder, eng)
-        elif state == "current" and not cached:
+        if not cached and state == "current":
             note_machine(folder)
+        elif not cached:
+            write_stamp(folder, eng)
         kind = "serial" if workers <= 1 else "process"
         res[name] = run_behaviour_study(st, kind, workers=None if workers <= 1 else workers,
                                         out=CACHE / name)
@@ -200,8 +200,7 @@ def _against_nominal(res: dict) -> tuple[list[str], list[str], list[float], set[
             rec = json.loads(path.read_text())
             a = rec["summary"].get("A_col")
             pf = rec.get(runcache.PLATFORM_FIELD)
-            machines.add(f"{pf.get('cpu', '?')} ({', '.join(pf.get('isa', []))})" if pf
-                         else "not recorded")
+            machines.add(_machine(pf))
             lab = f"{row['wall']} {row['frequency_Hz']:g} Hz {row['vertical']}"
             ens = [json.loads(p.read_text())["summary"].get("A_col")
                    for p in (cont / f"{key[:-1]}{i}.json" for i in range(rc.NRUNS))
@@ -223,18 +222,24 @@ def _against_nominal(res: dict) -> tuple[list[str], list[str], list[float], set[
     return same, diff, rel, machines, ranges
 
 
+def _machine(pf: dict | None) -> str:
+    """A machine of ``runcache.platform()`` in words ("not recorded" for None)."""
+    return f"{pf.get('cpu', '?')} ({', '.join(pf.get('isa', []))})" if pf else "not recorded"
+
+
 def _study_machines(res: dict) -> set[str]:
-    """The machines in the engine stamps of the studies ``res`` ("not recorded" without)."""
+    """The machines in the engine stamps of the studies ``res``: of their first case and of
+    their resumes elsewhere ("not recorded" without a stamp)."""
     import runcache
 
     out = set()
     for name in res:
         try:
-            pf = json.loads((CACHE / name / STAMP).read_text()).get(runcache.PLATFORM_FIELD)
-        except (OSError, ValueError, AttributeError):
-            pf = None
-        out.add(f"{pf.get('cpu', '?')} ({', '.join(pf.get('isa', []))})" if pf
-                else "not recorded")
+            stamp = json.loads((CACHE / name / STAMP).read_text())
+        except (OSError, ValueError):
+            stamp = {}
+        out.update(_machine(pf) for pf in
+                   [stamp.get(runcache.PLATFORM_FIELD)] + stamp.get("_resumed_on", []))
     return out
 
 
